@@ -1,0 +1,73 @@
+#pragma once
+// Seeded point clouds with exact normals, for tests, the demo and the benchmark.
+//
+// Shapes: the unit sphere, the torus (tube radius r swept around a circle of radius R, sphere-packing
+// paper sec. 5.2 uses R = 2, r = 1) and an open, gently curved height-field patch. Sampling is
+// uniform by area, or non-uniform with a 4:1 density ratio along z. Perturbations follow the two
+// papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
+// <= nu, sphere packing sec. 5.3), Gaussian noise (Robust G2S sec. 5.2) and uniformly scattered
+// outliers. Normals are always those of the exact surface at the unperturbed sample.
+// The same spec gives the same cloud on every machine (own random number transforms, not the
+// implementation-defined std:: distributions).
+#include <vcg/space/point3.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class CMeshO;
+
+namespace growth {
+
+enum class Shape { Sphere, Torus, Patch };
+
+struct CloudSpec {
+  Shape shape = Shape::Sphere;
+  size_t count = 10000;         // points on the surface (outliers come on top)
+  std::uint64_t seed = 1;
+  bool nonUniform = false;      // density varies 4:1 along z
+  double noiseBound = 0.0;      // nu: each point moves by a uniform random vector of length <= nu
+  double gaussianSigma = 0.0;   // standard deviation of isotropic Gaussian noise (absolute units)
+  double outlierFraction = 0.0; // outliers added, as a fraction of count, uniform in the enlarged box
+  double sphereRadius = 1.0;
+  double torusMajor = 2.0;      // R
+  double torusMinor = 1.0;      // r
+  double patchHalfSize = 1.0;   // the patch spans [-h, h]^2 in x, y
+};
+
+struct Cloud {
+  std::vector<vcg::Point3d> points;
+  std::vector<vcg::Point3d> normals;   // unit length
+};
+
+Cloud generateCloud(const CloudSpec& spec);
+
+// Distance of p to the exact (noise-free) surface of the spec's shape; for the patch, the vertical
+// distance to the height field (a bound of the true distance, tight for its gentle slopes).
+double distanceToShape(const CloudSpec& spec, const vcg::Point3d& p);
+
+// Parses "sphere", "torus", "patch"; throws growth::Error otherwise.
+Shape parseShape(const std::string& name);
+const char* shapeName(Shape s);
+
+// Binary little-endian PLY with float x y z nx ny nz, which MeshLab reads.
+void writePly(const std::string& path, const Cloud& cloud);
+
+// Fills a MeshLab mesh (vertices and normals only) with the cloud.
+void toMesh(const Cloud& cloud, CMeshO& mesh);
+
+// A small seeded generator with portable transforms (splitmix64-seeded xoshiro256**).
+class Random {
+public:
+  explicit Random(std::uint64_t seed);
+  std::uint64_t next();
+  double uniform();                       // [0, 1)
+  double uniform(double a, double b) { return a + (b - a) * uniform(); }
+  double gaussian();                      // standard normal, Box-Muller
+  vcg::Point3d unitVector();              // uniform on the unit sphere
+  vcg::Point3d inBall(double radius);     // uniform in the ball
+private:
+  std::uint64_t s_[4];
+};
+
+} // namespace growth

@@ -1,0 +1,44 @@
+#pragma once
+// Reading a MeshLab layer as a point cloud, with the input checks both filters share.
+//
+// The engine computes in double (MeshLab stores float): the live vertices are copied into double
+// arrays once. Bad input is refused with a growth::Error whose message says what is wrong and what
+// to do in MeshLab; nothing in the layer is changed.
+#include <vcg/space/box3.h>
+#include <vcg/space/point3.h>
+
+#include <string>
+#include <vector>
+
+class CMeshO;
+
+namespace growth {
+
+struct InputCloud {
+  std::vector<vcg::Point3d> points;
+  std::vector<vcg::Point3d> normals;   // unit length; empty when normals were not asked for
+  std::vector<int> vertexIndex;        // index of each point in the layer's vertex vector
+  vcg::Box3d box;
+  size_t duplicatesDropped = 0;        // exact repeats of an earlier point (first one kept)
+  size_t layerFaces = 0;
+};
+
+struct CloudCheck {
+  bool needNormals = false;            // refuse points without a usable normal
+  bool allowFaces = false;             // refuse a layer that is already a mesh
+  size_t minPoints = 3;
+};
+
+// Copies the live vertices of `mesh`; throws growth::Error (user-facing message) on: an empty
+// layer, fewer than check.minPoints distinct points, NaN or infinite coordinates, all points
+// identical or on one line, faces when !allowFaces, missing/zero/NaN normals when needNormals.
+InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check);
+
+// Mean distance of each point to its nearest other point (the cloud's mean spacing), computed on
+// up to `maxSamples` points taken at a fixed stride (deterministic). 0 for fewer than 2 points.
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = 20000);
+
+// Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
+double roughSpacing(const vcg::Box3d& box, size_t n);
+
+} // namespace growth

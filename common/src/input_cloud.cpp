@@ -1,0 +1,167 @@
+#include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/point_grid.h>
+
+#include <common/ml_mesh_type.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+namespace growth {
+
+namespace {
+bool finite3(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+} // namespace
+
+double roughSpacing(const vcg::Box3d& box, size_t n) {
+  if (n < 2 || box.IsNull()) return 0;
+  return box.Diag() / std::sqrt(double(n));
+}
+
+InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
+  InputCloud c;
+  c.layerFaces = static_cast<size_t>(mesh.fn);
+  if (mesh.vn <= 0)
+    throw Error("The current layer has no vertices: load or select a point cloud layer first.");
+  if (mesh.fn > 0 && !check.allowFaces) {
+    std::ostringstream s;
+    s << "The current layer is a mesh (" << mesh.fn << " faces), not a point cloud. This filter "
+      << "reconstructs a surface from points: run it on a point cloud layer, or remove the faces "
+      << "first (Filters > Selection > Select All, then Filters > Selection > Delete Selected Faces).";
+    throw Error(s.str());
+  }
+
+  size_t nonFinite = 0, badNormals = 0;
+  c.points.reserve(static_cast<size_t>(mesh.vn));
+  if (check.needNormals) c.normals.reserve(static_cast<size_t>(mesh.vn));
+  for (size_t i = 0; i < mesh.vert.size(); ++i) {
+    const auto& v = mesh.vert[i];
+    if (v.IsD()) continue;
+    const vcg::Point3d p = vcg::Point3d::Construct(v.cP());
+    if (!finite3(p)) {
+      ++nonFinite;
+      continue;
+    }
+    if (check.needNormals) {
+      vcg::Point3d n = vcg::Point3d::Construct(v.cN());
+      const double len = n.Norm();
+      if (!finite3(n) || !(len > 1e-12)) {
+        ++badNormals;
+        n = vcg::Point3d(0, 0, 0);
+      } else {
+        n /= len;
+      }
+      c.normals.push_back(n);
+    }
+    c.points.push_back(p);
+    c.vertexIndex.push_back(static_cast<int>(i));
+  }
+  if (nonFinite > 0) {
+    std::ostringstream s;
+    s << nonFinite << " of " << mesh.vn << " vertices have NaN or infinite coordinates. Delete them "
+      << "first (select them with Filters > Selection > Conditional Vertex Selection, e.g. "
+      << "'x!=x || y!=y || z!=z', then Filters > Selection > Delete Selected Vertices) and run the "
+      << "filter again.";
+    throw Error(s.str());
+  }
+  if (check.needNormals && badNormals > 0) {
+    std::ostringstream s;
+    if (badNormals == c.points.size())
+      s << "The layer has no per-vertex normals. This filter needs oriented normals: compute them "
+        << "with Filters > Normals, Curvatures and Orientation > Compute normals for point sets, and "
+        << "run the filter again.";
+    else
+      s << badNormals << " of " << c.points.size() << " vertices have a zero or invalid normal. "
+        << "Recompute the normals with Filters > Normals, Curvatures and Orientation > Compute normals "
+        << "for point sets (or delete those vertices) and run the filter again.";
+    throw Error(s.str());
+  }
+
+  // Exact duplicates: keep the first occurrence (in vertex order) of every position.
+  {
+    std::vector<size_t> order(c.points.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    auto less = [&](size_t a, size_t b) {
+      const auto &p = c.points[a], &q = c.points[b];
+      if (p[0] != q[0]) return p[0] < q[0];
+      if (p[1] != q[1]) return p[1] < q[1];
+      if (p[2] != q[2]) return p[2] < q[2];
+      return a < b;
+    };
+    std::sort(order.begin(), order.end(), less);
+    std::vector<char> drop(c.points.size(), 0);
+    for (size_t k = 1; k < order.size(); ++k)
+      if (c.points[order[k]] == c.points[order[k - 1]]) drop[order[k]] = 1;
+    size_t w = 0;
+    for (size_t i = 0; i < c.points.size(); ++i) {
+      if (drop[i]) continue;
+      c.points[w] = c.points[i];
+      if (check.needNormals) c.normals[w] = c.normals[i];
+      c.vertexIndex[w] = c.vertexIndex[i];
+      ++w;
+    }
+    c.duplicatesDropped = c.points.size() - w;
+    c.points.resize(w);
+    if (check.needNormals) c.normals.resize(w);
+    c.vertexIndex.resize(w);
+  }
+
+  if (c.points.size() < check.minPoints) {
+    std::ostringstream s;
+    if (c.points.size() == 1)
+      s << "All " << mesh.vn << " points of the layer are identical: there is no surface to reconstruct.";
+    else
+      s << "The layer has only " << c.points.size() << " distinct points; at least " << check.minPoints
+        << " are needed to reconstruct a surface.";
+    throw Error(s.str());
+  }
+
+  c.box.SetNull();
+  for (const auto& p : c.points) c.box.Add(p);
+
+  // All points on one line: no surface either.
+  {
+    const vcg::Point3d a = c.points[0];
+    size_t far = 0;
+    double best = -1;
+    for (size_t i = 1; i < c.points.size(); ++i) {
+      const double d = (c.points[i] - a).SquaredNorm();
+      if (d > best) best = d, far = i;
+    }
+    const vcg::Point3d dir = (c.points[far] - a).Normalize();
+    const double tol = 1e-9 * c.box.Diag();
+    bool collinear = true;
+    for (const auto& p : c.points) {
+      if (((p - a) ^ dir).Norm() > tol) {
+        collinear = false;
+        break;
+      }
+    }
+    if (collinear)
+      throw Error("All points of the layer lie on one straight line: there is no surface to reconstruct.");
+  }
+  return c;
+}
+
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
+  if (points.size() < 2) return 0;
+  vcg::Box3d box;
+  for (const auto& p : points) box.Add(p);
+  PointGrid grid;
+  grid.build(points, std::max(roughSpacing(box, points.size()), 1e-12 * (1.0 + box.Diag())));
+  const size_t stride = std::max<size_t>(1, points.size() / std::max<size_t>(1, maxSamples));
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < points.size(); i += stride) {
+    double d2 = 0;
+    if (grid.nearest(points[i], &d2, static_cast<int>(i)) >= 0) {
+      sum += std::sqrt(d2);
+      ++n;
+    }
+  }
+  return n > 0 ? sum / double(n) : 0;
+}
+
+} // namespace growth

@@ -1,0 +1,138 @@
+#include <growth/point_grid.h>
+
+#include <algorithm>
+#include <numeric>
+
+namespace growth {
+
+void PointGrid::build(const std::vector<Point>& points, double cellSize) {
+  cellKey_.clear();
+  cellStart_.clear();
+  table_.clear();
+  sortedPoint_.clear();
+  pointIndex_.clear();
+  maxCell_[0] = maxCell_[1] = maxCell_[2] = -1;
+  if (!(cellSize > 0) || !std::isfinite(cellSize)) return;
+
+  Point lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+           std::numeric_limits<double>::max());
+  Point hi = -lo;
+  std::vector<std::uint32_t> valid;
+  valid.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Point& p = points[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) continue;
+    valid.push_back(static_cast<std::uint32_t>(i));
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  }
+  if (valid.empty()) return;
+
+  // Cells coarser than asked when the box would need more than 2^21 cells along an axis.
+  double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+  cell_ = std::max(cellSize, extent / double(kMaxCoord - 1));
+  inv_ = 1.0 / cell_;
+  origin_ = lo;
+  for (int a = 0; a < 3; ++a) maxCell_[a] = std::min(coord(hi[a], lo[a]), kMaxCoord);
+
+  std::vector<Key> key(valid.size());
+  for (size_t i = 0; i < valid.size(); ++i) {
+    const Point& p = points[valid[i]];
+    key[i] = pack(std::min(coord(p[0], lo[0]), kMaxCoord), std::min(coord(p[1], lo[1]), kMaxCoord),
+                  std::min(coord(p[2], lo[2]), kMaxCoord));
+  }
+  std::vector<std::uint32_t> order(valid.size());
+  std::iota(order.begin(), order.end(), 0u);
+  // Stable: equal keys keep the input order, so queries visit points deterministically.
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+
+  sortedPoint_.resize(valid.size());
+  pointIndex_.resize(valid.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    const std::uint32_t j = order[i];
+    sortedPoint_[i] = points[valid[j]];
+    pointIndex_[i] = valid[j];
+    if (i == 0 || key[j] != key[order[i - 1]]) {
+      cellKey_.push_back(key[j]);
+      cellStart_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  cellStart_.push_back(static_cast<std::uint32_t>(order.size()));
+
+  size_t cap = 16;
+  while (cap < 2 * cellKey_.size()) cap *= 2;
+  mask_ = cap - 1;
+  table_.assign(cap, -1);
+  for (size_t s = 0; s < cellKey_.size(); ++s) {
+    size_t h = hash(cellKey_[s]) & mask_;
+    while (table_[h] >= 0) h = (h + 1) & mask_;
+    table_[h] = static_cast<std::int64_t>(s);
+  }
+}
+
+int PointGrid::nearest(const Point& c, double* squaredDistance, int exclude, double maxRadius) const {
+  if (cellKey_.empty()) return -1;
+  const std::int64_t cx = coord(c[0], origin_[0]), cy = coord(c[1], origin_[1]), cz = coord(c[2], origin_[2]);
+  int best = -1;
+  double bestD2 = maxRadius * maxRadius;
+  const std::int64_t maxRing =
+      std::max({maxCell_[0], maxCell_[1], maxCell_[2]}) +
+      std::max({std::abs(cx), std::abs(cy), std::abs(cz)}) + 1;
+  auto scanCell = [&](size_t slot) {
+    for (size_t i = cellStart_[slot], e = cellStart_[slot + 1]; i < e; ++i) {
+      const int idx = static_cast<int>(pointIndex_[i]);
+      if (idx == exclude) continue;
+      const double d2 = (sortedPoint_[i] - c).SquaredNorm();
+      if (d2 < bestD2 || (d2 == bestD2 && (best < 0 || idx < best))) {
+        bestD2 = d2;
+        best = idx;
+      }
+    }
+  };
+  for (std::int64_t ring = 0; ring <= maxRing; ++ring) {
+    // Every point outside the cells within Chebyshev distance `ring` is at least ring*cell away.
+    if (ring > 0 && best >= 0 && bestD2 <= double(ring - 1) * cell_ * double(ring - 1) * cell_) break;
+    if (ring > 0 && double(ring - 1) * cell_ > maxRadius) break;
+    // Far from the points with small cells, a shell has more cells than the grid has occupied
+    // ones: then visit the remaining occupied cells directly, pruned by their box distance.
+    const double shellCells = std::pow(2.0 * double(ring) + 1, 3) - std::pow(2.0 * double(ring) - 1, 3);
+    if (ring > 1 && shellCells > double(cellKey_.size())) {
+      for (size_t slot = 0; slot < cellKey_.size(); ++slot) {
+        const Key k = cellKey_[slot];
+        const std::int64_t x = std::int64_t(k >> (2 * kBits)), y = std::int64_t((k >> kBits) & Key(kMaxCoord)),
+                           z = std::int64_t(k & Key(kMaxCoord));
+        if (std::max({std::abs(x - cx), std::abs(y - cy), std::abs(z - cz)}) < ring) continue; // seen
+        double box2 = 0;
+        const std::int64_t cc[3] = {x, y, z};
+        for (int a = 0; a < 3; ++a) {
+          const double lo = origin_[a] + double(cc[a]) * cell_, hi = lo + cell_;
+          const double d = c[a] < lo ? lo - c[a] : (c[a] > hi ? c[a] - hi : 0.0);
+          box2 += d * d;
+        }
+        if (box2 <= bestD2) scanCell(slot);
+      }
+      break;
+    }
+    for (std::int64_t x = cx - ring; x <= cx + ring; ++x)
+      for (std::int64_t y = cy - ring; y <= cy + ring; ++y) {
+        const bool faceXY = (x == cx - ring || x == cx + ring || y == cy - ring || y == cy + ring);
+        const std::int64_t step = faceXY ? 1 : 2 * ring; // inside the shell only its two z faces
+        for (std::int64_t z = cz - ring; z <= cz + ring; z += step) {
+          const std::int64_t slot = findCell(x, y, z);
+          if (slot >= 0) scanCell(static_cast<size_t>(slot));
+        }
+      }
+  }
+  if (squaredDistance != nullptr && best >= 0) *squaredDistance = bestD2;
+  return best;
+}
+
+size_t PointGrid::memoryBytes() const {
+  return cellKey_.capacity() * sizeof(Key) + cellStart_.capacity() * sizeof(std::uint32_t) +
+         table_.capacity() * sizeof(std::int64_t) + sortedPoint_.capacity() * sizeof(Point) +
+         pointIndex_.capacity() * sizeof(std::uint32_t);
+}
+
+} // namespace growth

@@ -1,0 +1,133 @@
+#include "filter_g2s.h"
+
+#include "g2s.h"
+
+#include <growth/error.h>
+
+#include <vcg/complex/append.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/normal.h>
+
+#include <new>
+
+FilterG2SPlugin::FilterG2SPlugin() {
+  typeList << FP_ROBUST_G2S;
+  for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
+}
+
+FilterG2SPlugin::~FilterG2SPlugin() {
+  for (QAction* a : actionList) delete a;
+}
+
+QString FilterG2SPlugin::pluginName() const { return "FilterG2S"; }
+
+// Frozen: this string is the key of the filter in .mlx scripts.
+QString FilterG2SPlugin::filterName(FilterIDType filter) const {
+  return filter == FP_ROBUST_G2S ? QString("Surface Reconstruction: Robust G2S") : QString("Error!");
+}
+
+QString FilterG2SPlugin::filterInfo(FilterIDType filter) const {
+  if (filter != FP_ROBUST_G2S) return QString("Error!");
+  return QString(
+      "Interpolating mesh growing by the <b>Gabriel 2-simplex</b> criterion: from a seed triangle, "
+      "a front of free edges grows, each edge taking the point whose smallest sphere through the "
+      "edge is empty of other points. A priority queue grows the flattest, tightest triangles first, "
+      "and non-manifold vertices are removed at the end, so the output is never non-manifold. The "
+      "vertices of the result are the input points; <b>no normals are needed</b>. Several components "
+      "are seeded one after the other. The result goes to a new layer with per-face quality "
+      "Q<sub>t</sub>; the input layer is left unchanged.<br><br>"
+      "<i>L. Di Angelo, P. Di Stefano, L. Giaccari</i><br>"
+      "<b>\"A Fast Mesh-Growing Algorithm for Manifold Surface Reconstruction\"</b><br>"
+      "Computer-Aided Design &amp; Applications 10(2), 2013, 197-220.");
+}
+
+MeshFilterInterface::FilterClass FilterG2SPlugin::getClass(QAction*) { return MeshFilterInterface::Remeshing; }
+
+int FilterG2SPlugin::getRequirements(QAction*) { return MeshModel::MM_NONE; }
+
+int FilterG2SPlugin::postCondition(QAction*) const {
+  return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
+}
+
+MeshFilterInterface::FILTER_ARITY FilterG2SPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
+
+void FilterG2SPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
+  if (ID(action) != FP_ROBUST_G2S) return;
+  const growth::g2s::Params def = growth::g2s::suggestParams(m.cm);
+  parlst.addParam(RichFloat("seedSearchFactor", float(def.seedSearchFactor), "Seed search factor k",
+      "A seed triangle's third point is searched within k times the length of its first edge from "
+      "that edge's midpoint (paper, section 3.1)."));
+  parlst.addParam(RichFloat("maxSearchRadius", float(def.maxSearchRadiusFactor), "Maximum search radius",
+      "Largest search sphere radius for a front edge, in multiples of the local point spacing "
+      "(paper, section 3.2). Larger values bridge sparser regions but may create long triangles. "
+      "The default is derived from the cloud."));
+  parlst.addParam(RichInt("sizeLevels", def.sizeLevels, "Size priority levels n",
+      "Number of priority levels for the size of the search neighbourhood (paper, section 4.1)."));
+  parlst.addParam(RichInt("flatnessLevels", def.flatnessLevels, "Flatness priority levels m",
+      "Number of priority levels for the angle between the front triangle and the candidate "
+      "triangle (paper, section 4.1)."));
+  parlst.addParam(RichBool("removeNonManifoldVertices", def.removeNonManifoldVertices,
+      "Remove non-manifold vertices",
+      "Remove the triangles of the extra fans around vertices whose triangles form more than one "
+      "fan (paper, section 4.2), so that the output is manifold."));
+  parlst.addParam(RichInt("randomSeed", int(def.randomSeed), "Random seed",
+      "Seed of the random choice of seed points: the same seed gives the same mesh."));
+}
+
+bool FilterG2SPlugin::applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par,
+                                  vcg::CallBackPos* cb) {
+  if (ID(filter) == FP_ROBUST_G2S) return applyRobustG2S(md, par, cb);
+  errorMessage = "Unknown filter.";
+  return false;
+}
+
+bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) {
+  MeshModel* in = md.mm();
+  if (in == nullptr) {
+    errorMessage = "No current layer: load a point cloud first.";
+    return false;
+  }
+  growth::g2s::Params p;
+  p.seedSearchFactor = par.getFloat("seedSearchFactor");
+  p.maxSearchRadiusFactor = par.getFloat("maxSearchRadius");
+  p.sizeLevels = par.getInt("sizeLevels");
+  p.flatnessLevels = par.getInt("flatnessLevels");
+  p.removeNonManifoldVertices = par.getBool("removeNonManifoldVertices");
+  p.randomSeed = static_cast<std::uint64_t>(par.getInt("randomSeed"));
+
+  growth::g2s::Stat st;
+  CMeshO result;
+  try {
+    growth::g2s::build(in->cm, result, p, st, cb);
+  } catch (const growth::Cancelled&) {
+    errorMessage = "Robust G2S was cancelled; no layer was added.";
+    return false;
+  } catch (const growth::Error& e) {
+    errorMessage = QString("Robust G2S: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::bad_alloc&) {
+    errorMessage = "Robust G2S ran out of memory.";
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::exception& e) {
+    errorMessage = QString("Robust G2S failed: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  }
+
+  MeshModel* out = md.addNewMesh("", in->label() + " (robust G2S)", true);
+  out->updateDataMask(MeshModel::MM_FACEQUALITY);
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
+  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
+  vcg::tri::UpdateNormal<CMeshO>::PerVertexAngleWeighted(out->cm);
+  vcg::tri::UpdateNormal<CMeshO>::NormalizePerVertex(out->cm);
+
+  for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
+  Log("Robust G2S: %zu points (%zu duplicates dropped), %zu seeds", st.inputPoints, st.duplicatesDropped, st.seeds);
+  Log("Robust G2S: %zu faces, %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces)",
+      st.faces, st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved);
+  Log("Robust G2S: time %.3f s", st.seconds);
+  return true;
+}

@@ -1,0 +1,154 @@
+#include "filter_spherepack.h"
+
+#include "sphere_packer.h"
+
+#include <growth/error.h>
+
+#include <vcg/complex/append.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+#include <vcg/complex/algorithms/update/normal.h>
+
+#include <new>
+
+FilterSpherePackPlugin::FilterSpherePackPlugin() {
+  typeList << FP_SPHERE_PACKING;
+  for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
+}
+
+FilterSpherePackPlugin::~FilterSpherePackPlugin() {
+  for (QAction* a : actionList) delete a;
+}
+
+QString FilterSpherePackPlugin::pluginName() const { return "FilterSpherePack"; }
+
+// Frozen: this string is the key of the filter in .mlx scripts.
+QString FilterSpherePackPlugin::filterName(FilterIDType filter) const {
+  return filter == FP_SPHERE_PACKING ? QString("Surface Reconstruction: Sphere Packing") : QString("Error!");
+}
+
+QString FilterSpherePackPlugin::filterInfo(FilterIDType filter) const {
+  if (filter != FP_SPHERE_PACKING) return QString("Error!");
+  return QString(
+      "Reconstructs a triangle mesh from a point cloud <b>with normals</b> by packing touching "
+      "spheres of diameter <i>d</i> on the splats (small disks) of the points. Every edge of the "
+      "result is at least <i>d</i> long, edge lengths are close to uniform, triangles are close to "
+      "equilateral, and the output is manifold when <i>d</i> is small with respect to the reach of "
+      "the surface and larger than twice the noise. The result goes to a new layer, with per-face "
+      "quality Q<sub>t</sub> = 4&radic;3A/(l<sub>1</sub>&sup2;+l<sub>2</sub>&sup2;+l<sub>3</sub>&sup2;) "
+      "(see <i>Colorize by face quality</i>); the input layer is left unchanged. Regions whose border "
+      "is longer than the border limit stay open, so scans with holes keep them.<br>"
+      "Needs per-vertex normals: compute them with <i>Filters &gt; Normals, Curvatures and "
+      "Orientation &gt; Compute normals for point sets</i>.<br><br>"
+      "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
+      "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b><br>"
+      "Sections 3 and 4 of the paper.");
+}
+
+MeshFilterInterface::FilterClass FilterSpherePackPlugin::getClass(QAction*) {
+  return MeshFilterInterface::Remeshing;
+}
+
+int FilterSpherePackPlugin::getPreConditions(QAction*) const { return MeshModel::MM_VERTNORMAL; }
+
+int FilterSpherePackPlugin::getRequirements(QAction*) { return MeshModel::MM_NONE; }
+
+int FilterSpherePackPlugin::postCondition(QAction*) const {
+  return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
+}
+
+MeshFilterInterface::FILTER_ARITY FilterSpherePackPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
+
+void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
+  if (ID(action) != FP_SPHERE_PACKING) return;
+  const growth::spherepack::Params def = growth::spherepack::suggestParams(m.cm);
+  const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
+  parlst.addParam(RichAbsPerc("sphereDiameter", float(def.sphereDiameter), 0.0f, diag,
+      "Sphere diameter d (target edge length)",
+      "Diameter of the touching spheres: every edge of the result is at least this long and most "
+      "edges are close to it. The default is derived from the mean point spacing. Keep it at least "
+      "twice the noise of the scan, and small compared with the thinnest part of the object."));
+  parlst.addParam(RichAbsPerc("splatSize", float(def.splatSize), 0.0f, diag,
+      "Splat radius s",
+      "Radius of the disks placed on the points (the global splat size). They must cover the "
+      "surface: too small and the growth stops early; too large and vertices drift off the surface "
+      "in curved regions. With local splat sizes on, this is the starting size before the "
+      "per-point sizes are computed."));
+  parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
+      "Compute an individual splat radius for each point from its tangent-plane Delaunay/Voronoi "
+      "neighbourhood (paper, section 4.3); off uses the global splat radius everywhere."));
+  parlst.addParam(RichInt("windowSize", def.windowSize, "Window size w",
+      "How far (in border edges, each way) the growth looks along a border to tell a split from a "
+      "join when ranking candidates (paper, section 4.2). 0 gives breadth-first growth with seams; "
+      "8 or more all give the same quality."));
+  parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
+      "Regions bounded by more border edges than this are left open as holes instead of being "
+      "triangulated (paper, section 3.7), so the boundaries of open scans are kept."));
+  parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
+      "Start the growth from the two points below (projected onto the closest splats) instead of "
+      "choosing them automatically near the highest point of the cloud."));
+  parlst.addParam(RichPoint3f("startPoint1", vcg::Point3f::Construct(def.startPoint[0]), "Starting point 1",
+      "First starting vertex (used only when 'Use given starting points' is on)."));
+  parlst.addParam(RichPoint3f("startPoint2", vcg::Point3f::Construct(def.startPoint[1]), "Starting point 2",
+      "Second starting vertex; its projection must lie between d and 2d from the first one."));
+}
+
+bool FilterSpherePackPlugin::applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par,
+                                         vcg::CallBackPos* cb) {
+  if (ID(filter) == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb);
+  errorMessage = "Unknown filter.";
+  return false;
+}
+
+bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichParameterList& par,
+                                                vcg::CallBackPos* cb) {
+  MeshModel* in = md.mm();
+  if (in == nullptr) {
+    errorMessage = "No current layer: load a point cloud first.";
+    return false;
+  }
+  growth::spherepack::Params p;
+  p.sphereDiameter = par.getAbsPerc("sphereDiameter");
+  p.splatSize = par.getAbsPerc("splatSize");
+  p.localSplatSizes = par.getBool("localSplatSizes");
+  p.windowSize = par.getInt("windowSize");
+  p.maxBorderLength = par.getInt("maxBorderLength");
+  p.useStartPoints = par.getBool("useStartPoints");
+  p.startPoint[0] = vcg::Point3d::Construct(par.getPoint3m("startPoint1"));
+  p.startPoint[1] = vcg::Point3d::Construct(par.getPoint3m("startPoint2"));
+
+  growth::spherepack::Stat st;
+  CMeshO result;
+  try {
+    growth::spherepack::build(in->cm, result, p, st, cb);
+  } catch (const growth::Cancelled&) {
+    errorMessage = "Sphere Packing was cancelled; no layer was added.";
+    return false;
+  } catch (const growth::Error& e) {
+    errorMessage = QString("Sphere Packing: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::bad_alloc&) {
+    errorMessage = "Sphere Packing ran out of memory: use a larger sphere diameter d.";
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::exception& e) {
+    errorMessage = QString("Sphere Packing failed: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  }
+
+  MeshModel* out = md.addNewMesh("", in->label() + " (sphere packing)", true);
+  out->updateDataMask(MeshModel::MM_FACEQUALITY);
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
+  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
+
+  for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
+  Log("Sphere Packing: %zu points (%zu duplicates dropped), d = %g, s = %g%s", st.inputPoints,
+      st.duplicatesDropped, st.sphereDiameter, st.splatSize, p.localSplatSizes ? " (local splat sizes)" : "");
+  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f, %zu holes left open, "
+      "%zu of %zu boxes where d looked too large", st.vertices, st.faces, st.smallestEdge, st.qualityAvg,
+      st.holes, st.boxesDTooLarge, st.boxes);
+  Log("Sphere Packing: time %.3f s", st.seconds);
+  return true;
+}

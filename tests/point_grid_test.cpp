@@ -1,0 +1,106 @@
+#include <growth/cloud_generator.h>
+#include <growth/point_grid.h>
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using growth::PointGrid;
+using vcg::Point3d;
+
+namespace {
+// Brute-force references.
+int bruteNearest(const std::vector<Point3d>& pts, const Point3d& c, int exclude) {
+  int best = -1;
+  double bd = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < pts.size(); ++i) {
+    if (int(i) == exclude) continue;
+    const double d = (pts[i] - c).SquaredNorm();
+    if (d < bd) bd = d, best = int(i);
+  }
+  return best;
+}
+} // namespace
+
+TEST(PointGrid, EmptyGridAnswersNothing) {
+  PointGrid g;
+  g.build({}, 0.1);
+  EXPECT_EQ(g.nearest(Point3d(0, 0, 0)), -1);
+  int calls = 0;
+  g.forEachInBall(Point3d(0, 0, 0), 10, [&](int, double) { ++calls; });
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(PointGrid, SinglePointAndExclusion) {
+  PointGrid g;
+  std::vector<Point3d> pts{Point3d(1, 2, 3)};
+  g.build(pts, 0.5);
+  double d2 = -1;
+  EXPECT_EQ(g.nearest(Point3d(10, 10, 10), &d2), 0);
+  EXPECT_NEAR(d2, (Point3d(10, 10, 10) - pts[0]).SquaredNorm(), 1e-12);
+  EXPECT_EQ(g.nearest(pts[0], nullptr, 0), -1);
+}
+
+TEST(PointGrid, NonFinitePointsAreSkipped) {
+  PointGrid g;
+  std::vector<Point3d> pts{Point3d(0, 0, 0), Point3d(std::nan(""), 0, 0), Point3d(1, 0, 0)};
+  g.build(pts, 0.5);
+  EXPECT_EQ(g.pointCount(), 2u);
+  int visits = 0;
+  g.forEachInBall(Point3d(0.5, 0, 0), 10, [&](int i, double) { EXPECT_NE(i, 1); ++visits; });
+  EXPECT_EQ(visits, 2);
+}
+
+TEST(PointGrid, NearestMatchesBruteForce) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 3000;
+  spec.seed = 7;
+  const auto cloud = growth::generateCloud(spec);
+  for (double cell : {0.01, 0.1, 0.7, 5.0}) {
+    PointGrid g;
+    g.build(cloud.points, cell);
+    growth::Random rng(3);
+    for (int q = 0; q < 300; ++q) {
+      const Point3d c(rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(-2, 2));
+      const int exclude = q % 2 == 0 ? -1 : q;
+      const int got = g.nearest(c, nullptr, exclude);
+      const int want = bruteNearest(cloud.points, c, exclude);
+      ASSERT_GE(got, 0);
+      EXPECT_DOUBLE_EQ((cloud.points[size_t(got)] - c).SquaredNorm(), (cloud.points[size_t(want)] - c).SquaredNorm())
+          << "cell " << cell << " query " << q;
+    }
+  }
+}
+
+TEST(PointGrid, BallQueryMatchesBruteForce) {
+  growth::CloudSpec spec;
+  spec.count = 2000;
+  spec.seed = 11;
+  const auto cloud = growth::generateCloud(spec);
+  PointGrid g;
+  g.build(cloud.points, 0.05);
+  growth::Random rng(5);
+  for (int q = 0; q < 100; ++q) {
+    const Point3d c = rng.unitVector() * rng.uniform(0.5, 1.5);
+    const double r = rng.uniform(0.0, 0.4);
+    std::vector<int> got;
+    g.forEachInBall(c, r, [&](int i, double d2) {
+      EXPECT_NEAR(d2, (cloud.points[size_t(i)] - c).SquaredNorm(), 1e-12);
+      got.push_back(i);
+    });
+    std::sort(got.begin(), got.end());
+    std::vector<int> want;
+    for (size_t i = 0; i < cloud.points.size(); ++i)
+      if ((cloud.points[i] - c).SquaredNorm() <= r * r) want.push_back(int(i));
+    EXPECT_EQ(got, want);
+  }
+}
+
+TEST(PointGrid, NearestRespectsMaxRadius) {
+  PointGrid g;
+  std::vector<Point3d> pts{Point3d(0, 0, 0), Point3d(1, 0, 0)};
+  g.build(pts, 0.1);
+  EXPECT_EQ(g.nearest(Point3d(0.5, 0.6, 0), nullptr, -1, 0.5), -1);
+  EXPECT_GE(g.nearest(Point3d(0.5, 0.6, 0), nullptr, -1, 0.8), 0);
+}
