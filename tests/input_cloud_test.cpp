@@ -1,0 +1,142 @@
+#include <growth/cloud_generator.h>
+#include <growth/error.h>
+#include <growth/input_cloud.h>
+
+#include <common/ml_mesh_type.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using growth::CloudCheck;
+
+namespace {
+void addPoint(CMeshO& m, float x, float y, float z, float nx = 0, float ny = 0, float nz = 1) {
+  auto v = vcg::tri::Allocator<CMeshO>::AddVertices(m, 1);
+  v->P() = vcg::Point3f(x, y, z);
+  v->N() = vcg::Point3f(nx, ny, nz);
+}
+
+// The message of the growth::Error thrown by readCloud, or "" when it does not throw.
+std::string errorOf(const CMeshO& m, CloudCheck check) {
+  try {
+    growth::readCloud(m, check);
+  } catch (const growth::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void sphereMesh(CMeshO& m, size_t n) {
+  growth::CloudSpec s;
+  s.count = n;
+  growth::toMesh(growth::generateCloud(s), m);
+}
+} // namespace
+
+TEST(InputCloud, EmptyLayerIsRefused) {
+  CMeshO m;
+  EXPECT_NE(errorOf(m, {}).find("no vertices"), std::string::npos);
+}
+
+TEST(InputCloud, GoodCloudIsCopiedInDouble) {
+  CMeshO m;
+  sphereMesh(m, 500);
+  CloudCheck check;
+  check.needNormals = true;
+  const auto c = growth::readCloud(m, check);
+  ASSERT_EQ(c.points.size(), 500u);
+  ASSERT_EQ(c.normals.size(), 500u);
+  EXPECT_EQ(c.duplicatesDropped, 0u);
+  EXPECT_EQ(c.vertexIndex[499], 499);
+  EXPECT_NEAR(c.box.Diag(), 2 * std::sqrt(3.0), 0.2);
+  EXPECT_DOUBLE_EQ(c.points[3][1], double(m.vert[3].P()[1]));
+}
+
+TEST(InputCloud, NonFiniteCoordinatesAreRefusedWithTheirCount) {
+  CMeshO m;
+  sphereMesh(m, 100);
+  m.vert[5].P()[0] = std::numeric_limits<float>::quiet_NaN();
+  m.vert[6].P()[2] = std::numeric_limits<float>::infinity();
+  const std::string e = errorOf(m, {});
+  EXPECT_NE(e.find("2 of 100 vertices have NaN or infinite"), std::string::npos) << e;
+}
+
+TEST(InputCloud, MissingNormalsSayHowToComputeThem) {
+  CMeshO m;
+  for (int i = 0; i < 10; ++i) addPoint(m, float(i), float(i * i % 7), 0, 0, 0, 0);
+  CloudCheck check;
+  check.needNormals = true;
+  const std::string e = errorOf(m, check);
+  EXPECT_NE(e.find("Compute normals for point sets"), std::string::npos) << e;
+  check.needNormals = false;
+  EXPECT_EQ(errorOf(m, check), "");
+}
+
+TEST(InputCloud, SomeBadNormalsAreCounted) {
+  CMeshO m;
+  sphereMesh(m, 50);
+  m.vert[0].N() = vcg::Point3f(0, 0, 0);
+  CloudCheck check;
+  check.needNormals = true;
+  EXPECT_NE(errorOf(m, check).find("1 of 50 vertices have a zero or invalid normal"), std::string::npos);
+}
+
+TEST(InputCloud, DuplicatesAreDroppedKeepingTheFirst) {
+  CMeshO m;
+  addPoint(m, 0, 0, 0);
+  addPoint(m, 1, 0, 0);
+  addPoint(m, 0, 0, 0);
+  addPoint(m, 0, 1, 0);
+  addPoint(m, 1, 0, 0);
+  const auto c = growth::readCloud(m, {});
+  EXPECT_EQ(c.points.size(), 3u);
+  EXPECT_EQ(c.duplicatesDropped, 2u);
+  EXPECT_EQ(c.vertexIndex, (std::vector<int>{0, 1, 3}));
+}
+
+TEST(InputCloud, AllIdenticalPointsAreRefused) {
+  CMeshO m;
+  for (int i = 0; i < 20; ++i) addPoint(m, 1, 2, 3);
+  EXPECT_NE(errorOf(m, {}).find("identical"), std::string::npos);
+}
+
+TEST(InputCloud, TooFewAndCollinearPointsAreRefused) {
+  CMeshO two;
+  addPoint(two, 0, 0, 0);
+  addPoint(two, 1, 0, 0);
+  EXPECT_NE(errorOf(two, {}).find("only 2 distinct points"), std::string::npos);
+  CMeshO line;
+  for (int i = 0; i < 10; ++i) addPoint(line, float(i), float(2 * i), 0);
+  EXPECT_NE(errorOf(line, {}).find("one straight line"), std::string::npos);
+}
+
+TEST(InputCloud, DeletedVerticesAreIgnored) {
+  CMeshO m;
+  sphereMesh(m, 30);
+  vcg::tri::Allocator<CMeshO>::DeleteVertex(m, m.vert[0]);
+  const auto c = growth::readCloud(m, {});
+  EXPECT_EQ(c.points.size(), 29u);
+  EXPECT_EQ(c.vertexIndex[0], 1);
+}
+
+TEST(InputCloud, AMeshIsRefusedUnlessAllowed) {
+  CMeshO m;
+  sphereMesh(m, 10);
+  vcg::tri::Allocator<CMeshO>::AddFace(m, 0, 1, 2);
+  const std::string e = errorOf(m, {});
+  EXPECT_NE(e.find("is a mesh (1 faces)"), std::string::npos) << e;
+  CloudCheck allow;
+  allow.allowFaces = true;
+  EXPECT_EQ(errorOf(m, allow), "");
+}
+
+TEST(InputCloud, MeanSpacingOfAGrid) {
+  std::vector<vcg::Point3d> pts;
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) pts.emplace_back(0.5 * i, 0.5 * j, 0);
+  EXPECT_NEAR(growth::meanSpacing(pts), 0.5, 1e-12);
+  EXPECT_EQ(growth::meanSpacing({vcg::Point3d(0, 0, 0)}), 0.0);
+}
