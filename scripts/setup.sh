@@ -25,7 +25,7 @@ packages=(
   xvfb xauth                                  # meshlabserver needs a display
   time                                        # /usr/bin/time -v: peak memory in the benchmark
   python3 python3-numpy python3-matplotlib    # benchmark tables and plots (/usr/bin/python3)
-  xz-utils ca-certificates
+  xz-utils ca-certificates dpkg-dev            # apt-get source
 )
 
 missing=()
