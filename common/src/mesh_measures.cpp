@@ -1,0 +1,631 @@
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+#include <growth/point_grid.h>
+
+#include <common/ml_mesh_type.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <iomanip>
+#include <numeric>
+#include <sstream>
+
+namespace growth {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Union–find with path halving and union by size.
+class DisjointSets {
+public:
+  explicit DisjointSets(size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];
+      x = parent_[x];
+    }
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+  }
+
+private:
+  std::vector<std::uint32_t> parent_;
+  std::vector<std::uint32_t> size_;
+};
+
+// The mesh in compact double arrays: live vertices renumbered 0..n-1, live faces in order.
+struct Compact {
+  std::vector<vcg::Point3d> vert;
+  std::vector<std::array<int, 3>> face;   // all live faces
+  std::vector<char> proper;               // face has three distinct vertices
+};
+
+Compact compact(const CMeshO& mesh) {
+  Compact c;
+  std::vector<int> index(mesh.vert.size(), -1);
+  c.vert.reserve(static_cast<size_t>(std::max(mesh.vn, 0)));
+  for (size_t i = 0; i < mesh.vert.size(); ++i) {
+    if (mesh.vert[i].IsD()) continue;
+    index[i] = static_cast<int>(c.vert.size());
+    c.vert.push_back(vcg::Point3d::Construct(mesh.vert[i].cP()));
+  }
+  c.face.reserve(static_cast<size_t>(std::max(mesh.fn, 0)));
+  for (const auto& f : mesh.face) {
+    if (f.IsD()) continue;
+    std::array<int, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = index[vcg::tri::Index(mesh, f.cV(k))];
+    c.face.push_back(t);
+    c.proper.push_back(t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
+  }
+  return c;
+}
+
+// Zero height up to float storage: the mesh came from float coordinates, so a height below a few
+// float ulps of the coordinates' magnitude is rounding, not geometry.
+bool zeroArea(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+  const double twiceArea = ((b - a) ^ (c - a)).Norm();
+  const double lmax = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
+  double mag = 0;
+  for (const auto* p : {&a, &b, &c})
+    for (int k = 0; k < 3; ++k) mag = std::max(mag, std::abs((*p)[k]));
+  if (!(lmax > 0)) return true;
+  return twiceArea / lmax <= 4.0 * double(FLT_EPSILON) * mag;
+}
+
+// Edge structure of the proper faces: unique undirected edges with their incident half-edges.
+struct Edges {
+  // Half-edge h = 3·f + k runs face[f][k] → face[f][(k+1)%3]; heEdge[h] is its edge (or -1 for
+  // faces that are not proper).
+  std::vector<int> heEdge;
+  std::vector<std::array<int, 2>> ends;   // edge endpoints, ends[e][0] < ends[e][1]
+  std::vector<int> start;                 // CSR: half-edges of edge e are he[start[e] .. start[e+1])
+  std::vector<int> he;
+  size_t faceCount(int e) const { return size_t(start[e + 1] - start[e]); }
+};
+
+Edges buildEdges(const Compact& c) {
+  struct Rec {
+    int u, v, h;
+  };
+  std::vector<Rec> recs;
+  recs.reserve(3 * c.face.size());
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    if (!c.proper[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int a = c.face[f][k], b = c.face[f][(k + 1) % 3];
+      recs.push_back({std::min(a, b), std::max(a, b), int(3 * f) + k});
+    }
+  }
+  std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) {
+    return x.u != y.u ? x.u < y.u : x.v != y.v ? x.v < y.v : x.h < y.h;
+  });
+  Edges e;
+  e.heEdge.assign(3 * c.face.size(), -1);
+  e.he.reserve(recs.size());
+  for (size_t i = 0; i < recs.size(); ++i) {
+    if (i == 0 || recs[i].u != recs[i - 1].u || recs[i].v != recs[i - 1].v) {
+      e.start.push_back(int(i));
+      e.ends.push_back({recs[i].u, recs[i].v});
+    }
+    e.heEdge[size_t(recs[i].h)] = int(e.ends.size()) - 1;
+    e.he.push_back(recs[i].h);
+  }
+  e.start.push_back(int(recs.size()));
+  return e;
+}
+
+int heFrom(const Compact& c, int h) { return c.face[size_t(h / 3)][h % 3]; }
+int heTo(const Compact& c, int h) { return c.face[size_t(h / 3)][(h % 3 + 1) % 3]; }
+
+// Index (0..2) of vertex v in face f.
+int cornerOf(const Compact& c, size_t f, int v) {
+  return c.face[f][0] == v ? 0 : c.face[f][1] == v ? 1 : 2;
+}
+
+// Among the two edges of proper face f incident to vertex v, the one that is not `edge`.
+int otherEdgeAt(const Compact& c, const Edges& e, size_t f, int v, int edge) {
+  const int k = cornerOf(c, f, v);
+  const int in = e.heEdge[3 * f + size_t((k + 2) % 3)];   // edge ending at v
+  const int out = e.heEdge[3 * f + size_t(k)];            // edge starting at v
+  return in == edge ? out : in;
+}
+
+MeshTopology topology(const Compact& c, const Edges& e) {
+  MeshTopology t;
+  t.edges = e.ends.size();
+  const size_t nf = c.face.size();
+
+  std::vector<char> referenced(c.vert.size(), 0);
+  for (size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k)
+      if (c.face[f][k] >= 0) referenced[size_t(c.face[f][k])] = 1;
+  t.unreferencedVertices = size_t(std::count(referenced.begin(), referenced.end(), 0));
+
+  // Degenerate and duplicate faces.
+  std::vector<std::pair<std::array<int, 3>, size_t>> sorted;
+  sorted.reserve(nf);
+  for (size_t f = 0; f < nf; ++f) {
+    const auto& v = c.face[f];
+    if (!c.proper[f] || zeroArea(c.vert[size_t(v[0])], c.vert[size_t(v[1])], c.vert[size_t(v[2])]))
+      ++t.degenerateFaces;
+    std::array<int, 3> s = v;
+    std::sort(s.begin(), s.end());
+    sorted.push_back({s, f});
+  }
+  std::sort(sorted.begin(), sorted.end());
+  for (size_t i = 1; i < sorted.size(); ++i)
+    if (sorted[i].first == sorted[i - 1].first) ++t.duplicateFaces;
+
+  // Per edge: boundary, non-manifold, orientation; fans (corner sets) and components (face sets).
+  DisjointSets corners(3 * nf), faces(nf);
+  for (size_t ei = 0; ei < e.ends.size(); ++ei) {
+    const int n = int(e.faceCount(int(ei)));
+    const int* h = &e.he[size_t(e.start[ei])];
+    if (n == 1) ++t.boundaryEdges;
+    if (n > 2) ++t.nonManifoldEdges;
+    for (int j = 1; j < n; ++j) faces.unite(std::uint32_t(h[0] / 3), std::uint32_t(h[j] / 3));
+    if (n != 2) continue;
+    if (heFrom(c, h[0]) == heFrom(c, h[1])) ++t.inconsistentEdges;
+    const size_t f = size_t(h[0] / 3), g = size_t(h[1] / 3);
+    for (int v : e.ends[ei])
+      corners.unite(std::uint32_t(3 * f + size_t(cornerOf(c, f, v))), std::uint32_t(3 * g + size_t(cornerOf(c, g, v))));
+  }
+  // A fan is a set of corners at one vertex joined across two-face edges (unions only ever join
+  // corners of the same vertex), so the roots at a vertex count its fans.
+  std::vector<std::uint32_t> fans(c.vert.size(), 0);
+  for (size_t f = 0; f < nf; ++f) {
+    if (!c.proper[f]) continue;
+    if (faces.find(std::uint32_t(f)) == f) ++t.components;
+    for (int k = 0; k < 3; ++k)
+      if (corners.find(std::uint32_t(3 * f + size_t(k))) == 3 * f + size_t(k)) ++fans[size_t(c.face[f][k])];
+  }
+  t.nonManifoldVertices = size_t(std::count_if(fans.begin(), fans.end(), [](std::uint32_t n) { return n > 1; }));
+
+  // Boundary loops: from a boundary edge arriving at v, the next one is found by walking through
+  // the faces around v across two-face edges (so the loops of a bow-tie stay apart). A walk that
+  // meets a non-manifold edge ends the loop there.
+  std::vector<std::uint32_t> degree(c.vert.size(), 0);
+  for (size_t f = 0; f < nf; ++f)
+    if (c.proper[f])
+      for (int k = 0; k < 3; ++k) ++degree[size_t(c.face[f][k])];
+  std::vector<char> visited(e.ends.size(), 0);
+  for (size_t e0 = 0; e0 < e.ends.size(); ++e0) {
+    if (e.faceCount(int(e0)) != 1 || visited[e0]) continue;
+    ++t.boundaryLoops;
+    visited[e0] = 1;
+    int edge = int(e0);
+    const int h0 = e.he[size_t(e.start[e0])];
+    int v = heTo(c, h0);   // walk along the orientation of the boundary face
+    size_t f = size_t(h0 / 3);
+    for (;;) {
+      // Walk around v from face f, starting across `edge`, to the next boundary edge.
+      int next = -1;
+      for (std::uint32_t steps = 0; steps <= degree[size_t(v)]; ++steps) {
+        const int cand = otherEdgeAt(c, e, f, v, edge);
+        const size_t n = e.faceCount(cand);
+        if (n == 1) {
+          next = cand;
+          break;
+        }
+        if (n != 2) break;
+        const int* h = &e.he[size_t(e.start[size_t(cand)])];
+        f = size_t(h[0] / 3) == f ? size_t(h[1] / 3) : size_t(h[0] / 3);
+        edge = cand;
+      }
+      if (next < 0 || visited[size_t(next)]) break;
+      visited[size_t(next)] = 1;
+      edge = next;
+      f = size_t(e.he[size_t(e.start[size_t(next)])] / 3);
+      v = e.ends[size_t(next)][0] == v ? e.ends[size_t(next)][1] : e.ends[size_t(next)][0];
+    }
+  }
+  return t;
+}
+
+double angleBetween(const vcg::Point3d& u, const vcg::Point3d& w) {
+  return std::atan2((u ^ w).Norm(), u * w);
+}
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+
+} // namespace
+
+// --- Histogram ---
+
+void Histogram::add(double v) {
+  if (counts.empty()) return;
+  if (std::isnan(v)) {
+    ++above;
+    return;
+  }
+  if (v < lo) {
+    ++below;
+    return;
+  }
+  if (v > hi || !(hi > lo)) {
+    ++above;
+    return;
+  }
+  const size_t bin = std::min(counts.size() - 1, static_cast<size_t>((v - lo) / (hi - lo) * double(counts.size())));
+  ++counts[bin];
+}
+
+size_t Histogram::total() const {
+  return std::accumulate(counts.begin(), counts.end(), size_t(0)) + below + above;
+}
+
+// --- Single triangles ---
+
+double triangleQuality(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+  const double sum = (b - a).SquaredNorm() + (c - b).SquaredNorm() + (a - c).SquaredNorm();
+  if (!(sum > 0)) return 0;
+  const double area = 0.5 * ((b - a) ^ (c - a)).Norm();
+  return 4.0 * std::sqrt(3.0) * area / sum;
+}
+
+double triangleQF(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+  const double d1 = (b - a).Norm(), d2 = (c - b).Norm(), d3 = (a - c).Norm();
+  const double p = 0.5 * (d1 + d2 + d3), dmax = std::max({d1, d2, d3});
+  if (!(p > 0) || !(dmax > 0)) return 0;
+  // Heron: sqrt((p-d1)(p-d2)(p-d3)/p) = A/p; the cross product gives A without cancellation.
+  const double area = 0.5 * ((b - a) ^ (c - a)).Norm();
+  return std::sqrt(12.0) * area / (p * dmax);
+}
+
+// --- Topology ---
+
+MeshTopology measureTopology(const CMeshO& mesh) {
+  const Compact c = compact(mesh);
+  return topology(c, buildEdges(c));
+}
+
+size_t countBoundaryEdges(const CMeshO& m) { return measureTopology(m).boundaryEdges; }
+size_t countNonManifoldEdges(const CMeshO& m) { return measureTopology(m).nonManifoldEdges; }
+size_t countNonManifoldVertices(const CMeshO& m) { return measureTopology(m).nonManifoldVertices; }
+size_t countBoundaryLoops(const CMeshO& m) { return measureTopology(m).boundaryLoops; }
+size_t countComponents(const CMeshO& m) { return measureTopology(m).components; }
+size_t countInconsistentEdges(const CMeshO& m) { return measureTopology(m).inconsistentEdges; }
+bool isConsistentlyOriented(const CMeshO& m) { return measureTopology(m).inconsistentEdges == 0; }
+size_t countDegenerateFaces(const CMeshO& m) { return measureTopology(m).degenerateFaces; }
+size_t countDuplicateFaces(const CMeshO& m) { return measureTopology(m).duplicateFaces; }
+
+// --- Distance of points to the mesh ---
+
+MeshDistance::MeshDistance(const CMeshO& mesh) {
+  Compact c = compact(mesh);
+  vert_ = std::move(c.vert);
+  tri_.reserve(c.face.size());
+  for (size_t f = 0; f < c.face.size(); ++f)
+    if (c.face[f][0] >= 0 && c.face[f][1] >= 0 && c.face[f][2] >= 0) tri_.push_back(c.face[f]);
+  if (tri_.empty()) return;
+  std::vector<vcg::Point3d> centroid(tri_.size());
+  for (size_t t = 0; t < tri_.size(); ++t)
+    centroid[t] = (vert_[size_t(tri_[t][0])] + vert_[size_t(tri_[t][1])] + vert_[size_t(tri_[t][2])]) / 3.0;
+  nodes_.reserve(tri_.size() / 2 + 1);
+  nodes_.push_back(Node());
+  build(0, 0, int(tri_.size()), centroid);
+}
+
+void MeshDistance::build(int node, int begin, int end, std::vector<vcg::Point3d>& centroid) {
+  constexpr int kLeafSize = 4;
+  Node n;
+  for (int k = 0; k < 3; ++k) {
+    n.lo[k] = std::numeric_limits<double>::infinity();
+    n.hi[k] = -std::numeric_limits<double>::infinity();
+  }
+  vcg::Box3d cbox;
+  for (int t = begin; t < end; ++t) {
+    for (int j = 0; j < 3; ++j) {
+      const vcg::Point3d& p = vert_[size_t(tri_[size_t(t)][j])];
+      for (int k = 0; k < 3; ++k) {
+        n.lo[k] = std::min(n.lo[k], p[k]);
+        n.hi[k] = std::max(n.hi[k], p[k]);
+      }
+    }
+    cbox.Add(centroid[size_t(t)]);
+  }
+  if (end - begin <= kLeafSize) {
+    n.first = begin;
+    n.count = end - begin;
+    nodes_[size_t(node)] = n;
+    return;
+  }
+  // Median split of the centroids along their longest extent.
+  const vcg::Point3d ext = cbox.Dim();
+  const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : ext[1] >= ext[2] ? 1 : 2;
+  const int mid = begin + (end - begin) / 2;
+  std::vector<int> order(size_t(end - begin));
+  std::iota(order.begin(), order.end(), begin);
+  std::nth_element(order.begin(), order.begin() + (mid - begin), order.end(), [&](int a, int b) {
+    const double ca = centroid[size_t(a)][axis], cb = centroid[size_t(b)][axis];
+    return ca != cb ? ca < cb : a < b;
+  });
+  std::vector<std::array<int, 3>> tri(order.size());
+  std::vector<vcg::Point3d> cen(order.size());
+  for (size_t i = 0; i < order.size(); ++i) {
+    tri[i] = tri_[size_t(order[i])];
+    cen[i] = centroid[size_t(order[i])];
+  }
+  std::copy(tri.begin(), tri.end(), tri_.begin() + begin);
+  std::copy(cen.begin(), cen.end(), centroid.begin() + begin);
+
+  n.first = int(nodes_.size());
+  n.count = 0;
+  nodes_[size_t(node)] = n;
+  nodes_.push_back(Node());
+  nodes_.push_back(Node());
+  build(n.first, begin, mid, centroid);
+  build(n.first + 1, mid, end, centroid);
+}
+
+namespace {
+double squaredSegmentDistance(const vcg::Point3d& p, const vcg::Point3d& a, const vcg::Point3d& b) {
+  const vcg::Point3d ab = b - a;
+  const double len2 = ab.SquaredNorm();
+  double t = len2 > 0 ? ((p - a) * ab) / len2 : 0;
+  t = std::min(1.0, std::max(0.0, t));
+  return (p - (a + ab * t)).SquaredNorm();
+}
+
+double squaredBoxDistance(const vcg::Point3d& p, const double lo[3], const double hi[3]) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = p[k] < lo[k] ? lo[k] - p[k] : p[k] > hi[k] ? p[k] - hi[k] : 0.0;
+    d2 += d * d;
+  }
+  return d2;
+}
+} // namespace
+
+// Closest point on a triangle by Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5);
+// triangles without area (within double precision) are measured as their three segments.
+double MeshDistance::squaredDistanceToTriangle(const vcg::Point3d& p, int t) const {
+  const vcg::Point3d& a = vert_[size_t(tri_[size_t(t)][0])];
+  const vcg::Point3d& b = vert_[size_t(tri_[size_t(t)][1])];
+  const vcg::Point3d& c = vert_[size_t(tri_[size_t(t)][2])];
+  const vcg::Point3d ab = b - a, ac = c - a, ap = p - a;
+  if (!((ab ^ ac).SquaredNorm() > 1e-24 * ab.SquaredNorm() * ac.SquaredNorm()))
+    return std::min({squaredSegmentDistance(p, a, b), squaredSegmentDistance(p, b, c), squaredSegmentDistance(p, c, a)});
+  const double d1 = ab * ap, d2 = ac * ap;
+  if (d1 <= 0 && d2 <= 0) return ap.SquaredNorm();
+  const vcg::Point3d bp = p - b;
+  const double d3 = ab * bp, d4 = ac * bp;
+  if (d3 >= 0 && d4 <= d3) return bp.SquaredNorm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return (p - (a + ab * v)).SquaredNorm();
+  }
+  const vcg::Point3d cp = p - c;
+  const double d5 = ab * cp, d6 = ac * cp;
+  if (d6 >= 0 && d5 <= d6) return cp.SquaredNorm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return (p - (a + ac * w)).SquaredNorm();
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return (p - (b + (c - b) * w)).SquaredNorm();
+  }
+  const double denom = va + vb + vc;
+  const double v = vb / denom, w = vc / denom;
+  return (p - (a + ab * v + ac * w)).SquaredNorm();
+}
+
+double MeshDistance::distance(const vcg::Point3d& p) const {
+  if (nodes_.empty()) return std::numeric_limits<double>::infinity();
+  double best = std::numeric_limits<double>::infinity();
+  int stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& n = nodes_[size_t(stack[--top])];
+    if (squaredBoxDistance(p, n.lo, n.hi) >= best) continue;
+    if (n.count > 0) {
+      for (int t = n.first; t < n.first + n.count; ++t) best = std::min(best, squaredDistanceToTriangle(p, t));
+      continue;
+    }
+    // Visit the nearer child first: push it last.
+    const Node& l = nodes_[size_t(n.first)];
+    const Node& r = nodes_[size_t(n.first + 1)];
+    const double dl = squaredBoxDistance(p, l.lo, l.hi), dr = squaredBoxDistance(p, r.lo, r.hi);
+    if (dl <= dr) {
+      if (dr < best) stack[top++] = n.first + 1;
+      if (dl < best) stack[top++] = n.first;
+    } else {
+      if (dl < best) stack[top++] = n.first;
+      if (dr < best) stack[top++] = n.first + 1;
+    }
+  }
+  return std::sqrt(best);
+}
+
+void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out) {
+  out.hasCloud = true;
+  out.cloudPoints = cloud.size();
+  out.cloudSpacing = cloud.size() >= 2 ? meanSpacing(cloud) : MeshMeasures::kNaN;
+  out.pointsFartherThanSpacing = 0;
+  const MeshDistance index(mesh);
+  if (index.empty() || cloud.empty()) {
+    out.distanceMean = out.distanceMax = out.muDPercent = MeshMeasures::kNaN;
+    return;
+  }
+  double sum = 0, maxDist = 0;
+  for (const auto& p : cloud) {
+    const double d = index.distance(p);
+    sum += d;
+    maxDist = std::max(maxDist, d);
+    if (d > out.cloudSpacing) ++out.pointsFartherThanSpacing;
+  }
+  out.distanceMean = sum / double(cloud.size());
+  out.distanceMax = maxDist;
+  out.muDPercent = out.cloudSpacing > 0 ? 100.0 * out.distanceMean / out.cloudSpacing : MeshMeasures::kNaN;
+}
+
+// --- Everything ---
+
+MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud, const MeasureOptions& options) {
+  MeshMeasures m;
+  const Compact c = compact(mesh);
+  const Edges e = buildEdges(c);
+  const MeshTopology t = topology(c, e);
+  m.vertices = c.vert.size();
+  m.faces = c.face.size();
+  m.unreferencedVertices = t.unreferencedVertices;
+  m.edges = t.edges;
+  m.boundaryEdges = t.boundaryEdges;
+  m.nonManifoldEdges = t.nonManifoldEdges;
+  m.nonManifoldVertices = t.nonManifoldVertices;
+  m.boundaryLoops = t.boundaryLoops;
+  m.components = t.components;
+  m.inconsistentEdges = t.inconsistentEdges;
+  m.degenerateFaces = t.degenerateFaces;
+  m.duplicateFaces = t.duplicateFaces;
+  const size_t properFaces = size_t(std::count(c.proper.begin(), c.proper.end(), 1));
+  m.eulerCharacteristic = int(m.vertices - m.unreferencedVertices) - int(m.edges) + int(properFaces);
+
+  // Edge lengths.
+  std::vector<double> len(e.ends.size());
+  for (size_t i = 0; i < len.size(); ++i) len[i] = (c.vert[size_t(e.ends[i][0])] - c.vert[size_t(e.ends[i][1])]).Norm();
+  if (!len.empty()) {
+    double sum = 0;
+    m.edgeMin = m.edgeMax = len[0];
+    for (double l : len) {
+      sum += l;
+      m.edgeMin = std::min(m.edgeMin, l);
+      m.edgeMax = std::max(m.edgeMax, l);
+    }
+    m.edgeMean = sum / double(len.size());
+    double dev = 0;
+    for (double l : len) dev += (l - m.edgeMean) * (l - m.edgeMean);
+    m.edgeRmsPercent = m.edgeMean > 0 ? 100.0 * std::sqrt(dev / double(len.size())) / m.edgeMean : MeshMeasures::kNaN;
+  }
+  const double edgeHistMax = options.edgeHistogramMax > 0 ? options.edgeHistogramMax
+                             : m.edgeMean > 0           ? 3.0 * m.edgeMean
+                                                        : 1.0;
+  m.edgeHistogram = Histogram(0, edgeHistMax, options.edgeBins);
+  for (double l : len) m.edgeHistogram.add(l);
+
+  // Triangle shape.
+  m.angleHistogram = Histogram(0, 180, options.angleBins);
+  m.qualityHistogram = Histogram(0, 1, options.qualityBins);
+  std::vector<double> q;
+  q.reserve(properFaces);
+  double qfSum = 0, minAngle = std::numeric_limits<double>::infinity(), maxAngle = -minAngle;
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    if (!c.proper[f]) continue;
+    const vcg::Point3d& a = c.vert[size_t(c.face[f][0])];
+    const vcg::Point3d& b = c.vert[size_t(c.face[f][1])];
+    const vcg::Point3d& d = c.vert[size_t(c.face[f][2])];
+    q.push_back(triangleQuality(a, b, d));
+    m.qualityHistogram.add(q.back());
+    qfSum += triangleQF(a, b, d);
+    if ((b - a).SquaredNorm() > 0 && (d - b).SquaredNorm() > 0 && (a - d).SquaredNorm() > 0) {
+      const double deg = 180.0 / kPi;
+      for (double ang : {angleBetween(b - a, d - a), angleBetween(a - b, d - b), angleBetween(a - d, b - d)}) {
+        minAngle = std::min(minAngle, ang * deg);
+        maxAngle = std::max(maxAngle, ang * deg);
+        m.angleHistogram.add(ang * deg);
+      }
+    }
+  }
+  if (!q.empty()) {
+    double sum = 0;
+    m.qualityMin = q[0];
+    for (double v : q) {
+      sum += v;
+      m.qualityMin = std::min(m.qualityMin, v);
+    }
+    m.qualityMean = sum / double(q.size());
+    double dev = 0;
+    for (double v : q) dev += (v - m.qualityMean) * (v - m.qualityMean);
+    m.qualityRmsPercent = m.qualityMean > 0 ? 100.0 * std::sqrt(dev / double(q.size())) / m.qualityMean : MeshMeasures::kNaN;
+    m.qfMean = qfSum / double(q.size());
+  }
+  if (std::isfinite(minAngle)) {
+    m.minAngleDeg = minAngle;
+    m.maxAngleDeg = maxAngle;
+  }
+
+  // Smallest distance between two vertices (the sphere packer guarantees d).
+  if (options.minVertexDistance && c.vert.size() >= 2) {
+    vcg::Box3d box;
+    for (const auto& p : c.vert) box.Add(p);
+    PointGrid grid;
+    const double cell = m.edgeMean > 0 ? m.edgeMean : roughSpacing(box, c.vert.size());
+    grid.build(c.vert, std::max(cell, 1e-12 * (1.0 + box.Diag())));
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < c.vert.size(); ++i) {
+      double d2 = 0;
+      if (grid.nearest(c.vert[i], &d2, int(i)) >= 0) best = std::min(best, d2);
+    }
+    if (std::isfinite(best)) m.minVertexDistance = std::sqrt(best);
+  }
+
+  if (cloud) measureCloudDistance(mesh, *cloud, m);
+  return m;
+}
+
+std::string MeshMeasures::toJson() const {
+  std::ostringstream s;
+  auto field = [&](const char* name, const std::string& value, bool last = false) {
+    s << "  \"" << name << "\": " << value << (last ? "\n" : ",\n");
+  };
+  auto count = [](size_t v) { return std::to_string(v); };
+  s << "{\n";
+  field("vertices", count(vertices));
+  field("faces", count(faces));
+  field("unreferenced_vertices", count(unreferencedVertices));
+  field("edges", count(edges));
+  field("edge_mean", number(edgeMean));
+  field("edge_rms_percent", number(edgeRmsPercent));
+  field("edge_min", number(edgeMin));
+  field("edge_max", number(edgeMax));
+  field("min_vertex_distance", number(minVertexDistance));
+  field("quality_mean", number(qualityMean));
+  field("quality_rms_percent", number(qualityRmsPercent));
+  field("quality_min", number(qualityMin));
+  field("qf_mean", number(qfMean));
+  field("min_angle_deg", number(minAngleDeg));
+  field("max_angle_deg", number(maxAngleDeg));
+  field("boundary_edges", count(boundaryEdges));
+  field("boundary_loops", count(boundaryLoops));
+  field("non_manifold_edges", count(nonManifoldEdges));
+  field("non_manifold_vertices", count(nonManifoldVertices));
+  field("components", count(components));
+  field("inconsistent_edges", count(inconsistentEdges));
+  field("degenerate_faces", count(degenerateFaces));
+  field("duplicate_faces", count(duplicateFaces));
+  field("euler_characteristic", std::to_string(eulerCharacteristic));
+  if (hasCloud) {
+    field("cloud_points", count(cloudPoints));
+    field("cloud_spacing", number(cloudSpacing));
+    field("distance_mean", number(distanceMean));
+    field("distance_max", number(distanceMax));
+    field("mu_d_percent", number(muDPercent));
+    field("points_farther_than_spacing", count(pointsFartherThanSpacing));
+  }
+  field("consistently_oriented", consistentlyOriented() ? "true" : "false");
+  field("manifold", manifold() ? "true" : "false", true);
+  s << "}\n";
+  return s.str();
+}
+
+} // namespace growth
