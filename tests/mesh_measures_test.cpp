@@ -471,12 +471,16 @@ TEST(MeshDistance, HierarchyAgreesWithBruteForce) {
     }
     return best;
   };
+  int hint = -1;
   for (int i = 0; i < 300; ++i) {
     const double r = i < 200 ? 1.2 : 5.0;
     const Point3d p(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-r, r));
     double brute = std::numeric_limits<double>::infinity();
     for (const auto& t : f) brute = std::min(brute, triangle(p, stored[size_t(t[0])], stored[size_t(t[1])], stored[size_t(t[2])]));
     ASSERT_NEAR(index.distance(p), brute, 1e-12 * (1 + brute)) << "query " << i;
+    // A hint (the previous query's triangle, far from this one) changes nothing but the speed.
+    ASSERT_NEAR(index.distance(p, &hint), brute, 1e-12 * (1 + brute)) << "query " << i << " with hint";
+    ASSERT_GE(hint, 0);
   }
 }
 

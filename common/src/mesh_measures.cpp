@@ -309,68 +309,70 @@ size_t countDuplicateFaces(const CMeshO& m) { return measureTopology(m).duplicat
 MeshDistance::MeshDistance(const CMeshO& mesh) {
   Compact c = compact(mesh);
   vert_ = std::move(c.vert);
-  tri_.reserve(c.face.size());
-  for (size_t f = 0; f < c.face.size(); ++f)
-    if (c.face[f][0] >= 0 && c.face[f][1] >= 0 && c.face[f][2] >= 0) tri_.push_back(c.face[f]);
-  if (tri_.empty()) return;
-  std::vector<vcg::Point3d> centroid(tri_.size());
-  for (size_t t = 0; t < tri_.size(); ++t)
-    centroid[t] = (vert_[size_t(tri_[t][0])] + vert_[size_t(tri_[t][1])] + vert_[size_t(tri_[t][2])]) / 3.0;
-  nodes_.reserve(tri_.size() / 2 + 1);
+  std::vector<Item> items;
+  items.reserve(c.face.size());
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    const auto& t = c.face[f];
+    if (t[0] < 0 || t[1] < 0 || t[2] < 0) continue;
+    items.push_back({(vert_[size_t(t[0])] + vert_[size_t(t[1])] + vert_[size_t(t[2])]) / 3.0, int(f)});
+  }
+  if (items.empty()) return;
+  nodes_.reserve(items.size() / 2 + 1);
   nodes_.push_back(Node());
-  build(0, 0, int(tri_.size()), centroid);
+  build(0, 0, int(items.size()), items);
+  tri_.reserve(items.size());
+  for (const Item& it : items) tri_.push_back(c.face[size_t(it.face)]);
+  // Boxes bottom-up: children are always stored after their parent.
+  for (size_t i = nodes_.size(); i-- > 0;) {
+    Node& n = nodes_[i];
+    for (int k = 0; k < 3; ++k) {
+      n.lo[k] = std::numeric_limits<double>::infinity();
+      n.hi[k] = -std::numeric_limits<double>::infinity();
+    }
+    if (n.count > 0) {
+      for (int t = n.first; t < n.first + n.count; ++t)
+        for (int j = 0; j < 3; ++j) {
+          const vcg::Point3d& p = vert_[size_t(tri_[size_t(t)][j])];
+          for (int k = 0; k < 3; ++k) {
+            n.lo[k] = std::min(n.lo[k], p[k]);
+            n.hi[k] = std::max(n.hi[k], p[k]);
+          }
+        }
+    } else {
+      for (const Node* child : {&nodes_[size_t(n.first)], &nodes_[size_t(n.first + 1)]})
+        for (int k = 0; k < 3; ++k) {
+          n.lo[k] = std::min(n.lo[k], child->lo[k]);
+          n.hi[k] = std::max(n.hi[k], child->hi[k]);
+        }
+    }
+  }
 }
 
-void MeshDistance::build(int node, int begin, int end, std::vector<vcg::Point3d>& centroid) {
+// Median split of the centroids along their longest extent, in place (the items of a subtree stay
+// contiguous, so the leaves refer to ranges of the final triangle order).
+void MeshDistance::build(int node, int begin, int end, std::vector<Item>& items) {
   constexpr int kLeafSize = 4;
-  Node n;
-  for (int k = 0; k < 3; ++k) {
-    n.lo[k] = std::numeric_limits<double>::infinity();
-    n.hi[k] = -std::numeric_limits<double>::infinity();
-  }
-  vcg::Box3d cbox;
-  for (int t = begin; t < end; ++t) {
-    for (int j = 0; j < 3; ++j) {
-      const vcg::Point3d& p = vert_[size_t(tri_[size_t(t)][j])];
-      for (int k = 0; k < 3; ++k) {
-        n.lo[k] = std::min(n.lo[k], p[k]);
-        n.hi[k] = std::max(n.hi[k], p[k]);
-      }
-    }
-    cbox.Add(centroid[size_t(t)]);
-  }
   if (end - begin <= kLeafSize) {
-    n.first = begin;
-    n.count = end - begin;
-    nodes_[size_t(node)] = n;
+    nodes_[size_t(node)].first = begin;
+    nodes_[size_t(node)].count = end - begin;
     return;
   }
-  // Median split of the centroids along their longest extent.
+  vcg::Box3d cbox;
+  for (int i = begin; i < end; ++i) cbox.Add(items[size_t(i)].centroid);
   const vcg::Point3d ext = cbox.Dim();
   const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : ext[1] >= ext[2] ? 1 : 2;
   const int mid = begin + (end - begin) / 2;
-  std::vector<int> order(size_t(end - begin));
-  std::iota(order.begin(), order.end(), begin);
-  std::nth_element(order.begin(), order.begin() + (mid - begin), order.end(), [&](int a, int b) {
-    const double ca = centroid[size_t(a)][axis], cb = centroid[size_t(b)][axis];
-    return ca != cb ? ca < cb : a < b;
+  std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end, [axis](const Item& a, const Item& b) {
+    const double ca = a.centroid[axis], cb = b.centroid[axis];
+    return ca != cb ? ca < cb : a.face < b.face;
   });
-  std::vector<std::array<int, 3>> tri(order.size());
-  std::vector<vcg::Point3d> cen(order.size());
-  for (size_t i = 0; i < order.size(); ++i) {
-    tri[i] = tri_[size_t(order[i])];
-    cen[i] = centroid[size_t(order[i])];
-  }
-  std::copy(tri.begin(), tri.end(), tri_.begin() + begin);
-  std::copy(cen.begin(), cen.end(), centroid.begin() + begin);
-
-  n.first = int(nodes_.size());
-  n.count = 0;
-  nodes_[size_t(node)] = n;
+  const int left = int(nodes_.size());
+  nodes_[size_t(node)].first = left;
+  nodes_[size_t(node)].count = 0;
   nodes_.push_back(Node());
   nodes_.push_back(Node());
-  build(n.first, begin, mid, centroid);
-  build(n.first + 1, mid, end, centroid);
+  build(left, begin, mid, items);
+  build(left + 1, mid, end, items);
 }
 
 namespace {
@@ -429,9 +431,12 @@ double MeshDistance::squaredDistanceToTriangle(const vcg::Point3d& p, int t) con
   return (p - (a + ab * v + ac * w)).SquaredNorm();
 }
 
-double MeshDistance::distance(const vcg::Point3d& p) const {
+double MeshDistance::distance(const vcg::Point3d& p, int* hint) const {
   if (nodes_.empty()) return std::numeric_limits<double>::infinity();
-  double best = std::numeric_limits<double>::infinity();
+  // A triangle near p (the previous query's answer, for queries in spatial order) bounds the search
+  // from the start, so most of the tree is pruned at once.
+  int bestTri = hint && *hint >= 0 && *hint < int(tri_.size()) ? *hint : -1;
+  double best = bestTri >= 0 ? squaredDistanceToTriangle(p, bestTri) : std::numeric_limits<double>::infinity();
   int stack[128];
   int top = 0;
   stack[top++] = 0;
@@ -439,7 +444,13 @@ double MeshDistance::distance(const vcg::Point3d& p) const {
     const Node& n = nodes_[size_t(stack[--top])];
     if (squaredBoxDistance(p, n.lo, n.hi) >= best) continue;
     if (n.count > 0) {
-      for (int t = n.first; t < n.first + n.count; ++t) best = std::min(best, squaredDistanceToTriangle(p, t));
+      for (int t = n.first; t < n.first + n.count; ++t) {
+        const double d2 = squaredDistanceToTriangle(p, t);
+        if (d2 < best) {
+          best = d2;
+          bestTri = t;
+        }
+      }
       continue;
     }
     // Visit the nearer child first: push it last.
@@ -454,8 +465,22 @@ double MeshDistance::distance(const vcg::Point3d& p) const {
       if (dr < best) stack[top++] = n.first + 1;
     }
   }
+  if (hint) *hint = bestTri;
   return std::sqrt(best);
 }
+
+namespace {
+// Interleaves the low 21 bits of x, y, z (Morton order), to visit points in spatial order.
+std::uint64_t spread(std::uint64_t v) {
+  v &= 0x1fffff;
+  v = (v | v << 32) & 0x1f00000000ffffull;
+  v = (v | v << 16) & 0x1f0000ff0000ffull;
+  v = (v | v << 8) & 0x100f00f00f00f00full;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+  v = (v | v << 2) & 0x1249249249249249ull;
+  return v;
+}
+} // namespace
 
 void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out) {
   out.hasCloud = true;
@@ -467,9 +492,24 @@ void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& c
     out.distanceMean = out.distanceMax = out.muDPercent = MeshMeasures::kNaN;
     return;
   }
+  // Queries in Morton order, each starting from the previous answer. The sum is taken in the
+  // cloud's own order afterwards so the result does not depend on the visiting order.
+  vcg::Box3d box;
+  for (const auto& p : cloud) box.Add(p);
+  const vcg::Point3d dim = box.Dim();
+  const double scale = double((1 << 21) - 1) / std::max({dim[0], dim[1], dim[2], 1e-300});
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const vcg::Point3d q = (cloud[i] - box.min) * scale;
+    auto cell = [](double v) { return std::uint64_t(std::isfinite(v) ? std::min(std::max(v, 0.0), double((1 << 21) - 1)) : 0.0); };
+    order[i] = {spread(cell(q[0])) | spread(cell(q[1])) << 1 | spread(cell(q[2])) << 2, std::uint32_t(i)};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<double> dist(cloud.size());
+  int hint = -1;
+  for (const auto& o : order) dist[o.second] = index.distance(cloud[o.second], &hint);
   double sum = 0, maxDist = 0;
-  for (const auto& p : cloud) {
-    const double d = index.distance(p);
+  for (double d : dist) {
     sum += d;
     maxDist = std::max(maxDist, d);
     if (d > out.cloudSpacing) ++out.pointsFartherThanSpacing;

@@ -149,8 +149,10 @@ class MeshDistance {
 public:
   explicit MeshDistance(const CMeshO& mesh);
   bool empty() const { return tri_.empty(); }
-  // Distance to the nearest face; +infinity when the mesh has no face.
-  double distance(const vcg::Point3d& p) const;
+  // Distance to the nearest face; +infinity when the mesh has no face. `hint` (optional), on entry
+  // a triangle likely near p or -1, on return the nearest triangle: passing the previous answer
+  // speeds up queries made in spatial order.
+  double distance(const vcg::Point3d& p, int* hint = nullptr) const;
 
 private:
   struct Node {
@@ -158,7 +160,11 @@ private:
     int first;   // leaf: first triangle in tri_; inner: index of the left child (right = first + 1)
     int count;   // leaf: number of triangles (> 0); inner: 0
   };
-  void build(int node, int begin, int end, std::vector<vcg::Point3d>& centroid);
+  struct Item {
+    vcg::Point3d centroid;
+    int face;
+  };
+  void build(int node, int begin, int end, std::vector<Item>& items);
   double squaredDistanceToTriangle(const vcg::Point3d& p, int t) const;
 
   std::vector<vcg::Point3d> vert_;
