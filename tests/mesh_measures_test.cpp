@@ -139,6 +139,7 @@ TEST(MeshMeasures, RegularTetrahedron) {
   EXPECT_EQ(r.duplicateFaces, 0u);
   EXPECT_EQ(r.unreferencedVertices, 0u);
   EXPECT_EQ(r.eulerCharacteristic, 2);
+  EXPECT_NEAR(r.boxDiagonal, 2 * std::sqrt(3.0), 1e-12);
   EXPECT_TRUE(r.manifold());
   EXPECT_TRUE(r.consistentlyOriented());
   const double edge = 2 * std::sqrt(2.0);

@@ -528,6 +528,11 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   const MeshTopology t = topology(c, e);
   m.vertices = c.vert.size();
   m.faces = c.face.size();
+  if (!c.vert.empty()) {
+    vcg::Box3d box;
+    for (const auto& p : c.vert) box.Add(p);
+    m.boxDiagonal = box.Diag();
+  }
   m.unreferencedVertices = t.unreferencedVertices;
   m.edges = t.edges;
   m.boundaryEdges = t.boundaryEdges;
@@ -634,6 +639,7 @@ std::string MeshMeasures::toJson() const {
   field("faces", count(faces));
   field("unreferenced_vertices", count(unreferencedVertices));
   field("edges", count(edges));
+  field("box_diagonal", number(boxDiagonal));
   field("edge_mean", number(edgeMean));
   field("edge_rms_percent", number(edgeRmsPercent));
   field("edge_min", number(edgeMin));

@@ -73,6 +73,7 @@ struct MeshMeasures {
   size_t faces = 0;                 // live faces
   size_t unreferencedVertices = 0;  // live vertices used by no face
   size_t edges = 0;                 // unique undirected edges (of faces without repeated vertex)
+  double boxDiagonal = kNaN;        // bounding-box diagonal of the live vertices
 
   // Edge lengths
   double edgeMean = kNaN;           // E_avg

@@ -1,0 +1,678 @@
+#!/usr/bin/python3
+"""The comparison benchmark: our two meshers against MeshLab's Ball Pivoting, in the same run.
+
+Called by scripts/benchmark.sh (which builds the project and makes the scratch MeshLab prefix); see
+there for the usage. For every cloud and method it runs meshlabserver once (plus one load+save-only
+run of the cloud, the baseline), measures the mesh with build/mesh_measures, and writes
+
+  OUT/results.jsonl                 one JSON row per (cloud, method), merged across invocations
+  OUT/results.md                    the Markdown tables (one per cloud) and the plots
+  OUT/plots/<cloud>_histograms.png  angles, edge lengths, Q_t per method (sphere-packing fig. 12)
+  OUT/plots/scaling.png             time against points, log-log, fitted slope per method
+  OUT/runs/<cloud>/<method>/        the .mlx, meshlabserver's log, /usr/bin/time's report,
+                                    the mesh, its measures (JSON) and histograms (CSV)
+
+Time: our filters report their own time in the log ("... time X s"); for MeshLab's filters the
+time is the wall clock of the run minus the wall clock of the load+save-only run of the same cloud.
+Memory: peak resident set size of meshlabserver (/usr/bin/time -v) minus that of the
+load+save-only run, per input point: the filter's extra peak.
+Needs numpy and matplotlib from Debian (/usr/bin/python3), installed by scripts/setup.sh.
+"""
+import argparse
+import datetime
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+METHODS = {
+    # key: (label in the tables, short label in the plots)
+    "bpa": ("Ball Pivoting (auto radius)", "BPA"),
+    "bpa3": ("Ball Pivoting (r = 3 × spacing)", "BPA 3s"),
+    "bpa_re": ("Ball Pivoting + remeshing (Re)", "BPA (Re)"),
+    "spherepack": ("Sphere Packing (ours)", "Sphere Packing"),
+    "g2s": ("Robust G2S (ours)", "Robust G2S"),
+}
+# Run order within a cloud: the sphere packer first, its d is the remeshing target of "bpa_re".
+RUN_ORDER = ["spherepack", "g2s", "bpa", "bpa3", "bpa_re"]
+REFERENCE = "bpa"
+SHAPES = ["sphere", "torus", "patch"]
+DATA = {
+    "bunny": "bunny_merged_normals.ply",
+    "hand": "hand.ply",
+    "horse": "horse_mesh.ply",   # its vertices (with their normals) as a clean cloud
+}
+FULL_SIZES = [10000, 30000, 100000, 300000, 1000000]
+QUICK_SIZES = [10000, 30000]
+EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, 6 × mean spacing], same for all methods
+
+
+def parse_size(text):
+    t = text.strip().lower()
+    mult = 1
+    if t.endswith("k"):
+        mult, t = 1000, t[:-1]
+    elif t.endswith("m"):
+        mult, t = 1000000, t[:-1]
+    return int(float(t) * mult)
+
+
+def size_label(n):
+    if n >= 1000000 and n % 1000000 == 0:
+        return "%dM" % (n // 1000000)
+    if n >= 1000 and n % 1000 == 0:
+        return "%dk" % (n // 1000)
+    return str(n)
+
+
+def log(msg):
+    print("[benchmark %s] %s" % (time.strftime("%H:%M:%S"), msg), flush=True)
+
+
+# --- Clouds ---------------------------------------------------------------------------------
+
+def ply_vertices_only(src, dst):
+    """Writes the vertex element of a binary little-endian PLY (whose first element is the vertex
+    element) as a new PLY without faces."""
+    with open(src, "rb") as f:
+        data = f.read()
+    end = data.index(b"end_header\n") + len(b"end_header\n")
+    header = data[:end].decode("ascii").splitlines()
+    if "format binary_little_endian 1.0" not in header:
+        raise RuntimeError("%s: only binary little-endian PLY is supported here" % src)
+    sizes = {"char": 1, "uchar": 1, "int8": 1, "uint8": 1, "short": 2, "ushort": 2, "int16": 2,
+             "uint16": 2, "int": 4, "uint": 4, "int32": 4, "uint32": 4, "float": 4, "float32": 4,
+             "double": 8, "float64": 8}
+    out, count, stride, in_vertex = [], 0, 0, False
+    for line in header:
+        w = line.split()
+        if w and w[0] == "element":
+            if in_vertex:
+                break
+            in_vertex = w[1] == "vertex"
+            if not in_vertex:
+                raise RuntimeError("%s: the vertex element must come first" % src)
+            count = int(w[2])
+        elif w and w[0] == "property" and in_vertex:
+            if w[1] == "list":
+                raise RuntimeError("%s: list property in the vertex element" % src)
+            stride += sizes[w[1]]
+        if not (w and w[0] == "end_header"):
+            out.append(line)
+    body = data[end:end + count * stride]
+    with open(dst, "wb") as f:
+        f.write(("\n".join(out + ["end_header"]) + "\n").encode("ascii"))
+        f.write(body)
+
+
+def prepare_cloud(spec, ctx):
+    """Returns a dict with name, path, kind, shape, points, spacing, diagonal."""
+    clouds_dir = os.path.join(ctx.out, "clouds")
+    os.makedirs(clouds_dir, exist_ok=True)
+    shape = None
+    if spec in DATA:
+        src = os.path.join(ctx.data_dir, DATA[spec])
+        if not os.path.exists(src):
+            return None
+        name, kind = spec, "data"
+        if spec == "horse":
+            path = os.path.join(clouds_dir, "horse.ply")
+            if not os.path.exists(path):
+                ply_vertices_only(src, path)
+        else:
+            path = src
+    elif spec.endswith(".ply"):
+        path, kind = os.path.abspath(spec), "file"
+        name = os.path.splitext(os.path.basename(spec))[0]
+    else:
+        m = re.match(r"^(sphere|torus|patch)-([0-9.]+[kKmM]?)$", spec)
+        if not m:
+            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s or a .ply path)"
+                             % (spec, ", ".join(DATA)))
+        shape, n = m.group(1), parse_size(m.group(2))
+        name, kind = "%s-%s" % (shape, size_label(n)), "generated"
+        path = os.path.join(clouds_dir, name + ".ply")
+        if not os.path.exists(path):
+            subprocess.run([ctx.tool("make_cloud"), "--shape", shape, "--points", str(n), "--seed", "1",
+                            "-o", path], check=True, stdout=subprocess.DEVNULL)
+    # Spacing and size from mesh_measures run on the cloud itself (no faces: distances are null).
+    r = subprocess.run([ctx.tool("mesh_measures"), path, "--cloud", path, "--no-min-vertex-distance"],
+                       check=True, stdout=subprocess.PIPE, universal_newlines=True)
+    j = json.loads(r.stdout)
+    return {"name": name, "path": path, "kind": kind, "shape": shape, "points": j["cloud_points"],
+            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"]}
+
+
+# --- Filter scripts -------------------------------------------------------------------------
+
+def mlx_filters(path):
+    """The <filter>…</filter> blocks of an .mlx file."""
+    text = open(path).read()
+    return re.findall(r"<filter\b[^>]*/>|<filter\b[^>]*[^/]>.*?</filter>", text, flags=re.S)
+
+
+def set_param(filter_xml, name, value):
+    pat = re.compile(r'(<Param\b[^>]*\bname="%s"[^>]*>)' % re.escape(name))
+    m = pat.search(filter_xml)
+    if not m:
+        raise SystemExit("parameter %s not found in the filter script" % name)
+    tag = re.sub(r'\bvalue="[^"]*"', 'value="%s"' % value, m.group(1))
+    return filter_xml[:m.start()] + tag + filter_xml[m.end():]
+
+
+def set_abs_perc(filter_xml, name, value, diagonal):
+    """A RichAbsPerc parameter with an absolute value (and a max that admits it)."""
+    x = set_param(filter_xml, name, "%.9g" % value)
+    pat = re.compile(r'(<Param\b[^>]*\bname="%s"[^>]*>)' % re.escape(name))
+    m = pat.search(x)
+    tag = re.sub(r'\bmax="[^"]*"', 'max="%.9g"' % max(diagonal, value), m.group(1))
+    return x[:m.start()] + tag + x[m.end():]
+
+
+def mlx(filters):
+    return "<!DOCTYPE FilterScript>\n<FilterScript>\n " + "\n ".join(filters) + "\n</FilterScript>\n"
+
+
+def remesh_filter(target, diagonal):
+    """MeshLab's Isotropic Explicit Remeshing as in the paper's "(Re)" rows: 3 iterations, target
+    edge length d in absolute units, MeshLab's defaults otherwise (surface distance check on with
+    1 % of the diagonal, crease angle 30°, all steps on)."""
+    return ('<filter name="Remeshing: Isotropic Explicit Remeshing">\n'
+            '  <Param name="Iterations" type="RichInt" value="3"/>\n'
+            '  <Param name="Adaptive" type="RichBool" value="false"/>\n'
+            '  <Param name="SelectedOnly" type="RichBool" value="false"/>\n'
+            '  <Param name="TargetLen" type="RichAbsPerc" value="%.9g" min="0" max="%.9g"/>\n'
+            '  <Param name="FeatureDeg" type="RichFloat" value="30"/>\n'
+            '  <Param name="CheckSurfDist" type="RichBool" value="true"/>\n'
+            '  <Param name="MaxSurfDist" type="RichAbsPerc" value="%.9g" min="0" max="%.9g"/>\n'
+            '  <Param name="SplitFlag" type="RichBool" value="true"/>\n'
+            '  <Param name="CollapseFlag" type="RichBool" value="true"/>\n'
+            '  <Param name="SwapFlag" type="RichBool" value="true"/>\n'
+            '  <Param name="SmoothFlag" type="RichBool" value="true"/>\n'
+            '  <Param name="ReprojectFlag" type="RichBool" value="true"/>\n'
+            ' </filter>') % (target, max(diagonal, target), 0.01 * diagonal, diagonal)
+
+
+def method_script(method, cloud, ctx, d_info):
+    mlx_dir = os.path.join(ROOT, "scripts", "mlx")
+    diag = cloud["diagonal"]
+    if method in ("bpa", "bpa3", "bpa_re"):
+        (f,) = mlx_filters(os.path.join(mlx_dir, "ball_pivoting.mlx"))
+        info = {}
+        if method == "bpa3":
+            r = 3.0 * cloud["spacing"]
+            f = set_abs_perc(f, "BallRadius", r, diag)
+            info["ball_radius"] = r
+        filters = [f]
+        if method == "bpa_re":
+            filters.append(remesh_filter(d_info["d"], diag))
+            info["remesh_target"] = d_info["d"]
+            info["remesh_target_source"] = d_info["source"]
+        return mlx(filters), info
+    template = {"spherepack": "spherepack.mlx", "g2s": "g2s.mlx"}[method]
+    filters = mlx_filters(os.path.join(mlx_dir, template))
+    for key, value in ctx.params.get(method, []):
+        filters = [set_param(f, key, value) for f in filters]
+    return mlx(filters), {"params": dict(ctx.params.get(method, []))}
+
+
+# --- Running meshlabserver ------------------------------------------------------------------
+
+def parse_time_report(path):
+    """Wall clock (s), max RSS (kB) and exit status from /usr/bin/time -v."""
+    wall = rss = status = None
+    if os.path.exists(path):
+        for line in open(path, errors="replace"):
+            line = line.strip()
+            if line.startswith("Elapsed (wall clock) time"):
+                t = line.rsplit(" ", 1)[-1].split(":")
+                wall = sum(float(x) * 60 ** i for i, x in enumerate(reversed(t)))
+            elif line.startswith("Maximum resident set size"):
+                rss = int(line.rsplit(" ", 1)[-1])
+            elif line.startswith("Exit status"):
+                status = int(line.rsplit(" ", 1)[-1])
+    return wall, rss, status
+
+
+def run_meshlabserver(ctx, workdir, args, timeout):
+    """Like run_meshlabserver of scripts/meshlab_env.sh (the copy of meshlabserver in the scratch
+    prefix, under xvfb-run), with /usr/bin/time -v inside xvfb-run so that the wall clock and the
+    peak memory are meshlabserver's own, not those of the X server's start-up."""
+    os.makedirs(workdir, exist_ok=True)
+    tfile = os.path.join(workdir, "time.txt")
+    logfile = os.path.join(workdir, "meshlabserver.log")
+    if os.path.exists(tfile):
+        os.remove(tfile)
+    cmd = ["xvfb-run", "-a", "/usr/bin/time", "-v", "-o", tfile,
+           os.path.join(ctx.prefix, "bin", "meshlabserver")] + args
+    timed_out = False
+    with open(logfile, "w") as logf:
+        proc = subprocess.Popen(cmd, cwd=workdir, stdout=logf, stderr=subprocess.STDOUT, start_new_session=True)
+        try:
+            proc.wait(timeout=timeout)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+            os.killpg(proc.pid, 15)
+            proc.wait()
+    wall, rss, status = parse_time_report(tfile)
+    return {"rc": proc.returncode if status is None else status, "wall": wall, "rss_kb": rss,
+            "timed_out": timed_out, "log": open(logfile, errors="replace").read()}
+
+
+def failure_reason(log_text):
+    """The most telling line of a failed run's log."""
+    lines = [l.strip() for l in log_text.splitlines() if l.strip()]
+    for l in lines:
+        if l.startswith("LOG: 1 "):   # warnings, where our filters put their errors
+            return l[len("LOG: 1 "):]
+    for l in lines:
+        if "Problem with filter" in l or "not implemented" in l.lower() or "error" in l.lower():
+            return l
+    return lines[-1] if lines else "no output"
+
+
+def ply_face_count(path):
+    with open(path, "rb") as f:
+        head = f.read(4096).split(b"end_header")[0].decode("ascii", "replace")
+    m = re.search(r"element face (\d+)", head)
+    return int(m.group(1)) if m else 0
+
+
+def baseline(cloud, ctx):
+    """The load+save-only run of a cloud: wall clock and peak memory to subtract."""
+    work = os.path.join(ctx.out, "runs", cloud["name"], "_load_save")
+    best = None
+    for _ in range(ctx.repeat):
+        r = run_meshlabserver(ctx, work, ["-i", cloud["path"], "-o", "loaded.ply", "-m", "fq"], ctx.timeout)
+        if r["rc"] != 0 or r["wall"] is None:
+            raise SystemExit("meshlabserver cannot even load and save %s; see %s" % (cloud["path"], work))
+        if best is None or r["wall"] < best["wall"]:
+            best = r
+    return {"wall": best["wall"], "rss_kb": best["rss_kb"]}
+
+
+def run_method(method, cloud, base, ctx, d_info):
+    work = os.path.join(ctx.out, "runs", cloud["name"], method)
+    if os.path.isdir(work):
+        shutil.rmtree(work)
+    os.makedirs(work)
+    script, info = method_script(method, cloud, ctx, d_info)
+    with open(os.path.join(work, "filter.mlx"), "w") as f:
+        f.write(script)
+    row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
+           "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
+           "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
+           "base_rss_kb": base["rss_kb"], "info": info}
+    best = None
+    for _ in range(ctx.repeat):
+        r = run_meshlabserver(ctx, work, ["-i", cloud["path"], "-o", "mesh.ply", "-m", "fq", "-s", "filter.mlx"],
+                              ctx.timeout)
+        if best is None or (r["rc"] == 0 and (best["rc"] != 0 or (r["wall"] or 1e30) < (best["wall"] or 1e30))):
+            best = r
+        if r["rc"] != 0:
+            break
+    r = best
+    mesh = os.path.join(work, "mesh.ply")
+    row.update({"wall": r["wall"], "rss_kb": r["rss_kb"], "rc": r["rc"]})
+    if r["timed_out"]:
+        row["status"] = "timed out after %d s" % ctx.timeout
+        return row
+    if r["rc"] != 0 or not os.path.exists(mesh):
+        row["status"] = "failed: " + failure_reason(r["log"])
+        return row
+    if ply_face_count(mesh) == 0:
+        row["status"] = "no faces: " + failure_reason(r["log"])
+        return row
+    row["status"] = "ok"
+
+    # Time: the filter's own log line for ours, wall clock minus load+save for MeshLab's.
+    m = re.findall(r"(?:Sphere Packing|Robust G2S): time ([0-9.eE+-]+) s", r["log"])
+    if method in ("spherepack", "g2s") and m:
+        row["time"], row["time_source"] = float(m[-1]), "filter log"
+    else:
+        row["time"], row["time_source"] = max(r["wall"] - base["wall"], 0.0), "wall - load/save"
+    row["time_wall_minus_base"] = r["wall"] - base["wall"]
+    if method == "spherepack":
+        dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", r["log"])
+        if dm:
+            row["info"]["d"] = float(dm[-1])
+    if r["rss_kb"] is not None and base["rss_kb"] is not None:
+        row["extra_peak_bytes_per_point"] = max(0, r["rss_kb"] - base["rss_kb"]) * 1024.0 / cloud["points"]
+
+    mm = subprocess.run([ctx.tool("mesh_measures"), mesh, "--cloud", cloud["path"], "--histograms",
+                         os.path.join(work, "hist"), "--edge-max", "%.9g" % (EDGE_HISTOGRAM_SPACINGS * cloud["spacing"])],
+                        stdout=subprocess.PIPE, universal_newlines=True)
+    if mm.returncode != 0:
+        row["status"] = "mesh_measures failed on the mesh"
+        return row
+    with open(os.path.join(work, "measures.json"), "w") as f:
+        f.write(mm.stdout)
+    row["measures"] = json.loads(mm.stdout)
+    return row
+
+
+# --- Results --------------------------------------------------------------------------------
+
+def load_rows(path):
+    rows = []
+    if os.path.exists(path):
+        for line in open(path):
+            line = line.strip()
+            if line:
+                rows.append(json.loads(line))
+    return rows
+
+
+def save_rows(path, rows):
+    with open(path + ".tmp", "w") as f:
+        for r in rows:
+            f.write(json.dumps(r, sort_keys=True) + "\n")
+    os.replace(path + ".tmp", path)
+
+
+def merge_row(rows, row):
+    rows = [r for r in rows if not (r["cloud"] == row["cloud"] and r["method"] == row["method"])]
+    rows.append(row)
+    return rows
+
+
+def cloud_sort_key(name, rows):
+    r = next(x for x in rows if x["cloud"] == name)
+    kind_order = {"generated": 0, "data": 1, "file": 2}
+    shape = r.get("shape") or ""
+    return (kind_order.get(r.get("cloud_kind"), 3), SHAPES.index(shape) if shape in SHAPES else 9, r["points"], name)
+
+
+def fmt(v, spec):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "—"
+    return format(v, spec)
+
+
+def table(cloud_rows):
+    ref = next((r for r in cloud_rows if r["method"] == REFERENCE and r.get("status") == "ok"), None)
+    head = ("| method | time [s] | speed-up vs BPA | faces | triangles/s | E_avg | E_RMS % | Q_avg | Q_RMS % "
+            "| QF | μd % | non-manifold V / E | boundary edges | holes | extra peak [B/point] |")
+    lines = [head, "|" + "---|" * 15]
+    order = {m: i for i, m in enumerate(["bpa", "bpa3", "bpa_re", "spherepack", "g2s"])}
+    for r in sorted(cloud_rows, key=lambda x: order.get(x["method"], 99)):
+        label = r["label"]
+        if r["method"] == "bpa3" and "ball_radius" in r.get("info", {}):
+            label += " r=%.3g" % r["info"]["ball_radius"]
+        if r["method"] == "bpa_re" and "remesh_target" in r.get("info", {}):
+            label += " d=%.3g" % r["info"]["remesh_target"]
+            if "mean spacing" in r["info"].get("remesh_target_source", ""):
+                label += " (mean spacing: no sphere packer d)"
+        if r["method"] == "spherepack" and "d" in r.get("info", {}):
+            label += " d=%.3g" % r["info"]["d"]
+        if r.get("status") != "ok":
+            status = r.get("status", "?").replace("|", "/")
+            if len(status) > 120:
+                status = status[:117] + "..."
+            lines.append("| %s | %s |" % (label, status) + " — |" * 13)
+            continue
+        m = r["measures"]
+        t = r["time"]
+        speed = ("×%.2f" % (ref["time"] / t)) if ref and t > 0 and ref["time"] > 0 else "—"
+        tps = m["faces"] / t if t > 0 else None
+        lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
+            label, fmt(t, "#.3g"), "" if r["time_source"] == "filter log" else "*", speed,
+            "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
+            fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
+            fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
+            m["boundary_edges"], m["boundary_loops"], fmt(r.get("extra_peak_bytes_per_point"), ".0f")))
+    return "\n".join(lines)
+
+
+def fit_slope(ns, ts):
+    import numpy as np
+    x, y = np.log10(np.array(ns, float)), np.log10(np.array(ts, float))
+    slope, icept = np.polyfit(x, y, 1)
+    return slope, icept
+
+
+def read_hist(path):
+    import numpy as np
+    a = np.genfromtxt(path, delimiter=",", skip_header=1)
+    return a[:, 0], a[:, 1], a[:, 2]
+
+
+def plots(rows, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+    pdir = os.path.join(out, "plots")
+    os.makedirs(pdir, exist_ok=True)
+    made = []
+    colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue", "g2s": "tab:red"}
+    clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
+    for c in clouds:
+        ok = [r for r in rows if r["cloud"] == c and r.get("status") == "ok"]
+        if not ok:
+            continue
+        fig, axes = plt.subplots(1, 3, figsize=(13, 3.6))
+        for r in sorted(ok, key=lambda x: RUN_ORDER.index(x["method"])):
+            base = os.path.join(out, "runs", c, r["method"], "hist")
+            for ax, kind in zip(axes, ["angles", "edges", "quality"]):
+                p = "%s_%s.csv" % (base, kind)
+                if not os.path.exists(p):
+                    continue
+                lo, hi, cnt = read_hist(p)
+                total = cnt.sum()
+                if total <= 0:
+                    continue
+                ax.step(lo, cnt / total, where="post", color=colors.get(r["method"]), label=METHODS[r["method"]][1],
+                        linewidth=1.2)
+        axes[0].set_xlabel("angle [°]")
+        axes[0].set_xlim(0, 180)
+        axes[1].set_xlabel("edge length")
+        axes[2].set_xlabel("Q_t")
+        axes[2].set_xlim(0, 1)
+        for ax in axes:
+            ax.set_ylabel("fraction")
+        axes[0].legend(fontsize=8)
+        r0 = ok[0]
+        fig.suptitle("%s (%s points): angles, edge lengths, triangle quality" % (c, "{:,}".format(r0["points"])))
+        fig.tight_layout()
+        p = os.path.join(pdir, "%s_histograms.png" % c)
+        fig.savefig(p, dpi=80)
+        plt.close(fig)
+        made.append(p)
+
+    # Time against points, per shape of the generated clouds, log-log with the fitted slope.
+    shapes = [s for s in SHAPES if len({r["points"] for r in rows if r.get("shape") == s and r.get("status") == "ok"}) >= 2]
+    slopes = {}
+    if shapes:
+        fig, axes = plt.subplots(1, len(shapes), figsize=(4.6 * len(shapes), 3.8), squeeze=False)
+        for ax, s in zip(axes[0], shapes):
+            for meth in RUN_ORDER:
+                pts = sorted((r["points"], r["time"]) for r in rows
+                             if r.get("shape") == s and r["method"] == meth and r.get("status") == "ok" and r["time"] > 0)
+                if not pts:
+                    continue
+                ns, ts = zip(*pts)
+                label = METHODS[meth][1]
+                if len(pts) >= 2:
+                    k, b = fit_slope(ns, ts)
+                    slopes[(s, meth)] = k
+                    xs = np.array([min(ns), max(ns)], float)
+                    ax.plot(xs, 10 ** (b + k * np.log10(xs)), color=colors.get(meth), linewidth=0.8, linestyle="--")
+                    label += " (slope %.2f)" % k
+                ax.plot(ns, ts, "o", color=colors.get(meth), label=label, markersize=4)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("input points")
+            ax.set_ylabel("time [s]")
+            ax.set_title(s)
+            ax.legend(fontsize=7)
+            ax.grid(True, which="both", linewidth=0.3)
+        fig.tight_layout()
+        p = os.path.join(pdir, "scaling.png")
+        fig.savefig(p, dpi=80)
+        plt.close(fig)
+        made.append(p)
+    return made, slopes
+
+
+def machine():
+    def sh(cmd):
+        try:
+            return subprocess.run(cmd, shell=True, stdout=subprocess.PIPE, universal_newlines=True).stdout.strip()
+        except OSError:
+            return ""
+    mem = sh("awk '/MemTotal/ {printf \"%.1f GiB\", $2/1048576}' /proc/meminfo")
+    return {"nproc": sh("nproc"), "cpu": sh("lscpu | sed -n 's/^Model name: *//p' | head -1"), "memory": mem}
+
+
+def report(rows, ctx, command):
+    made, slopes = plots(rows, ctx.out)
+    mach = machine()
+    clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
+    runs = sorted({r["run"] for r in rows})
+    md = ["# Benchmark results", "",
+          "Command: `%s`  " % command,
+          "Machine: %s, `nproc` = %s, %s memory.  " % (mach["cpu"], mach["nproc"], mach["memory"]),
+          "Run%s: %s." % ("s" if len(runs) > 1 else "", ", ".join(runs)), "",
+          "Time: our filters' own log line (`... time X s`); rows marked * are MeshLab's filters, timed as "
+          "the wall clock of the meshlabserver run minus that of a load+save-only run of the same cloud "
+          "(for \"(Re)\" this includes Ball Pivoting and the remeshing). Speed-up = time of Ball Pivoting "
+          "(auto radius) / time of the row. Extra peak = peak resident memory of the run minus that of the "
+          "load+save-only run, per input point. μd % = mean distance of the input points to the mesh / "
+          "mean nearest-neighbour spacing × 100. Holes = boundary loops (non-manifold vertices split into "
+          "their fans). Measures by `mesh_measures` (common/include/growth/mesh_measures.h).", ""]
+    for c in clouds:
+        cr = [r for r in rows if r["cloud"] == c]
+        r0 = cr[0]
+        md.append("## %s — %s points, mean spacing %.4g" % (c, "{:,}".format(r0["points"]), r0["spacing"]))
+        md.append("")
+        md.append(table(cr))
+        md.append("")
+        hp = os.path.join("plots", "%s_histograms.png" % c)
+        if os.path.exists(os.path.join(ctx.out, hp)):
+            md.append("![%s histograms](%s)" % (c, hp))
+            md.append("")
+    if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")):
+        md.append("## Time against number of points (log–log, fitted slope)")
+        md.append("")
+        md.append("![scaling](plots/scaling.png)")
+        md.append("")
+        if slopes:
+            md.append("| shape | " + " | ".join(METHODS[m][1] for m in RUN_ORDER) + " |")
+            md.append("|---|" + "---|" * len(RUN_ORDER))
+            for s in SHAPES:
+                if any(k[0] == s for k in slopes):
+                    md.append("| %s | " % s + " | ".join(
+                        ("%.2f" % slopes[(s, m)]) if (s, m) in slopes else "—" for m in RUN_ORDER) + " |")
+            md.append("")
+    path = os.path.join(ctx.out, "results.md")
+    with open(path, "w") as f:
+        f.write("\n".join(md))
+    return path, made
+
+
+# --- Main -----------------------------------------------------------------------------------
+
+class Context:
+    pass
+
+
+def main():
+    ap = argparse.ArgumentParser(prog="scripts/benchmark.sh", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, and hand.ply)")
+    ap.add_argument("--methods", default=",".join(RUN_ORDER),
+                    help="comma-separated subset of: " + ", ".join(RUN_ORDER))
+    ap.add_argument("--clouds", default=None,
+                    help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths "
+                         "(default: every shape at every size, and every cloud of the data folder)")
+    ap.add_argument("--sizes", default=None, help="sizes of the generated clouds, e.g. 10k,100k,1M")
+    ap.add_argument("--shapes", default=",".join(SHAPES), help="shapes of the generated clouds")
+    ap.add_argument("--no-data", action="store_true", help="skip the clouds of the data folder")
+    ap.add_argument("--param", action="append", default=[], metavar="METHOD:NAME=VALUE",
+                    help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4")
+    ap.add_argument("--repeat", type=int, default=1, help="run each meshlabserver call N times, keep the fastest")
+    ap.add_argument("--timeout", type=int, default=3 * 3600, help="seconds before a run is stopped")
+    ap.add_argument("--report-only", action="store_true", help="only rebuild results.md and the plots")
+    ap.add_argument("--fresh", action="store_true", help="forget the rows of earlier invocations")
+    ap.add_argument("--out", required=True)
+    ap.add_argument("--build", required=True)
+    ap.add_argument("--prefix", required=True)
+    ap.add_argument("--data-dir", required=True)
+    ap.add_argument("--command", default="scripts/benchmark.sh")
+    a = ap.parse_args()
+
+    ctx = Context()
+    ctx.out, ctx.build, ctx.prefix, ctx.data_dir = (os.path.abspath(a.out), os.path.abspath(a.build),
+                                                    os.path.abspath(a.prefix), os.path.abspath(a.data_dir))
+    ctx.repeat, ctx.timeout = max(1, a.repeat), a.timeout
+    ctx.tool = lambda name: os.path.join(ctx.build, name)
+    ctx.run_stamp = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
+    ctx.params = {}
+    for p in a.param:
+        m = re.match(r"^(spherepack|g2s):([A-Za-z0-9_]+)=(.*)$", p)
+        if not m:
+            raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack or g2s, got '%s'" % p)
+        ctx.params.setdefault(m.group(1), []).append((m.group(2), m.group(3)))
+    os.makedirs(ctx.out, exist_ok=True)
+    results = os.path.join(ctx.out, "results.jsonl")
+    rows = [] if a.fresh else load_rows(results)
+
+    if not a.report_only:
+        methods = [m.strip() for m in a.methods.split(",") if m.strip()]
+        for m in methods:
+            if m not in METHODS:
+                raise SystemExit("unknown method '%s' (choose from %s)" % (m, ", ".join(RUN_ORDER)))
+        methods = [m for m in RUN_ORDER if m in methods]
+        if a.clouds:
+            specs = [c.strip() for c in a.clouds.split(",") if c.strip()]
+        else:
+            sizes = [parse_size(s) for s in a.sizes.split(",")] if a.sizes else (QUICK_SIZES if a.quick else FULL_SIZES)
+            shapes = [s.strip() for s in a.shapes.split(",") if s.strip()]
+            specs = ["%s-%s" % (s, size_label(n)) for s in shapes for n in sizes]
+            if not a.no_data:
+                specs += ["hand"] if a.quick else list(DATA)
+        for spec in specs:
+            cloud = prepare_cloud(spec, ctx)
+            if cloud is None:
+                log("%s: not in %s, skipped" % (spec, ctx.data_dir))
+                continue
+            log("%s: %d points, mean spacing %.4g — load+save baseline" % (cloud["name"], cloud["points"], cloud["spacing"]))
+            base = baseline(cloud, ctx)
+            # The remeshing target: the sphere packer's d from this run, else from an earlier row,
+            # else the mean spacing (said so in the row).
+            d_info = {"d": cloud["spacing"], "source": "mean spacing (no sphere packer d available)"}
+            prev = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "spherepack"
+                         and "d" in r.get("info", {})), None)
+            if prev:
+                d_info = {"d": prev["info"]["d"], "source": "sphere packer's d (%s)" % prev["run"]}
+            for m in methods:
+                log("%s: %s ..." % (cloud["name"], METHODS[m][0]))
+                row = run_method(m, cloud, base, ctx, d_info)
+                if m == "spherepack" and "d" in row.get("info", {}):
+                    d_info = {"d": row["info"]["d"], "source": "sphere packer's d (this run)"}
+                if row["status"] == "ok":
+                    mm = row["measures"]
+                    log("  %s: %.3f s, %d faces, Q_avg %.4f, %d holes" % (row["status"], row["time"], mm["faces"],
+                                                                         mm["quality_mean"] or 0, mm["boundary_loops"]))
+                else:
+                    log("  " + row["status"])
+                rows = merge_row(rows, row)
+                save_rows(results, rows)
+
+    if not rows:
+        raise SystemExit("no results yet")
+    path, made = report(rows, ctx, a.command)
+    log("tables: %s" % path)
+    for p in made:
+        log("plot: %s" % p)
+
+
+if __name__ == "__main__":
+    main()

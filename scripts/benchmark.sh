@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# The comparison benchmark against MeshLab's Ball Pivoting (issue 3). Builds the project, makes a
+# scratch MeshLab prefix with the freshly built plugins (scripts/meshlab_env.sh), then runs
+# scripts/benchmark.py, which writes out/benchmark/results.md (tables), results.jsonl and plots/.
+#
+#   scripts/benchmark.sh                 every generated cloud (sphere, torus, patch at 10k..1M
+#                                        points) and every cloud of ../shared/data: long (hours)
+#   scripts/benchmark.sh --quick         10k and 30k points and hand.ply: minutes
+#   scripts/benchmark.sh --methods spherepack,bpa --clouds torus-60k      one method/cloud
+#   scripts/benchmark.sh --report-only   rebuild the tables and plots from results.jsonl
+#   scripts/benchmark.sh --help          all options
+#
+# Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
+# out/benchmark), --data-dir DIR (default ../shared/data), --no-build (use the build as it is). Rows are merged into results.jsonl by
+# (cloud, method) across invocations (--fresh starts over); each row records its run's date.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=${GROWTH_BUILD_DIR:-$root/build}
+out=$root/out/benchmark
+data=$(cd "$root/.." && pwd)/shared/data
+command="scripts/benchmark.sh $*"
+
+args=()
+skip_build=false
+skip_prefix=false
+while [ $# -gt 0 ]; do
+  case $1 in
+    --build) build=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --data-dir) data=$2; shift 2 ;;
+    --no-build) skip_build=true; shift ;;
+    --report-only|-h|--help) skip_build=true; skip_prefix=true; args+=("$1"); shift ;;
+    *) args+=("$1"); shift ;;
+  esac
+done
+build=$(mkdir -p "$build" && cd "$build" && pwd)
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+
+if ! /usr/bin/python3 -c 'import numpy, matplotlib' 2>/dev/null; then
+  echo "benchmark: /usr/bin/python3 lacks numpy or matplotlib: run scripts/setup.sh" >&2
+  exit 1
+fi
+for tool in /usr/bin/time xvfb-run; do
+  command -v "$tool" >/dev/null || { echo "benchmark: $tool is missing: run scripts/setup.sh" >&2; exit 1; }
+done
+
+prefix=$out/meshlab-prefix
+if ! $skip_build; then
+  [ -f "$build/CMakeCache.txt" ] || cmake -S "$root" -B "$build"
+  cmake --build "$build" -j2
+fi
+if ! $skip_prefix; then
+  source "$root/scripts/meshlab_env.sh"
+  make_meshlab_prefix "$build" "$prefix"
+fi
+
+exec /usr/bin/python3 "$root/scripts/benchmark.py" --out "$out" --build "$build" --prefix "$prefix" \
+  --data-dir "$data" --command "$command" ${args[@]+"${args[@]}"}

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# The benchmark pipeline runs end to end on a small cloud: Ball Pivoting's row with its measures,
+# a row for each of our filters (measured, or saying why not), the histograms plot. No timing is
+# asserted (timings belong to the benchmark itself).
+source "$(dirname "$0")/meshlab_prefix.sh"
+
+"$GROWTH_SOURCE_DIR/scripts/benchmark.sh" --no-build --build "$GROWTH_BUILD_DIR" --out "$work/out" \
+  --clouds sphere-3k --methods bpa,spherepack,g2s > "$work/bench.log" 2>&1 \
+  || { cat "$work/bench.log"; fail "benchmark failed"; }
+md="$work/out/results.md"
+[ -s "$md" ] || fail "no results.md"
+grep -q '^## sphere-3k — 3,000 points' "$md" || fail "no table for sphere-3k"
+bpa=$(grep '^| Ball Pivoting (auto radius) |' "$md") || fail "no Ball Pivoting row"
+echo "$bpa" | grep -q '×1.00' || fail "Ball Pivoting row without its speed-up: $bpa"
+for label in "Sphere Packing (ours)" "Robust G2S (ours)"; do
+  grep -q "^| $label" "$md" || fail "no row for $label"
+done
+[ -s "$work/out/plots/sphere-3k_histograms.png" ] || fail "no histogram plot"
+[ "$(wc -l < "$work/out/results.jsonl")" -eq 3 ] || fail "results.jsonl should hold 3 rows"
+echo "ok: $bpa"
