@@ -1,0 +1,221 @@
+#pragma once
+// Box grid of the sphere-packing mesher (Lipschütz et al., sec. 4.1).
+//
+// Space is partitioned into cubes ("boxes") of side d. Each box refers to the input points (and
+// their splats) that are at most d away from it. Only occupied boxes are stored: an open-addressing
+// hash from the box's integer coordinates to a box id, and the point lists in one CSR array, so
+// memory grows with the cloud (about 21 references per point: the volume of a box grown by d is
+// (1 + 6 + 3π + 4π/3)·d³), never with its bounding box (sec. 4.1 weighs the uniform grid against
+// the hash; we take the hash for the memory bound).
+//
+// Per box, as in sec. 4.1:
+//  1. normal filter: n̄ = Σ n_p over the box's points (not normalised); when |n̄| >= 0.1, the
+//     points with <n_p, n̄> < 0 are dropped from the box;
+//  2. box normal n_b = argmax over a fixed sampling S_F of the sphere of min_p <n_p, n>;
+//  3. a box whose best minimum is negative is one where "d is too large" for the cloud: its box
+//     normal has a negative scalar product with some point normal, so manifold output is no longer
+//     guaranteed. Such boxes are counted so that the caller can warn.
+#include <vcg/space/point3.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace growth {
+
+// Growable open-addressing hash from a 64-bit key to a non-negative int value. Lookups never
+// allocate; iteration order is never used (determinism comes from the values, assigned in
+// insertion order by the callers).
+class KeyHash {
+public:
+  using Key = std::uint64_t;
+  explicit KeyHash(size_t expected = 16) { reset(expected); }
+
+  void reset(size_t expected) {
+    size_t cap = 16;
+    while (cap < 2 * expected) cap *= 2;
+    keys_.assign(cap, 0);
+    vals_.assign(cap, -1);
+    mask_ = cap - 1;
+    size_ = 0;
+  }
+  size_t size() const { return size_; }
+  size_t memoryBytes() const { return keys_.capacity() * sizeof(Key) + vals_.capacity() * sizeof(int); }
+
+  // Value stored for k, or -1.
+  int find(Key k) const {
+    size_t h = slot(k);
+    for (;;) {
+      const int v = vals_[h];
+      if (v < 0) return -1;
+      if (keys_[h] == k) return v;
+      h = (h + 1) & mask_;
+    }
+  }
+  // Value stored for k; when absent, stores `value` and returns it.
+  int findOrInsert(Key k, int value) {
+    if (2 * (size_ + 1) > keys_.size()) grow();
+    size_t h = slot(k);
+    for (;;) {
+      const int v = vals_[h];
+      if (v < 0) {
+        keys_[h] = k;
+        vals_[h] = value;
+        ++size_;
+        return value;
+      }
+      if (keys_[h] == k) return v;
+      h = (h + 1) & mask_;
+    }
+  }
+  // Replaces the value of an existing key (no-op when absent).
+  void set(Key k, int value) {
+    size_t h = slot(k);
+    for (;;) {
+      if (vals_[h] < 0) return;
+      if (keys_[h] == k) {
+        vals_[h] = value;
+        return;
+      }
+      h = (h + 1) & mask_;
+    }
+  }
+
+private:
+  size_t slot(Key k) const { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
+  void grow() {
+    std::vector<Key> k;
+    std::vector<int> v;
+    k.swap(keys_);
+    v.swap(vals_);
+    reset(k.size());
+    for (size_t i = 0; i < k.size(); ++i)
+      if (v[i] >= 0) findOrInsert(k[i], v[i]);
+  }
+  std::vector<Key> keys_;
+  std::vector<int> vals_;
+  size_t mask_ = 0, size_ = 0;
+};
+
+// Integer box coordinates of a cubic partition of space with side `side` and a fixed origin,
+// packed into 64-bit keys (21 bits per axis).
+class BoxIndexer {
+public:
+  static constexpr int kBits = 21;
+  static constexpr std::int64_t kMax = (std::int64_t(1) << kBits) - 1;
+
+  BoxIndexer() = default;
+  BoxIndexer(const vcg::Point3d& origin, double side) : origin_(origin), side_(side), inv_(1.0 / side) {}
+
+  double side() const { return side_; }
+  const vcg::Point3d& origin() const { return origin_; }
+  std::int64_t coord(double v, int axis) const {
+    return static_cast<std::int64_t>(std::floor((v - origin_[axis]) * inv_));
+  }
+  static bool valid(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return x >= 0 && y >= 0 && z >= 0 && x <= kMax && y <= kMax && z <= kMax;
+  }
+  static KeyHash::Key pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (KeyHash::Key(x) << (2 * kBits)) | (KeyHash::Key(y) << kBits) | KeyHash::Key(z);
+  }
+  // Key of the box containing p; false when p is outside the indexable range.
+  bool keyOf(const vcg::Point3d& p, KeyHash::Key& key) const {
+    const std::int64_t x = coord(p[0], 0), y = coord(p[1], 1), z = coord(p[2], 2);
+    if (!valid(x, y, z)) return false;
+    key = pack(x, y, z);
+    return true;
+  }
+  // Lower corner of box (x, y, z).
+  vcg::Point3d corner(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return vcg::Point3d(origin_[0] + double(x) * side_, origin_[1] + double(y) * side_,
+                        origin_[2] + double(z) * side_);
+  }
+
+private:
+  vcg::Point3d origin_{0, 0, 0};
+  double side_ = 1, inv_ = 1;
+};
+
+// The fixed finite sampling S_F of the unit sphere used for box normals (sec. 4.1): the cell
+// centres of a cube map with 2^level × 2^level cells per face, 6·4^level directions (level 6:
+// 24,576 directions, about 1.4° apart). The paper leaves S_F open; the cube map's quadtree lets
+// the argmax be found by branch and bound, exactly over S_F, in a few dozen evaluations instead
+// of |S_F| (each evaluation costs one pass over the box's normals).
+class SphereSampling {
+public:
+  explicit SphereSampling(int level = 6);
+  int level() const { return level_; }
+  size_t size() const { return size_t(6) << (2 * level_); }
+  // The i-th direction of S_F (unit length), i in [0, size()).
+  vcg::Point3d direction(size_t i) const;
+
+  // argmax over n in S_F of min_k <normals[idx[k]], n>, by branch and bound (exact over S_F).
+  // *minDot receives the maximised minimum. count must be > 0.
+  vcg::Point3d maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+                               size_t count, double* minDot = nullptr) const;
+  // The same by testing every direction of S_F (reference for tests).
+  vcg::Point3d maxMinDirectionBruteForce(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+                                         size_t count, double* minDot = nullptr) const;
+
+private:
+  vcg::Point3d faceDirection(int face, double u, double v) const;
+  int level_;
+};
+
+// Sec. 4.1 normal filter on one box: returns how many of idx[0..count) remain (kept in order at
+// the front of idx). Threshold on |Σ n_p|: below it all points are kept.
+size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+                        double threshold = 0.1);
+
+class Progress;
+
+class BoxGrid {
+public:
+  // Builds the grid of side `side` over the points (with unit normals), applies the normal filter
+  // and computes the box normals. `progress` (optional) is updated with fractions of the build.
+  void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
+             Progress* progress = nullptr);
+
+  double side() const { return index_.side(); }
+  const BoxIndexer& indexer() const { return index_; }
+  size_t boxCount() const { return boxNormal_.size(); }
+  // Id of the box containing p, or -1 when that box refers to no point.
+  int boxOf(const vcg::Point3d& p) const {
+    KeyHash::Key k;
+    return index_.keyOf(p, k) ? hash_.find(k) : -1;
+  }
+  // Points of a box (after the normal filter), in increasing index order.
+  const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
+  const std::uint32_t* pointsEnd(int box) const { return points_.data() + start_[size_t(box) + 1]; }
+  size_t pointCount(int box) const { return start_[size_t(box) + 1] - start_[size_t(box)]; }
+  const vcg::Point3d& boxNormal(int box) const { return boxNormal_[size_t(box)]; }
+  // max over S_F of min_p <n_p, n>: negative means d looked too large in this box.
+  double boxMinDot(int box) const { return boxMinDot_[size_t(box)]; }
+  bool dTooLarge(int box) const { return boxMinDot_[size_t(box)] < 0; }
+  size_t dTooLargeCount() const { return dTooLargeCount_; }
+  size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
+  size_t references() const { return points_.size(); }
+  size_t memoryBytes() const;
+
+private:
+  BoxIndexer index_;
+  KeyHash hash_;
+  std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
+  std::vector<std::uint32_t> points_;  // point indices per box
+  std::vector<vcg::Point3d> boxNormal_;
+  std::vector<double> boxMinDot_;
+  size_t dTooLargeCount_ = 0, dropped_ = 0;
+};
+
+// Squared distance from p to the axis-aligned cube [lo, lo + side]^3.
+inline double squaredDistanceToBox(const vcg::Point3d& p, const vcg::Point3d& lo, double side) {
+  double s = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double v = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > lo[a] + side ? p[a] - lo[a] - side : 0.0);
+    s += v * v;
+  }
+  return s;
+}
+
+} // namespace growth

@@ -1,0 +1,83 @@
+#pragma once
+// Splats of the sphere-packing mesher (Lipschütz et al., sec. 3.2 and 4.3).
+//
+// Every input point p carries a splat S_p: the disk centred at p, orthogonal to its normal n_p,
+// of radius s_p. Vertices of the mesh are placed on splats, so the splats must cover the surface.
+// The radius is either the global size s, or the local size of sec. 4.3:
+//   - the points of the box containing p (sec. 4.1) are rotated about p, in the plane through p,
+//     p_i and n_p, onto the tangent plane T_p (distances to p are kept);
+//   - sorted cyclically around p they form a central (fan) triangulation;
+//   - a central edge p–p_i that is not locally Delaunay is flipped, and p_i is dropped from the
+//     fan, until all central edges are locally Delaunay;
+//   - s_p is the distance from p to the farthest vertex of p's Voronoi cell among the remaining
+//     neighbours, i.e. the largest circumradius of the fan triangles.
+// Where the paper is silent we choose, for the coverage guarantee: a fan with an angular gap of
+// at least π (a boundary point, or a point with too few neighbours) has an unbounded Voronoi cell
+// and keeps the global s; and local sizes never exceed s (sec. 4.3 introduces them as "individual,
+// smaller splat sizes").
+#include <vcg/space/point3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace growth {
+
+class BoxGrid;
+class Progress;
+
+// An orthonormal tangent frame (e1, e2) of a unit normal n, a fixed function of n (so the same
+// normal always gives the same frame: angles measured in it are reproducible).
+inline void tangentFrame(const vcg::Point3d& n, vcg::Point3d& e1, vcg::Point3d& e2) {
+  // Start from the coordinate axis least aligned with n.
+  const double ax = std::abs(n[0]), ay = std::abs(n[1]), az = std::abs(n[2]);
+  const vcg::Point3d axis = (ax <= ay && ax <= az) ? vcg::Point3d(1, 0, 0)
+                            : (ay <= az)           ? vcg::Point3d(0, 1, 0)
+                                                   : vcg::Point3d(0, 0, 1);
+  e1 = axis - n * (axis * n);
+  e1 /= e1.Norm();
+  e2 = n ^ e1;
+}
+
+// Squared distance from x to the disk of centre c, unit normal n and radius r.
+inline double squaredDistanceToDisk(const vcg::Point3d& x, const vcg::Point3d& c, const vcg::Point3d& n, double r) {
+  const vcg::Point3d v = x - c;
+  const double h = v * n;
+  const double radial2 = v.SquaredNorm() - h * h;
+  if (radial2 <= r * r) return h * h;
+  const double out = std::sqrt(std::max(0.0, radial2)) - r;
+  return h * h + out * out;
+}
+
+// Closest point of that disk to x.
+inline vcg::Point3d projectOntoDisk(const vcg::Point3d& x, const vcg::Point3d& c, const vcg::Point3d& n, double r) {
+  const vcg::Point3d v = x - c;
+  vcg::Point3d t = v - n * (v * n);
+  const double len = t.Norm();
+  if (len > r) t *= r / len;
+  return c + t;
+}
+
+// Sec. 4.3 for one point: the largest circumradius of the Delaunay fan of p among `neighbours`
+// (p itself must not be among them), rotated onto the tangent plane of the unit normal n.
+// Returns a negative value when p's Voronoi cell is unbounded (no closed fan).
+// `keptOut` (optional) receives the indices (into neighbours) of the points left in the fan, in
+// counter-clockwise order around n.
+double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                        std::vector<int>* keptOut = nullptr);
+
+struct SplatSizeStats {
+  size_t unbounded = 0;   // points without a closed Delaunay fan: global s kept
+  size_t clamped = 0;     // points whose Voronoi radius exceeded s: s kept
+  double meanRadius = 0;  // mean of the final radii
+};
+
+// Splat radius of every point: the global s, or (local) min(s, local Voronoi radius) from the
+// points of the box containing each point.
+std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+                                     const BoxGrid& grid, double globalRadius, bool local,
+                                     SplatSizeStats* stats = nullptr, Progress* progress = nullptr);
+
+} // namespace growth

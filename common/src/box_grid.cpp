@@ -1,0 +1,225 @@
+#include <growth/box_grid.h>
+#include <growth/error.h>
+#include <growth/progress.h>
+
+#include <algorithm>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+namespace growth {
+
+// ---------------------------------------------------------------------------------------------
+// Sphere sampling
+
+SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 10))) {}
+
+vcg::Point3d SphereSampling::faceDirection(int face, double u, double v) const {
+  const int axis = face / 2;
+  const double sign = (face % 2 == 0) ? 1.0 : -1.0;
+  vcg::Point3d d;
+  d[axis] = sign;
+  d[(axis + 1) % 3] = u;
+  d[(axis + 2) % 3] = v;
+  return d / d.Norm();
+}
+
+vcg::Point3d SphereSampling::direction(size_t i) const {
+  const size_t m = size_t(1) << level_;
+  const int face = static_cast<int>(i / (m * m));
+  const size_t r = i % (m * m);
+  const size_t row = r / m, col = r % m;
+  const double u = -1.0 + (2.0 * double(col) + 1.0) / double(m);
+  const double v = -1.0 + (2.0 * double(row) + 1.0) / double(m);
+  return faceDirection(face, u, v);
+}
+
+namespace {
+// min_k <normals[idx[k]], n>, stopping early once the running minimum is <= cutoff (the caller
+// then knows the value cannot matter).
+double minDot(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
+              const vcg::Point3d& n, double cutoff) {
+  double m = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < count; ++k) {
+    const vcg::Point3d& q = normals[idx[k]];
+    const double s = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
+    if (s < m) {
+      m = s;
+      if (m <= cutoff) return m;
+    }
+  }
+  return m;
+}
+} // namespace
+
+vcg::Point3d SphereSampling::maxMinDirectionBruteForce(const std::vector<vcg::Point3d>& normals,
+                                                       const std::uint32_t* idx, size_t count,
+                                                       double* minDotOut) const {
+  double best = -std::numeric_limits<double>::infinity();
+  vcg::Point3d bestDir(0, 0, 1);
+  for (size_t i = 0; i < size(); ++i) {
+    const vcg::Point3d n = direction(i);
+    const double m = minDot(normals, idx, count, n, -std::numeric_limits<double>::infinity());
+    if (m > best) best = m, bestDir = n;
+  }
+  if (minDotOut != nullptr) *minDotOut = best;
+  return bestDir;
+}
+
+vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+                                             size_t count, double* minDotOut) const {
+  // Best-first branch and bound over the quadtree of each cube face. For a cell with centre
+  // direction c, every direction n of the cell satisfies |n - c| <= chord (the largest distance
+  // from c to the directions of the cell's corners; the angle to c is quasi-convex over the
+  // square, so its maximum is at a corner), and min_k <n_k, n> <= min_k <n_k, c> + |n - c|.
+  // So value(c) + chord bounds every sample of the cell, and the search is exact over S_F.
+  struct Cell {
+    double bound;
+    double value;
+    int face, depth;
+    std::uint32_t x, y;
+    bool operator<(const Cell& o) const { return bound < o.bound; }
+  };
+  std::priority_queue<Cell> heap;
+  double best = -std::numeric_limits<double>::infinity();
+  vcg::Point3d bestDir(0, 0, 1);
+
+  auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
+    const double cellSize = 2.0 / double(std::uint32_t(1) << depth);
+    const double u0 = -1.0 + double(x) * cellSize, v0 = -1.0 + double(y) * cellSize;
+    const vcg::Point3d c = faceDirection(face, u0 + 0.5 * cellSize, v0 + 0.5 * cellSize);
+    double chord = 0;
+    if (depth < level_) {
+      for (int k = 0; k < 4; ++k) {
+        const vcg::Point3d corner = faceDirection(face, u0 + (k & 1) * cellSize, v0 + (k >> 1) * cellSize);
+        chord = std::max(chord, (corner - c).Norm());
+      }
+    }
+    const double value = minDot(normals, idx, count, c, best - chord);
+    if (value + chord <= best) return; // cannot beat the best sample found so far
+    if (depth == level_) {
+      best = value;
+      bestDir = c;
+      return;
+    }
+    heap.push(Cell{value + chord, value, face, depth, x, y});
+  };
+
+  for (int f = 0; f < 6; ++f) push(f, 0, 0, 0);
+  while (!heap.empty()) {
+    const Cell cell = heap.top();
+    heap.pop();
+    if (cell.bound <= best) break; // best-first: nothing left can improve
+    for (int k = 0; k < 4; ++k)
+      push(cell.face, cell.depth + 1, 2 * cell.x + std::uint32_t(k & 1), 2 * cell.y + std::uint32_t(k >> 1));
+  }
+  if (minDotOut != nullptr) *minDotOut = best;
+  return bestDir;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Normal filter (sec. 4.1)
+
+size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+                        double threshold) {
+  vcg::Point3d sum(0, 0, 0);
+  for (size_t k = 0; k < count; ++k) sum += normals[idx[k]];
+  if (sum.Norm() < threshold) return count;
+  size_t w = 0;
+  for (size_t k = 0; k < count; ++k)
+    if (normals[idx[k]] * sum >= 0) idx[w++] = idx[k];
+  return w;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Box grid
+
+size_t BoxGrid::memoryBytes() const {
+  return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
+         points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
+         boxMinDot_.capacity() * sizeof(double);
+}
+
+void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
+                    Progress* progress) {
+  start_.assign(1, 0);
+  points_.clear();
+  boxNormal_.clear();
+  boxMinDot_.clear();
+  dTooLargeCount_ = dropped_ = 0;
+  hash_.reset(16);
+  if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
+
+  vcg::Point3d lo = pts[0], hi = pts[0];
+  for (const auto& p : pts)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+  if (extent / side + 8 > double(BoxIndexer::kMax)) {
+    std::ostringstream s;
+    s << "The sphere diameter d = " << side << " is too small for a cloud of extent " << extent
+      << ": use a larger d.";
+    throw Error(s.str());
+  }
+  index_ = BoxIndexer(lo - vcg::Point3d(2 * side, 2 * side, 2 * side), side);
+  const double d2 = side * side;
+
+  // Calls f(key) for every box within distance `side` of p (at most 27 boxes).
+  auto forBoxesNear = [&](const vcg::Point3d& p, auto&& f) {
+    const std::int64_t x0 = index_.coord(p[0] - side, 0), x1 = index_.coord(p[0] + side, 0);
+    const std::int64_t y0 = index_.coord(p[1] - side, 1), y1 = index_.coord(p[1] + side, 1);
+    const std::int64_t z0 = index_.coord(p[2] - side, 2), z1 = index_.coord(p[2] + side, 2);
+    for (std::int64_t x = x0; x <= x1; ++x)
+      for (std::int64_t y = y0; y <= y1; ++y)
+        for (std::int64_t z = z0; z <= z1; ++z)
+          if (squaredDistanceToBox(p, index_.corner(x, y, z), side) <= d2) f(BoxIndexer::pack(x, y, z));
+  };
+
+  // Pass 1: box ids in order of first appearance (deterministic), reference counts.
+  hash_.reset(pts.size() * 4);
+  std::vector<std::uint32_t> count;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    forBoxesNear(pts[i], [&](KeyHash::Key k) {
+      const int id = hash_.findOrInsert(k, static_cast<int>(count.size()));
+      if (size_t(id) == count.size()) count.push_back(0);
+      ++count[size_t(id)];
+    });
+    if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 * double(i) / double(pts.size()));
+  }
+  const size_t boxes = count.size();
+  start_.assign(boxes + 1, 0);
+  for (size_t b = 0; b < boxes; ++b) start_[b + 1] = start_[b] + count[b];
+  // Pass 2: fill (points in increasing index order inside each box).
+  points_.assign(start_[boxes], 0);
+  for (size_t b = 0; b < boxes; ++b) count[b] = start_[b];
+  for (size_t i = 0; i < pts.size(); ++i) {
+    forBoxesNear(pts[i], [&](KeyHash::Key k) {
+      const int id = hash_.find(k);
+      points_[count[size_t(id)]++] = static_cast<std::uint32_t>(i);
+    });
+    if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 + 0.3 * double(i) / double(pts.size()));
+  }
+  std::vector<std::uint32_t>().swap(count);
+
+  // Normal filter, compacting the CSR arrays in place; then the box normals.
+  static const SphereSampling sampling(6);
+  boxNormal_.resize(boxes);
+  boxMinDot_.resize(boxes);
+  size_t w = 0;
+  for (size_t b = 0; b < boxes; ++b) {
+    const size_t begin = start_[b], n = start_[b + 1] - begin;
+    std::uint32_t* idx = &points_[begin];
+    const size_t kept = filterBoxNormals(normals, idx, n);
+    dropped_ += n - kept;
+    boxNormal_[b] = sampling.maxMinDirection(normals, idx, kept, &boxMinDot_[b]);
+    if (boxMinDot_[b] < 0) ++dTooLargeCount_;
+    start_[b] = static_cast<std::uint32_t>(w);
+    for (size_t k = 0; k < kept; ++k) points_[w + k] = idx[k]; // w <= begin: forward copy is safe
+    w += kept;
+    if (progress != nullptr && (b & 4095) == 0) progress->update(0.6 + 0.4 * double(b) / double(boxes));
+  }
+  start_[boxes] = static_cast<std::uint32_t>(w);
+  points_.resize(w);
+  points_.shrink_to_fit();
+}
+
+} // namespace growth

@@ -1,0 +1,172 @@
+#include <growth/box_grid.h>
+#include <growth/progress.h>
+#include <growth/splats.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace growth {
+
+namespace {
+struct Q {
+  double x, y;
+  double angle;
+  double dist2;
+  int index;
+};
+inline double cross(const Q& a, const Q& b) { return a.x * b.y - a.y * b.x; }
+inline double orient(const Q& a, const Q& b, double cx, double cy) {
+  return (b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x);
+}
+// > 0 when d lies inside the circumcircle of the counter-clockwise triangle (origin, b, c).
+inline double inCircleOrigin(const Q& b, const Q& c, const Q& d) {
+  const double b2 = b.x * b.x + b.y * b.y, c2 = c.x * c.x + c.y * c.y, d2 = d.x * d.x + d.y * d.y;
+  return -(b.x * (c.y * d2 - c2 * d.y) - b.y * (c.x * d2 - c2 * d.x) + b2 * (c.x * d.y - c.y * d.x));
+}
+} // namespace
+
+double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                        std::vector<int>* keptOut) {
+  thread_local std::vector<Q> fan;
+  thread_local std::vector<int> prev, next, work;
+  thread_local std::vector<char> alive;
+  fan.clear();
+  if (keptOut != nullptr) keptOut->clear();
+
+  vcg::Point3d e1, e2;
+  tangentFrame(n, e1, e2);
+  // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
+  // p_i - p, rescaled to the full distance |p_i - p|.
+  for (size_t i = 0; i < neighbours.size(); ++i) {
+    const vcg::Point3d v = neighbours[i] - p;
+    const double len2 = v.SquaredNorm();
+    const double h = v * n;
+    const vcg::Point3d t = v - n * h;
+    const double tlen = t.Norm();
+    if (!(tlen > 1e-12 * std::sqrt(len2))) continue; // on the normal line: no direction in T_p
+    const double scale = std::sqrt(len2) / tlen;
+    Q q;
+    q.x = (t * e1) * scale;
+    q.y = (t * e2) * scale;
+    q.angle = std::atan2(q.y, q.x);
+    q.dist2 = len2;
+    q.index = static_cast<int>(i);
+    fan.push_back(q);
+  }
+  std::sort(fan.begin(), fan.end(), [](const Q& a, const Q& b) {
+    if (a.angle != b.angle) return a.angle < b.angle;
+    if (a.dist2 != b.dist2) return a.dist2 < b.dist2;
+    return a.index < b.index;
+  });
+  // The same direction (up to rounding): only the nearer point can be a Delaunay neighbour.
+  {
+    size_t w = 0;
+    for (size_t i = 0; i < fan.size(); ++i) {
+      if (w > 0) {
+        const Q& a = fan[w - 1];
+        const double scale = std::sqrt(a.dist2 * fan[i].dist2);
+        if (std::abs(cross(a, fan[i])) <= 1e-12 * scale && a.x * fan[i].x + a.y * fan[i].y > 0) {
+          if (fan[i].dist2 < a.dist2) fan[w - 1] = fan[i];
+          continue;
+        }
+      }
+      fan[w++] = fan[i];
+    }
+    fan.resize(w);
+    // The same check across the ±π seam of the sort.
+    if (fan.size() > 1) {
+      const Q &a = fan.back(), &b = fan.front();
+      if (std::abs(cross(a, b)) <= 1e-12 * std::sqrt(a.dist2 * b.dist2) && a.x * b.x + a.y * b.y > 0) {
+        if (a.dist2 < b.dist2) fan.front() = a;
+        fan.pop_back();
+      }
+    }
+  }
+  const int m = static_cast<int>(fan.size());
+  if (m < 3) return -1;
+
+  prev.resize(size_t(m));
+  next.resize(size_t(m));
+  alive.assign(size_t(m), 1);
+  for (int i = 0; i < m; ++i) prev[size_t(i)] = (i + m - 1) % m, next[size_t(i)] = (i + 1) % m;
+  work.resize(size_t(m));
+  std::iota(work.begin(), work.end(), 0);
+  std::reverse(work.begin(), work.end()); // popped from the back: index 0 first
+  int count = m;
+
+  // Flip central edges p–q_i that are not locally Delaunay; a flipped q_i leaves the fan.
+  while (!work.empty() && count > 3) {
+    const int i = work.back();
+    work.pop_back();
+    if (!alive[size_t(i)]) continue;
+    const int j = prev[size_t(i)], l = next[size_t(i)];
+    const Q &qj = fan[size_t(j)], &qi = fan[size_t(i)], &ql = fan[size_t(l)];
+    // Both fan triangles (p, q_j, q_i) and (p, q_i, q_l) must exist (angles in (0, π)).
+    if (!(cross(qj, qi) > 0) || !(cross(qi, ql) > 0)) continue;
+    // The quadrilateral p, q_j, q_i, q_l must be convex for the flip: p and q_i on opposite sides
+    // of the new diagonal q_j–q_l.
+    const double sp = orient(qj, ql, 0.0, 0.0), si = orient(qj, ql, qi.x, qi.y);
+    if (!(sp > 0 && si < 0)) continue;
+    if (!(inCircleOrigin(qj, qi, ql) > 0)) continue; // locally Delaunay: keep
+    alive[size_t(i)] = 0;
+    --count;
+    next[size_t(j)] = l;
+    prev[size_t(l)] = j;
+    work.push_back(l);
+    work.push_back(j);
+  }
+
+  // The fan must be closed (every angle below π) for p's Voronoi cell to be bounded.
+  int start = 0;
+  while (!alive[size_t(start)]) ++start;
+  double radius = 0;
+  int i = start;
+  do {
+    const int l = next[size_t(i)];
+    const Q &a = fan[size_t(i)], &b = fan[size_t(l)];
+    const double c = cross(a, b);
+    if (!(c > 0) || l == i) return -1;
+    // Circumradius of (p, a, b) = distance from p to the Voronoi vertex of the three.
+    const double ab = std::hypot(a.x - b.x, a.y - b.y);
+    radius = std::max(radius, std::sqrt(a.dist2) * std::sqrt(b.dist2) * ab / (2.0 * c));
+    if (keptOut != nullptr) keptOut->push_back(a.index);
+    i = l;
+  } while (i != start);
+  return radius;
+}
+
+std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+                                     const BoxGrid& grid, double globalRadius, bool local, SplatSizeStats* stats,
+                                     Progress* progress) {
+  std::vector<float> radius(points.size(), static_cast<float>(globalRadius));
+  SplatSizeStats st;
+  if (local) {
+    std::vector<vcg::Point3d> nb;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const int box = grid.boxOf(points[i]);
+      double r = -1;
+      if (box >= 0) {
+        nb.clear();
+        for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
+          if (*it != i) nb.push_back(points[*it]);
+        r = localSplatRadius(points[i], normals[i], nb);
+      }
+      if (r < 0) {
+        ++st.unbounded;
+      } else if (r > globalRadius) {
+        ++st.clamped;
+      } else {
+        radius[i] = static_cast<float>(r);
+      }
+      if (progress != nullptr && (i & 16383) == 0) progress->update(double(i) / double(points.size()));
+    }
+  }
+  double sum = 0;
+  for (float r : radius) sum += r;
+  st.meanRadius = radius.empty() ? 0 : sum / double(radius.size());
+  if (stats != nullptr) *stats = st;
+  return radius;
+}
+
+} // namespace growth

@@ -1,0 +1,211 @@
+// Box grid of the sphere packer (sec. 4.1): hash of occupied boxes of side d referring to the
+// points within distance d, the 0.1 normal filter, box normals over a fixed sphere sampling and
+// the "d too large" boxes.
+#include <growth/box_grid.h>
+#include <growth/cloud_generator.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+
+using growth::BoxGrid;
+using growth::SphereSampling;
+using vcg::Point3d;
+
+namespace {
+std::vector<std::uint32_t> iota(size_t n) {
+  std::vector<std::uint32_t> v(n);
+  for (size_t i = 0; i < n; ++i) v[i] = std::uint32_t(i);
+  return v;
+}
+} // namespace
+
+TEST(KeyHash, InsertFindGrow) {
+  growth::KeyHash h(2);
+  for (std::uint64_t k = 0; k < 5000; ++k) EXPECT_EQ(h.findOrInsert(k * 7919 + 3, int(k)), int(k));
+  EXPECT_EQ(h.size(), 5000u);
+  for (std::uint64_t k = 0; k < 5000; ++k) EXPECT_EQ(h.find(k * 7919 + 3), int(k));
+  EXPECT_EQ(h.find(1), -1);
+  EXPECT_EQ(h.findOrInsert(3, 99), 0); // existing key keeps its value
+  h.set(3, 42);
+  EXPECT_EQ(h.find(3), 42);
+}
+
+TEST(SphereSampling, DirectionsAreUnitAndSpread) {
+  SphereSampling s(3);
+  EXPECT_EQ(s.size(), 6u * 64u);
+  double worst = 1;
+  for (size_t i = 0; i < s.size(); ++i) {
+    EXPECT_NEAR(s.direction(i).Norm(), 1.0, 1e-12);
+  }
+  // Every direction of a fine probe set has a sample within ~12° (cube map of 8x8 per face).
+  growth::Random rnd(3);
+  for (int k = 0; k < 500; ++k) {
+    const Point3d u = rnd.unitVector();
+    double best = -1;
+    for (size_t i = 0; i < s.size(); ++i) best = std::max(best, u * s.direction(i));
+    worst = std::min(worst, best);
+  }
+  EXPECT_GT(worst, std::cos(12.0 * M_PI / 180.0));
+}
+
+TEST(SphereSampling, BranchAndBoundIsExactOverTheSampling) {
+  SphereSampling s(4);
+  growth::Random rnd(11);
+  for (int trial = 0; trial < 60; ++trial) {
+    // Normals in a cone of random axis and aperture (up to beyond a hemisphere).
+    const Point3d axis = rnd.unitVector();
+    const double aperture = rnd.uniform(0.0, 2.2);
+    std::vector<Point3d> normals;
+    const int n = 1 + int(rnd.uniform(0, 40));
+    while (int(normals.size()) < n) {
+      const Point3d u = rnd.unitVector();
+      if (std::acos(std::max(-1.0, std::min(1.0, u * axis))) <= aperture) normals.push_back(u);
+    }
+    const auto idx = iota(normals.size());
+    double fast = 0, slow = 0;
+    const Point3d a = s.maxMinDirection(normals, idx.data(), idx.size(), &fast);
+    s.maxMinDirectionBruteForce(normals, idx.data(), idx.size(), &slow);
+    EXPECT_NEAR(fast, slow, 1e-12) << "trial " << trial;
+    double check = 2;
+    for (const auto& m : normals) check = std::min(check, m * a);
+    EXPECT_NEAR(check, fast, 1e-12);
+  }
+}
+
+TEST(SphereSampling, OneNormalGivesItsNearestSample) {
+  SphereSampling s(6);
+  const std::vector<Point3d> normals{Point3d(0.3, -0.2, 0.9).Normalize()};
+  const auto idx = iota(1);
+  double m = 0;
+  const Point3d a = s.maxMinDirection(normals, idx.data(), 1, &m);
+  EXPECT_GT(m, std::cos(1.5 * M_PI / 180.0)); // level 6: samples about 1.4° apart
+  EXPECT_NEAR(a * normals[0], m, 1e-12);
+}
+
+TEST(SphereSampling, OpposingNormalsHaveNoPositiveDirection) {
+  SphereSampling s(5);
+  const std::vector<Point3d> normals{Point3d(0, 0, 1), Point3d(0, 0, -1), Point3d(1, 0, 0)};
+  const auto idx = iota(3);
+  double m = 1;
+  s.maxMinDirection(normals, idx.data(), 3, &m);
+  EXPECT_LE(m, 0.0);
+  EXPECT_GT(m, -0.05); // the best direction is (about) orthogonal to both z normals
+}
+
+TEST(BoxNormalFilter, SmallSumKeepsAllLargeSumDropsOpposed) {
+  // Sum of the normals shorter than 0.1: all kept, even the opposed ones.
+  std::vector<Point3d> n{Point3d(0, 0, 1), Point3d(0, 0, -1), Point3d(1, 0, 0), Point3d(-1, 0, 0)};
+  auto idx = iota(n.size());
+  EXPECT_EQ(growth::filterBoxNormals(n, idx.data(), idx.size()), 4u);
+  n.push_back(Point3d(0.6, 0.8, 0)); // sum (0.6, 0.8, 0): length 1 >= 0.1
+  idx = iota(n.size());
+  const size_t kept = growth::filterBoxNormals(n, idx.data(), idx.size());
+  // <(-1,0,0), sum> = -0.6 < 0 is dropped; the z normals (product 0) stay; order kept.
+  ASSERT_EQ(kept, 4u);
+  EXPECT_EQ(std::vector<std::uint32_t>(idx.begin(), idx.begin() + 4), (std::vector<std::uint32_t>{0, 1, 2, 4}));
+  // Just below / at the threshold.
+  std::vector<Point3d> m{Point3d(0, 0, 1), Point3d(0, 0.0995, -0.995).Normalize()};
+  idx = iota(2);
+  EXPECT_LT((m[0] + m[1]).Norm(), 0.1);
+  EXPECT_EQ(growth::filterBoxNormals(m, idx.data(), 2), 2u);
+}
+
+TEST(BoxGrid, BoxesReferToExactlyThePointsWithinD) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 4000;
+  spec.seed = 5;
+  const auto c = growth::generateCloud(spec);
+  const double d = 0.23;
+  BoxGrid g;
+  g.build(c.points, c.normals, d);
+  EXPECT_EQ(g.dTooLargeCount(), 0u);
+  EXPECT_EQ(g.droppedByFilter(), 0u);
+  // Every point is referred to by about 20.6 boxes on average (volume of a box grown by d).
+  EXPECT_NEAR(double(g.references()) / double(c.points.size()), 1 + 6 + 3 * M_PI + 4 * M_PI / 3, 1.0);
+
+  growth::Random rnd(9);
+  for (int q = 0; q < 300; ++q) {
+    const Point3d x(rnd.uniform(-3.3, 3.3), rnd.uniform(-3.3, 3.3), rnd.uniform(-1.3, 1.3));
+    growth::KeyHash::Key key;
+    ASSERT_TRUE(g.indexer().keyOf(x, key));
+    const auto& ix = g.indexer();
+    const Point3d lo = ix.corner(ix.coord(x[0], 0), ix.coord(x[1], 1), ix.coord(x[2], 2));
+    std::vector<std::uint32_t> expect;
+    for (size_t i = 0; i < c.points.size(); ++i)
+      if (growth::squaredDistanceToBox(c.points[i], lo, d) <= d * d) expect.push_back(std::uint32_t(i));
+    const int box = g.boxOf(x);
+    if (expect.empty()) {
+      EXPECT_EQ(box, -1);
+      continue;
+    }
+    ASSERT_GE(box, 0);
+    const std::vector<std::uint32_t> got(g.pointsBegin(box), g.pointsEnd(box));
+    EXPECT_EQ(got, expect);
+    // Box normals agree with the torus normals of their points.
+    for (auto i : got) EXPECT_GT(c.normals[i] * g.boxNormal(box), 0.0);
+  }
+}
+
+TEST(BoxGrid, FilterDropsFlippedNormalsOnAPlane) {
+  std::vector<Point3d> p, n;
+  growth::Random rnd(2);
+  for (int i = 0; i < 2000; ++i) {
+    p.emplace_back(rnd.uniform(0, 1), rnd.uniform(0, 1), 0);
+    n.push_back(i % 17 == 0 ? Point3d(0, 0, -1) : Point3d(0, 0, 1));
+  }
+  BoxGrid g;
+  g.build(p, n, 0.1);
+  EXPECT_GT(g.droppedByFilter(), 0u);
+  EXPECT_EQ(g.dTooLargeCount(), 0u);
+  for (int b = 0; b < int(g.boxCount()); ++b) {
+    for (auto it = g.pointsBegin(b); it != g.pointsEnd(b); ++it) EXPECT_EQ(n[*it][2], 1.0);
+    EXPECT_GT(g.boxNormal(b)[2], std::cos(1.5 * M_PI / 180));
+  }
+}
+
+TEST(BoxGrid, ThinPlateWithLargeDIsFlaggedTooLarge) {
+  // Two sheets 0.02 apart with opposite normals: with d = 0.1 boxes see both sheets, the sums
+  // cancel (< 0.1 in most boxes), nothing is filtered and no direction is positive for all.
+  std::vector<Point3d> p, n;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) {
+      p.emplace_back(i * 0.02, j * 0.02, 0.01);
+      n.emplace_back(0, 0, 1);
+      p.emplace_back(i * 0.02, j * 0.02, -0.01);
+      n.emplace_back(0, 0, -1);
+    }
+  BoxGrid g;
+  g.build(p, n, 0.1);
+  EXPECT_GT(g.dTooLargeCount(), 0u);
+  // With d smaller than the gap, no box sees both sheets.
+  BoxGrid fine;
+  fine.build(p, n, 0.009);
+  EXPECT_EQ(fine.dTooLargeCount(), 0u);
+}
+
+TEST(BoxGrid, MemoryFollowsThePointsNotTheBoundingBox) {
+  std::vector<Point3d> p, n;
+  for (int i = 0; i < 50; ++i) {
+    p.emplace_back(0.001 * i, 0, 0);
+    n.emplace_back(0, 0, 1);
+    p.emplace_back(1000.0 + 0.001 * i, 500.0, -700.0);
+    n.emplace_back(0, 0, 1);
+  }
+  BoxGrid g;
+  g.build(p, n, 0.01);
+  // A dense grid would need 10^15 boxes; the hash holds only boxes near the two clusters.
+  EXPECT_LT(g.boxCount(), 2u * 27u * 10u);
+  EXPECT_LT(g.memoryBytes(), 200000u);
+  EXPECT_EQ(g.boxOf(Point3d(500, 250, -350)), -1);
+  EXPECT_GE(g.boxOf(p[1]), 0);
+}
+
+TEST(BoxGrid, EmptyInputGivesNoBoxes) {
+  BoxGrid g;
+  g.build({}, {}, 0.1);
+  EXPECT_EQ(g.boxCount(), 0u);
+  EXPECT_EQ(g.boxOf(Point3d(0, 0, 0)), -1);
+}
