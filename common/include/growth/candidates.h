@@ -1,0 +1,154 @@
+#pragma once
+// Vertex candidates of the sphere-packing mesher (Lipschütz et al., sec. 3.3, fig. 4c, sec. 4.4).
+//
+// A vertex candidate is a position at distance exactly d from two existing vertices (its parents)
+// that lies on a splat. The positions at distance d from parents a and b form a circle in their
+// bisector plane: centre (a + b)/2, radius sqrt(d² − |ab|²/4) (empty when |ab| > 2d). A splat's
+// plane cuts that circle in at most two points; those inside the splat's disk are candidates
+// (fig. 4c).
+//
+// Sec. 4.4: for a new vertex v, the splats within distance d of v are found among the splats of
+// the box containing v (sec. 4.1), and every splat keeps the list of the vertices within distance
+// d of it; the partners of v are read from those lists. enumerateCandidates() does both: it visits
+// the splats of v's box within d of v, reports the candidates of v with every vertex already in
+// the splat's list, and adds v to the list.
+#include <growth/box_grid.h>
+#include <growth/splats.h>
+
+#include <vcg/space/point3.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace growth {
+
+// Circle of the points at distance d from both a and b.
+struct ParentCircle {
+  vcg::Point3d centre{0, 0, 0};
+  vcg::Point3d axis{0, 0, 1};   // (b − a)/|b − a|
+  double radius = 0;
+  bool valid = false;
+};
+
+inline ParentCircle parentCircle(const vcg::Point3d& a, const vcg::Point3d& b, double d) {
+  ParentCircle c;
+  const vcg::Point3d ab = b - a;
+  const double len2 = ab.SquaredNorm();
+  const double r2 = d * d - 0.25 * len2;
+  if (!(len2 > 0) || r2 < 0) return c;
+  c.centre = (a + b) * 0.5;
+  c.axis = ab / std::sqrt(len2);
+  c.radius = std::sqrt(r2);
+  c.valid = true;
+  return c;
+}
+
+// One of the (at most two) points where the circle meets the plane through p with unit normal n:
+// root 0 or 1. False when the circle misses the plane (or lies in it, or is parallel to it), or
+// when the point is farther than s from p (outside the splat's disk).
+// In the circle's plane (orthogonal to the axis u), with w = n − <n,u>u, the line of the splat
+// plane is {y : <y, w> = −<centre − p, n>}; its points at distance r from the centre are
+// y = α ŵ ± t (u × ŵ), α = −<centre − p, n>/|w|, t = sqrt(r² − α²). Root 0 takes −t.
+inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s, int root,
+                             vcg::Point3d& out) {
+  if (!c.valid) return false;
+  const vcg::Point3d w = n - c.axis * (n * c.axis);
+  const double wlen = w.Norm();
+  if (!(wlen > 1e-12)) return false;
+  const vcg::Point3d wh = w / wlen;
+  const double alpha = -((c.centre - p) * n) / wlen;
+  const double t2 = c.radius * c.radius - alpha * alpha;
+  if (t2 < 0) return false;
+  const double t = std::sqrt(t2);
+  const vcg::Point3d v = c.axis ^ wh;
+  out = c.centre + wh * alpha + v * (root == 0 ? -t : t);
+  return (out - p).SquaredNorm() <= s * s;
+}
+
+// Both roots; returns how many lie in the disk (written to out/rootOut in root order). A tangent
+// circle (t = 0) gives one point.
+inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s,
+                                    vcg::Point3d out[2], int rootOut[2]) {
+  int k = 0;
+  for (int root = 0; root < 2; ++root) {
+    vcg::Point3d x;
+    if (!circleSplatPoint(c, p, n, s, root, x)) continue;
+    if (k == 1 && root == 1 && (x - out[0]).SquaredNorm() == 0) break; // tangent: one point
+    out[k] = x;
+    rootOut[k] = root;
+    ++k;
+  }
+  return k;
+}
+
+// Sec. 4.4: for every splat, the vertices within distance d of it, in one pool of linked entries
+// (8 bytes per entry, 4 per splat; no per-splat vector). Iteration visits the newest first.
+class SplatVertexLists {
+public:
+  void reset(size_t splats) {
+    head_.assign(splats, -1);
+    entries_.clear();
+  }
+  void add(std::uint32_t splat, std::uint32_t vertex) {
+    entries_.push_back(Entry{vertex, head_[splat]});
+    head_[splat] = static_cast<std::int32_t>(entries_.size() - 1);
+  }
+  template <class F>
+  void forEach(std::uint32_t splat, F&& f) const {
+    for (std::int32_t e = head_[splat]; e >= 0; e = entries_[size_t(e)].next) f(entries_[size_t(e)].vertex);
+  }
+  size_t entries() const { return entries_.size(); }
+  size_t memoryBytes() const { return head_.capacity() * 4 + entries_.capacity() * sizeof(Entry); }
+
+private:
+  struct Entry {
+    std::uint32_t vertex;
+    std::int32_t next;
+  };
+  std::vector<std::int32_t> head_;
+  std::vector<Entry> entries_;
+};
+
+// The splats: centres, unit normals, radii.
+struct SplatSet {
+  const std::vector<vcg::Point3d>* centre = nullptr;
+  const std::vector<vcg::Point3d>* normal = nullptr;
+  const std::vector<float>* radius = nullptr;
+};
+
+// For the new vertex `v` at x = vertexPos[v]: visits the splats of the box containing x that are
+// within distance d of x (in box order); for each, calls
+//     emit(partner, splat, root, position)
+// for every candidate with parents (v, partner), partner taken from the splat's list (vertices
+// within d of the splat, added before v), then adds v to the list. Returns the number of splats
+// within d of x.
+template <class Emit>
+size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& vertexPos, double d, const BoxGrid& grid,
+                           const SplatSet& splats, SplatVertexLists& lists, Emit&& emit) {
+  const vcg::Point3d& x = vertexPos[v];
+  const int box = grid.boxOf(x);
+  if (box < 0) return 0;
+  size_t near = 0;
+  const double d2 = d * d;
+  for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) {
+    const std::uint32_t s = *it;
+    const vcg::Point3d& p = (*splats.centre)[s];
+    const vcg::Point3d& n = (*splats.normal)[s];
+    const double r = (*splats.radius)[s];
+    if (squaredDistanceToDisk(x, p, n, r) > d2) continue;
+    ++near;
+    lists.forEach(s, [&](std::uint32_t u) {
+      const ParentCircle c = parentCircle(x, vertexPos[u], d);
+      if (!c.valid) return;
+      vcg::Point3d pos[2];
+      int root[2];
+      const int k = circleSplatIntersections(c, p, n, r, pos, root);
+      for (int j = 0; j < k; ++j) emit(u, s, root[j], pos[j]);
+    });
+    lists.add(s, v);
+  }
+  return near;
+}
+
+} // namespace growth
