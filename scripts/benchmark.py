@@ -284,34 +284,57 @@ def ply_face_count(path):
     return int(m.group(1)) if m else 0
 
 
-def baseline(cloud, ctx):
-    """The load+save-only run of a cloud: wall clock and peak memory to subtract."""
-    work = os.path.join(ctx.out, "runs", cloud["name"], "_load_save")
+def load_save(ctx, path, work):
+    """A load+save-only run of `path`: its wall clock and peak memory are subtracted from the runs
+    that load the same file."""
     best = None
     for _ in range(ctx.repeat):
-        r = run_meshlabserver(ctx, work, ["-i", cloud["path"], "-o", "loaded.ply", "-m", "fq"], ctx.timeout)
+        r = run_meshlabserver(ctx, work, ["-i", path, "-o", "loaded.ply", "-m", "fq"], ctx.timeout)
         if r["rc"] != 0 or r["wall"] is None:
-            raise SystemExit("meshlabserver cannot even load and save %s; see %s" % (cloud["path"], work))
+            raise SystemExit("meshlabserver cannot even load and save %s; see %s" % (path, work))
         if best is None or r["wall"] < best["wall"]:
             best = r
     return {"wall": best["wall"], "rss_kb": best["rss_kb"]}
 
 
-def run_method(method, cloud, base, ctx, d_info):
+def baseline(cloud, ctx):
+    return load_save(ctx, cloud["path"], os.path.join(ctx.out, "runs", cloud["name"], "_load_save"))
+
+
+def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
+    """Runs one method on one cloud and returns its row. "bpa_re" remeshes the mesh of `bpa_row`
+    (Ball Pivoting with auto radius, already run on this cloud) when there is one, and counts
+    Ball Pivoting's time plus the remeshing's; otherwise it runs both filters in one script."""
     work = os.path.join(ctx.out, "runs", cloud["name"], method)
     if os.path.isdir(work):
         shutil.rmtree(work)
     os.makedirs(work)
-    script, info = method_script(method, cloud, ctx, d_info)
-    with open(os.path.join(work, "filter.mlx"), "w") as f:
-        f.write(script)
     row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
            "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
-           "base_rss_kb": base["rss_kb"], "info": info}
+           "base_rss_kb": base["rss_kb"], "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
+    if method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["points"] > ctx.bpa_max_points:
+        row["status"] = "skipped: more than %s points (--bpa-max-points)" % "{:,}".format(ctx.bpa_max_points)
+        return row
+    bpa_mesh = os.path.join(ctx.out, "runs", cloud["name"], "bpa", "mesh.ply")
+    reuse = (method == "bpa_re" and bpa_row is not None and bpa_row.get("status") == "ok"
+             and os.path.exists(bpa_mesh))
+    if reuse:
+        script = mlx([remesh_filter(d_info["d"], cloud["diagonal"])])
+        info = {"remesh_target": d_info["d"], "remesh_target_source": d_info["source"],
+                "remeshed": "the Ball Pivoting (auto radius) mesh of run %s" % bpa_row["run"]}
+        input_path = os.path.join(work, "bpa.ply")
+        shutil.copyfile(bpa_mesh, input_path)
+        step_base = load_save(ctx, input_path, os.path.join(work, "_load_save"))
+    else:
+        script, info = method_script(method, cloud, ctx, d_info)
+        input_path, step_base = cloud["path"], base
+    row["info"] = info
+    with open(os.path.join(work, "filter.mlx"), "w") as f:
+        f.write(script)
     best = None
     for _ in range(ctx.repeat):
-        r = run_meshlabserver(ctx, work, ["-i", cloud["path"], "-o", "mesh.ply", "-m", "fq", "-s", "filter.mlx"],
+        r = run_meshlabserver(ctx, work, ["-i", input_path, "-o", "mesh.ply", "-m", "fq", "-s", "filter.mlx"],
                               ctx.timeout)
         if best is None or (r["rc"] == 0 and (best["rc"] != 0 or (r["wall"] or 1e30) < (best["wall"] or 1e30))):
             best = r
@@ -319,7 +342,7 @@ def run_method(method, cloud, base, ctx, d_info):
             break
     r = best
     mesh = os.path.join(work, "mesh.ply")
-    row.update({"wall": r["wall"], "rss_kb": r["rss_kb"], "rc": r["rc"]})
+    row.update({"wall": r["wall"], "rss_kb": r["rss_kb"], "rc": r["rc"], "load_after": os.getloadavg()[0]})
     if r["timed_out"]:
         row["status"] = "timed out after %d s" % ctx.timeout
         return row
@@ -333,17 +356,24 @@ def run_method(method, cloud, base, ctx, d_info):
 
     # Time: the filter's own log line for ours, wall clock minus load+save for MeshLab's.
     m = re.findall(r"(?:Sphere Packing|Robust G2S): time ([0-9.eE+-]+) s", r["log"])
+    step = max(r["wall"] - step_base["wall"], 0.0)
     if method in ("spherepack", "g2s") and m:
         row["time"], row["time_source"] = float(m[-1]), "filter log"
+    elif reuse:
+        row["time"], row["time_source"] = bpa_row["time"] + step, "wall - load/save"
+        row["info"]["remesh_time"] = step
     else:
-        row["time"], row["time_source"] = max(r["wall"] - base["wall"], 0.0), "wall - load/save"
-    row["time_wall_minus_base"] = r["wall"] - base["wall"]
+        row["time"], row["time_source"] = step, "wall - load/save"
+    row["time_wall_minus_base"] = step
     if method == "spherepack":
         dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", r["log"])
         if dm:
             row["info"]["d"] = float(dm[-1])
     if r["rss_kb"] is not None and base["rss_kb"] is not None:
-        row["extra_peak_bytes_per_point"] = max(0, r["rss_kb"] - base["rss_kb"]) * 1024.0 / cloud["points"]
+        extra = max(0, r["rss_kb"] - base["rss_kb"]) * 1024.0 / cloud["points"]
+        if reuse and bpa_row.get("extra_peak_bytes_per_point") is not None:
+            extra = max(extra, bpa_row["extra_peak_bytes_per_point"])
+        row["extra_peak_bytes_per_point"] = extra
 
     mm = subprocess.run([ctx.tool("mesh_measures"), mesh, "--cloud", cloud["path"], "--histograms",
                          os.path.join(work, "hist"), "--edge-max", "%.9g" % (EDGE_HISTOGRAM_SPACINGS * cloud["spacing"])],
@@ -397,9 +427,10 @@ def fmt(v, spec):
 
 def table(cloud_rows):
     ref = next((r for r in cloud_rows if r["method"] == REFERENCE and r.get("status") == "ok"), None)
-    head = ("| method | time [s] | speed-up vs BPA | faces | triangles/s | E_avg | E_RMS % | Q_avg | Q_RMS % "
-            "| QF | μd % | non-manifold V / E | boundary edges | holes | extra peak [B/point] |")
-    lines = [head, "|" + "---|" * 15]
+    ref3 = next((r for r in cloud_rows if r["method"] == "bpa3" and r.get("status") == "ok"), None)
+    head = ("| method | time [s] | speed-up vs BPA | vs BPA 3s | faces | triangles/s | E_avg | E_RMS % | Q_avg "
+            "| Q_RMS % | QF | μd % | non-manifold V / E | boundary edges | holes | extra peak [B/point] |")
+    lines = [head, "|" + "---|" * 16]
     order = {m: i for i, m in enumerate(["bpa", "bpa3", "bpa_re", "spherepack", "g2s"])}
     for r in sorted(cloud_rows, key=lambda x: order.get(x["method"], 99)):
         label = r["label"]
@@ -415,14 +446,15 @@ def table(cloud_rows):
             status = r.get("status", "?").replace("|", "/")
             if len(status) > 120:
                 status = status[:117] + "..."
-            lines.append("| %s | %s |" % (label, status) + " — |" * 13)
+            lines.append("| %s | %s |" % (label, status) + " — |" * 14)
             continue
         m = r["measures"]
         t = r["time"]
-        speed = ("×%.2f" % (ref["time"] / t)) if ref and t > 0 and ref["time"] > 0 else "—"
+        def speed(reference):
+            return ("×%.2f" % (reference["time"] / t)) if reference and t > 0 and reference["time"] > 0 else "—"
         tps = m["faces"] / t if t > 0 else None
-        lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
-            label, fmt(t, "#.3g"), "" if r["time_source"] == "filter log" else "*", speed,
+        lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
+            label, fmt(t, "#.3g"), "" if r["time_source"] == "filter log" else "*", speed(ref), speed(ref3),
             "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
             fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
             fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
@@ -531,50 +563,143 @@ def machine():
     return {"nproc": sh("nproc"), "cpu": sh("lscpu | sed -n 's/^Model name: *//p' | head -1"), "memory": mem}
 
 
+def load_range(rows):
+    loads = [r[k] for r in rows for k in ("load_before", "load_after") if r.get(k) is not None]
+    return "%.2f to %.2f" % (min(loads), max(loads)) if loads else "not recorded"
+
+
+def repeat_text(rows):
+    reps = sorted({r.get("repeat", 1) for r in rows})
+    return " or ".join("%d×" % k for k in reps) + " (3× up to 100k points by default)"
+
+
+EXPLANATION = (
+    "Time: our filters' own log line (`... time X s`); rows marked * are MeshLab's filters, timed as the "
+    "wall clock of the meshlabserver run minus that of a load+save-only run of the same cloud (for "
+    "\"(Re)\": Ball Pivoting's time plus that of the remeshing run on its mesh, remeshing with 3 "
+    "iterations of Isotropic Explicit Remeshing at target length d, MeshLab's defaults otherwise). "
+    "Speed-up = time of Ball Pivoting (auto radius, or r = 3 × mean spacing) / time of the row. Extra "
+    "peak = peak resident memory (/usr/bin/time -v) of the run minus that of the load+save-only run, "
+    "per input point. μd % = mean distance of the input points to the mesh / their mean "
+    "nearest-neighbour spacing × 100. Holes = boundary loops (non-manifold vertices split into their "
+    "fans). Measures by `build/mesh_measures` (common/include/growth/mesh_measures.h).")
+
+
+def header_lines(rows, command):
+    mach = machine()
+    runs = sorted({r["run"] for r in rows})
+    return ["Command: `%s`  " % command,
+            "Machine: %s, `nproc` = %s, %s memory.  " % (mach["cpu"], mach["nproc"], mach["memory"]),
+            "Run%s: %s. Load average (1 min) seen around the runs: %s.  " % (
+                "s" if len(runs) > 1 else "", ", ".join(runs), load_range(rows)),
+            "Each meshlabserver call was repeated %s and the fastest kept." % repeat_text(rows), "",
+            EXPLANATION, ""]
+
+
+def cloud_section(c, rows, level, image):
+    """Markdown of one cloud: heading, table and (when `image` is not None) its histogram plot."""
+    cr = [r for r in rows if r["cloud"] == c]
+    r0 = cr[0]
+    md = ["%s %s — %s points, mean spacing %.4g" % ("#" * level, c, "{:,}".format(r0["points"]), r0["spacing"]), "",
+          table(cr), ""]
+    if image:
+        md += ["![%s: histograms of angles, edge lengths and Q_t](%s)" % (c, image), ""]
+    return md
+
+
+def scaling_section(slopes, level, image):
+    md = ["%s Time against number of points (log–log, fitted slope)" % ("#" * level), ""]
+    if image:
+        md += ["![time against points](%s)" % image, ""]
+    if slopes:
+        md.append("| shape | " + " | ".join(METHODS[m][1] for m in RUN_ORDER) + " |")
+        md.append("|---|" + "---|" * len(RUN_ORDER))
+        for s in SHAPES:
+            if any(k[0] == s for k in slopes):
+                md.append("| %s | " % s + " | ".join(
+                    ("%.2f" % slopes[(s, m)]) if (s, m) in slopes else "—" for m in RUN_ORDER) + " |")
+        md.append("")
+    return md
+
+
 def report(rows, ctx, command):
     made, slopes = plots(rows, ctx.out)
-    mach = machine()
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
-    runs = sorted({r["run"] for r in rows})
-    md = ["# Benchmark results", "",
-          "Command: `%s`  " % command,
-          "Machine: %s, `nproc` = %s, %s memory.  " % (mach["cpu"], mach["nproc"], mach["memory"]),
-          "Run%s: %s." % ("s" if len(runs) > 1 else "", ", ".join(runs)), "",
-          "Time: our filters' own log line (`... time X s`); rows marked * are MeshLab's filters, timed as "
-          "the wall clock of the meshlabserver run minus that of a load+save-only run of the same cloud "
-          "(for \"(Re)\" this includes Ball Pivoting and the remeshing). Speed-up = time of Ball Pivoting "
-          "(auto radius) / time of the row. Extra peak = peak resident memory of the run minus that of the "
-          "load+save-only run, per input point. μd % = mean distance of the input points to the mesh / "
-          "mean nearest-neighbour spacing × 100. Holes = boundary loops (non-manifold vertices split into "
-          "their fans). Measures by `mesh_measures` (common/include/growth/mesh_measures.h).", ""]
+    md = ["# Benchmark results", ""] + header_lines(rows, command)
     for c in clouds:
-        cr = [r for r in rows if r["cloud"] == c]
-        r0 = cr[0]
-        md.append("## %s — %s points, mean spacing %.4g" % (c, "{:,}".format(r0["points"]), r0["spacing"]))
-        md.append("")
-        md.append(table(cr))
-        md.append("")
         hp = os.path.join("plots", "%s_histograms.png" % c)
-        if os.path.exists(os.path.join(ctx.out, hp)):
-            md.append("![%s histograms](%s)" % (c, hp))
-            md.append("")
-    if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")):
-        md.append("## Time against number of points (log–log, fitted slope)")
-        md.append("")
-        md.append("![scaling](plots/scaling.png)")
-        md.append("")
-        if slopes:
-            md.append("| shape | " + " | ".join(METHODS[m][1] for m in RUN_ORDER) + " |")
-            md.append("|---|" + "---|" * len(RUN_ORDER))
-            for s in SHAPES:
-                if any(k[0] == s for k in slopes):
-                    md.append("| %s | " % s + " | ".join(
-                        ("%.2f" % slopes[(s, m)]) if (s, m) in slopes else "—" for m in RUN_ORDER) + " |")
-            md.append("")
+        md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
+    if slopes or os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")):
+        md += scaling_section(slopes, 2, "plots/scaling.png" if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")) else None)
     path = os.path.join(ctx.out, "results.md")
     with open(path, "w") as f:
         f.write("\n".join(md))
-    return path, made
+    return path, made, slopes
+
+
+MAX_COMMITTED_PNG = 200 * 1024
+
+
+def publish(rows, ctx, command, slopes):
+    """Copies the plots (those under 200 KB) to docs/benchmark/, writes the full tables to
+    docs/benchmark/results.md and the summary into README.md between the results markers (or,
+    when the README has no markers, into docs/results.md)."""
+    docs = os.path.join(ROOT, "docs", "benchmark")
+    os.makedirs(docs, exist_ok=True)
+    for old in os.listdir(docs):
+        if old.endswith(".png"):
+            os.remove(os.path.join(docs, old))
+    clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
+    # Shown in the README: the clouds of the data folder and the largest generated cloud per shape.
+    # Only their plots and the scaling plot are copied (each under 200 KB), to keep the repository small.
+    shown = [c for c in clouds if next(r for r in rows if r["cloud"] == c)["cloud_kind"] != "generated"]
+    for s in SHAPES:
+        sized = [(r["points"], r["cloud"]) for r in rows if r.get("shape") == s]
+        if sized:
+            shown.append(max(sized)[1])
+    shown = sorted(set(shown), key=lambda n: cloud_sort_key(n, rows))
+    committed = set()
+    pdir = os.path.join(ctx.out, "plots")
+    for name in ["scaling.png"] + ["%s_histograms.png" % c for c in shown]:
+        src = os.path.join(pdir, name)
+        if os.path.exists(src) and os.path.getsize(src) < MAX_COMMITTED_PNG:
+            shutil.copyfile(src, os.path.join(docs, name))
+            committed.add(name)
+
+    def image(name, relative_to):
+        return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
+
+    full = ["# Benchmark results", ""] + header_lines(rows, command)
+    for c in clouds:
+        full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
+    full += scaling_section(slopes, 2, image("scaling.png", docs))
+    with open(os.path.join(docs, "results.md"), "w") as f:
+        f.write("\n".join(full))
+
+    readme = os.path.join(ROOT, "README.md")
+    text = open(readme).read() if os.path.exists(readme) else ""
+    begin, end = "<!-- results:begin -->", "<!-- results:end -->"
+    into_readme = begin in text and end in text
+    where = ROOT if into_readme else os.path.join(ROOT, "docs")
+    summary = ["## Results", "",
+               "Our filters against MeshLab's Ball Pivoting, measured in the same run on the same clouds "
+               "(`scripts/benchmark.sh`). The ratios against Ball Pivoting are the headline; absolute "
+               "seconds depend on the machine and its load.", ""] + header_lines(rows, command)
+    for c in shown:
+        summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
+    summary += scaling_section(slopes, 3, image("scaling.png", where))
+    summary += ["Every cloud's table and histograms: [%s](%s)." % ("docs/benchmark/results.md",
+                os.path.relpath(os.path.join(docs, "results.md"), where)), ""]
+    if into_readme:
+        head, rest = text.split(begin, 1)
+        _, tail = rest.split(end, 1)
+        with open(readme, "w") as f:
+            f.write(head + begin + "\n" + "\n".join(summary) + end + tail)
+        return readme
+    path = os.path.join(ROOT, "docs", "results.md")
+    with open(path, "w") as f:
+        f.write("# Results\n\n" + "\n".join(summary[2:]))
+    return path
 
 
 # --- Main -----------------------------------------------------------------------------------
@@ -597,9 +722,17 @@ def main():
     ap.add_argument("--no-data", action="store_true", help="skip the clouds of the data folder")
     ap.add_argument("--param", action="append", default=[], metavar="METHOD:NAME=VALUE",
                     help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4")
-    ap.add_argument("--repeat", type=int, default=1, help="run each meshlabserver call N times, keep the fastest")
+    ap.add_argument("--bpa-max-points", type=int, default=0,
+                    help="skip Ball Pivoting with auto radius (and its remeshing) on clouds larger than this "
+                         "(it grows about quadratically on random samples); 0: no limit")
+    ap.add_argument("--repeat", type=int, default=0,
+                    help="run each meshlabserver call N times and keep the fastest; 0 (default): 3 times on "
+                         "clouds up to 100k points, once above")
     ap.add_argument("--timeout", type=int, default=3 * 3600, help="seconds before a run is stopped")
     ap.add_argument("--report-only", action="store_true", help="only rebuild results.md and the plots")
+    ap.add_argument("--publish", action="store_true",
+                    help="copy the plots (< 200 KB) and tables to docs/benchmark/ and the summary into "
+                         "README.md between its results markers")
     ap.add_argument("--fresh", action="store_true", help="forget the rows of earlier invocations")
     ap.add_argument("--out", required=True)
     ap.add_argument("--build", required=True)
@@ -611,7 +744,8 @@ def main():
     ctx = Context()
     ctx.out, ctx.build, ctx.prefix, ctx.data_dir = (os.path.abspath(a.out), os.path.abspath(a.build),
                                                     os.path.abspath(a.prefix), os.path.abspath(a.data_dir))
-    ctx.repeat, ctx.timeout = max(1, a.repeat), a.timeout
+    ctx.repeat_option, ctx.timeout = a.repeat, a.timeout
+    ctx.bpa_max_points = a.bpa_max_points
     ctx.tool = lambda name: os.path.join(ctx.build, name)
     ctx.run_stamp = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     ctx.params = {}
@@ -643,6 +777,7 @@ def main():
             if cloud is None:
                 log("%s: not in %s, skipped" % (spec, ctx.data_dir))
                 continue
+            ctx.repeat = ctx.repeat_option if ctx.repeat_option > 0 else (3 if cloud["points"] <= 100000 else 1)
             log("%s: %d points, mean spacing %.4g — load+save baseline" % (cloud["name"], cloud["points"], cloud["spacing"]))
             base = baseline(cloud, ctx)
             # The remeshing target: the sphere packer's d from this run, else from an earlier row,
@@ -654,7 +789,8 @@ def main():
                 d_info = {"d": prev["info"]["d"], "source": "sphere packer's d (%s)" % prev["run"]}
             for m in methods:
                 log("%s: %s ..." % (cloud["name"], METHODS[m][0]))
-                row = run_method(m, cloud, base, ctx, d_info)
+                bpa_row = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "bpa"), None)
+                row = run_method(m, cloud, base, ctx, d_info, bpa_row)
                 if m == "spherepack" and "d" in row.get("info", {}):
                     d_info = {"d": row["info"]["d"], "source": "sphere packer's d (this run)"}
                 if row["status"] == "ok":
@@ -668,10 +804,12 @@ def main():
 
     if not rows:
         raise SystemExit("no results yet")
-    path, made = report(rows, ctx, a.command)
+    path, made, slopes = report(rows, ctx, a.command)
     log("tables: %s" % path)
     for p in made:
         log("plot: %s" % p)
+    if a.publish:
+        log("published: %s, docs/benchmark/" % publish(rows, ctx, a.command, slopes))
 
 
 if __name__ == "__main__":
