@@ -1,0 +1,141 @@
+#include <growth/region_triangulation.h>
+#include <growth/splats.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace growth {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// 2D coordinates of x in the plane through v orthogonal to n.
+struct Frame {
+  vcg::Point3d o, e1, e2;
+  Frame(const vcg::Point3d& origin, const vcg::Point3d& n) : o(origin) { tangentFrame(n, e1, e2); }
+  void project(const vcg::Point3d& x, double& px, double& py) const {
+    const vcg::Point3d t = x - o;
+    px = t * e1;
+    py = t * e2;
+  }
+};
+
+inline double orient2(double ax, double ay, double bx, double by, double cx, double cy) {
+  return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+} // namespace
+
+double innerAngle(const vcg::Point3d& u, const vcg::Point3d& v, const vcg::Point3d& w, const vcg::Point3d& n) {
+  const Frame f(v, n);
+  double ux, uy, wx, wy;
+  f.project(u, ux, uy);
+  f.project(w, wx, wy);
+  double t = std::atan2(uy, ux) - std::atan2(wy, wx); // counter-clockwise from w to u
+  while (t < 0) t += 2 * kPi;
+  while (t >= 2 * kPi) t -= 2 * kPi;
+  return t;
+}
+
+std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vector<std::uint32_t>& border) {
+  std::vector<std::vector<std::uint32_t>> loops;
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t v : border) {
+    auto it = std::find(stack.begin(), stack.end(), v);
+    if (it != stack.end()) {
+      // v closes the loop that left it: stack[it .. end) in order.
+      loops.emplace_back(it, stack.end());
+      stack.erase(it + 1, stack.end());
+    } else {
+      stack.push_back(v);
+    }
+  }
+  if (!stack.empty()) loops.push_back(std::move(stack));
+  return loops;
+}
+
+bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector<vcg::Point3d>& pos,
+                     const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
+  std::vector<std::uint32_t> loop = loopIn;
+  std::vector<double> angle(loop.size());
+  auto angleAt = [&](size_t i) {
+    const size_t n = loop.size();
+    return innerAngle(pos[loop[(i + n - 1) % n]], pos[loop[i]], pos[loop[(i + 1) % n]], nrm[loop[i]]);
+  };
+  for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(i);
+
+  // Is some other loop vertex inside the ear (u, v, w) at index i, projected on v's plane?
+  auto earContainsVertex = [&](size_t i) {
+    const size_t n = loop.size();
+    const std::uint32_t u = loop[(i + n - 1) % n], v = loop[i], w = loop[(i + 1) % n];
+    const Frame f(pos[v], nrm[v]);
+    double ux, uy, wx, wy;
+    f.project(pos[u], ux, uy);
+    f.project(pos[w], wx, wy);
+    for (size_t k = 0; k < n; ++k) {
+      const std::uint32_t x = loop[k];
+      if (x == u || x == v || x == w) continue;
+      double px, py;
+      f.project(pos[x], px, py);
+      // Counter-clockwise triangle (u, v=origin, w): inside or on it when all three >= 0.
+      if (orient2(ux, uy, 0, 0, px, py) >= 0 && orient2(0, 0, wx, wy, px, py) >= 0 &&
+          orient2(wx, wy, ux, uy, px, py) >= 0)
+        return true;
+    }
+    return false;
+  };
+
+  while (loop.size() > 3) {
+    const size_t n = loop.size();
+    // Smallest angle first; the strict ear rules first, then the relaxed ones.
+    std::vector<size_t> order(n);
+    for (size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return angle[a] != angle[b] ? angle[a] < angle[b] : a < b; });
+    size_t pick = n;
+    for (int strict = 1; strict >= 0 && pick == n; --strict)
+      for (size_t i : order) {
+        if (!(angle[i] < kPi)) break;
+        const std::uint32_t u = loop[(i + n - 1) % n], w = loop[(i + 1) % n];
+        if (edges.contains(u, w)) continue;
+        if (strict && earContainsVertex(i)) continue;
+        pick = i;
+        break;
+      }
+    if (pick == n) return false;
+    const std::uint32_t u = loop[(pick + n - 1) % n], v = loop[pick], w = loop[(pick + 1) % n];
+    faces.push_back(Triangle{u, v, w});
+    edges.insert(u, w);
+    loop.erase(loop.begin() + std::ptrdiff_t(pick));
+    angle.erase(angle.begin() + std::ptrdiff_t(pick));
+    const size_t k = loop.size();
+    const size_t iu = (pick + k - 1) % k, iw = pick % k;
+    angle[iu] = angleAt(iu);
+    angle[iw] = angleAt(iw);
+  }
+  if (loop.size() == 3) faces.push_back(Triangle{loop[0], loop[1], loop[2]});
+  return true;
+}
+
+RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& borders,
+                               const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm,
+                               int maxBorderLength, EdgeSet& edges, std::vector<Triangle>& faces) {
+  RegionStats st;
+  for (const auto& b : borders) {
+    ++st.borders;
+    st.longestBorder = std::max(st.longestBorder, b.size());
+    if (b.size() > size_t(std::max(0, maxBorderLength))) {
+      ++st.holes;
+      ++st.longBorders;
+      continue;
+    }
+    bool complete = true;
+    for (const auto& loop : splitAtRepeatedVertices(b)) {
+      if (loop.size() < 3) continue; // a spike: the edge has the region on both sides
+      if (!triangulateLoop(loop, pos, nrm, edges, faces)) complete = false;
+    }
+    if (complete) ++st.triangulated;
+    else ++st.holes;
+  }
+  return st;
+}
+
+} // namespace growth
