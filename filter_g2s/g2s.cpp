@@ -1,17 +1,173 @@
 #include "g2s.h"
 
+#include "g2s_mesher.h"
+
 #include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+#include <growth/progress.h>
 
 #include <common/ml_mesh_type.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
 
 namespace growth {
 namespace g2s {
 
-Params suggestParams(const CMeshO&) { return Params(); }
+namespace {
 
-void build(const CMeshO&, CMeshO& out, const Params&, Stat&, vcg::CallBackPos*) {
+void checkParams(const Params& p) {
+  if (!(p.seedSearchFactor > 0) || !(p.seedSearchFactor <= 100))
+    throw Error("The seed search factor k must be greater than 0 and at most 100 (default 2).");
+  if (!std::isfinite(p.maxSearchRadiusFactor) || p.maxSearchRadiusFactor > 100 ||
+      (p.maxSearchRadiusFactor > 0 && p.maxSearchRadiusFactor < 1))
+    throw Error("The maximum search radius must be between 1 and 100 times the local spacing (or 0 for "
+                "the default, " + std::to_string(kDefaultMaxSearchRadiusFactor).substr(0, 3) + ").");
+  if (p.sizeLevels < 1 || p.sizeLevels > 64)
+    throw Error("The number of size priority levels n must be between 1 and 64 (default 4).");
+  if (p.flatnessLevels < 1 || p.flatnessLevels > 180)
+    throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
+}
+
+// Interleaves the low 21 bits of x with two zero bits after each (Morton code helper).
+std::uint64_t spread(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffull;
+  x = (x | x << 16) & 0x1f0000ff0000ffull;
+  x = (x | x << 8) & 0x100f00f00f00f00full;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+  x = (x | x << 2) & 0x1249249249249249ull;
+  return x;
+}
+
+// The points in Morton (Z-curve) order of cells of side `cell`: points near each other in space get
+// indices near each other, so the per-point arrays of the mesher are walked cache-friendly as the
+// front advances. Ties keep the input order (deterministic).
+std::vector<std::uint32_t> spatialOrder(const std::vector<P3>& pts, const vcg::Box3d& box, double cell) {
+  const double extent = std::max(box.DimX(), std::max(box.DimY(), box.DimZ()));
+  cell = std::max(cell, extent / double((1 << 21) - 2));
+  const double inv = cell > 0 ? 1.0 / cell : 0.0;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) {
+    std::uint64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = static_cast<std::uint64_t>(std::min(std::max((pts[i][a] - box.min[a]) * inv, 0.0), double((1 << 21) - 1)));
+    key[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<std::uint32_t> order(pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) order[i] = key[i].second;
+  return order;
+}
+
+} // namespace
+
+Params suggestParams(const CMeshO&) {
+  Params p;
+  p.maxSearchRadiusFactor = kDefaultMaxSearchRadiusFactor;
+  return p;
+}
+
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, vcg::CallBackPos* cb) {
+  const auto t0 = std::chrono::steady_clock::now();
   out.Clear();
-  throw Error("Robust G2S: not implemented yet.");
+  stat = Stat();
+  try {
+    checkParams(params);
+    Params p = params;
+    if (p.maxSearchRadiusFactor <= 0) p.maxSearchRadiusFactor = kDefaultMaxSearchRadiusFactor;
+    stat.maxSearchRadiusFactor = p.maxSearchRadiusFactor;
+
+    Progress progress(cb);
+    progress.phase("Robust G2S: reading the points", 0, 3);
+    CloudCheck check;
+    check.minPoints = 3;
+    InputCloud input = readCloud(cloud, check);
+    stat.inputPoints = static_cast<size_t>(cloud.vn);
+    stat.duplicatesDropped = input.duplicatesDropped;
+    if (input.points.size() > PointEdgeMap::kMaxPoints)
+      throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
+                  " points, more than this filter can handle; subsample it first.");
+    stat.spacing = meanSpacing(input.points);
+
+    // Internal order: spatially coherent (see spatialOrder).
+    const std::vector<std::uint32_t> order = spatialOrder(input.points, input.box, 2.0 * stat.spacing);
+    std::vector<P3> pts(order.size());
+    std::vector<int> layerIndex(order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+      pts[i] = input.points[order[i]];
+      layerIndex[i] = input.vertexIndex[order[i]];
+    }
+    input.points = std::vector<P3>();
+    input.vertexIndex = std::vector<int>();
+
+    progress.phase("Robust G2S: growing the mesh", 3, 92);
+    Mesher mesher(std::move(pts), p, stat.spacing);
+    mesher.meshAll(&progress);
+    stat.seeds = mesher.seeds();
+    stat.seedAttempts = mesher.seedAttempts();
+
+    progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
+    if (p.removeNonManifoldVertices) {
+      const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
+      stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
+      stat.facesRemoved = cs.facesRemoved;
+    } else {
+      stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
+                                                          std::vector<char>(mesher.triangles().size(), 1));
+    }
+    stat.boundaryEdges = mesher.boundaryEdges();
+    stat.holes = mesher.boundaryLoops();
+    mesher.orientComponents();
+    stat.workingBytes = mesher.memoryBytes() + layerIndex.capacity() * sizeof(int);
+
+    progress.phase("Robust G2S: writing the mesh", 95, 100);
+    const std::vector<Triangle>& tri = mesher.triangles();
+    const std::vector<char>& alive = mesher.alive();
+    auto isAlive = [&](size_t f) { return alive.size() != tri.size() || alive[f] != 0; };
+    // Output vertices: the used input points, in the layer's order.
+    std::vector<int> outIndex(cloud.vert.size(), -1);
+    size_t faces = 0;
+    for (size_t f = 0; f < tri.size(); ++f) {
+      if (!isAlive(f)) continue;
+      ++faces;
+      for (std::uint32_t v : tri[f]) outIndex[static_cast<size_t>(layerIndex[v])] = 0;
+    }
+    int next = 0;
+    for (int& o : outIndex)
+      if (o == 0) o = next++;
+    stat.vertices = static_cast<size_t>(next);
+    stat.unusedPoints = mesher.points().size() - stat.vertices;
+    stat.faces = faces;
+    if (faces > 0) {
+      vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
+      for (size_t li = 0; li < outIndex.size(); ++li)
+        if (outIndex[li] >= 0) out.vert[static_cast<size_t>(outIndex[li])].P() = cloud.vert[li].cP();
+      out.face.EnableQuality();
+      vcg::tri::Allocator<CMeshO>::AddFaces(out, faces);
+      const std::vector<P3>& pt = mesher.points();
+      size_t k = 0;
+      for (size_t f = 0; f < tri.size(); ++f) {
+        if (!isAlive(f)) continue;
+        CFaceO& face = out.face[k++];
+        for (int j = 0; j < 3; ++j)
+          face.V(j) = &out.vert[static_cast<size_t>(outIndex[static_cast<size_t>(layerIndex[tri[f][j]])])];
+        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(pt[tri[f][0]], pt[tri[f][1]], pt[tri[f][2]]));
+        if ((k & 65535) == 0) progress.update(double(k) / double(faces));
+      }
+    } else {
+      stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
+                              "few or too scattered to lie on a surface (try a larger seed search factor k).");
+    }
+  } catch (...) {
+    // Cancelled, bad input, out of memory: nothing of a partial result is kept.
+    out.Clear();
+    throw;
+  }
+  stat.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 } // namespace g2s

@@ -16,22 +16,32 @@ namespace g2s {
 
 struct Params {
   double seedSearchFactor = 2.0;     // k, sec. 3.1 step 3.3: third seed point within k*|edge| of the midpoint
-  double maxSearchRadiusFactor = 0;  // maximum search radius / local spacing; <= 0: derived from the cloud
-  int sizeLevels = 4;                // n, sec. 4.1
-  int flatnessLevels = 8;            // m, sec. 4.1
+  double maxSearchRadiusFactor = 0;  // maximum search radius / local spacing (mean mesh edge length at the edge); <= 0: default
+  int sizeLevels = 4;                // n, sec. 4.1: search radii from |edge| to the maximum, pl_d = 1..n
+  int flatnessLevels = 8;            // m, sec. 4.1: classes of the angle β in [0°, 180°], pl_f = 1..m
   bool removeNonManifoldVertices = true; // sec. 4.2
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
 };
 
+// The default maximum search radius, in multiples of the local spacing.
+constexpr double kDefaultMaxSearchRadiusFactor = 2.5;
+
 struct Stat {
-  size_t inputPoints = 0;
-  size_t duplicatesDropped = 0;
+  size_t inputPoints = 0;                 // live vertices of the layer
+  size_t duplicatesDropped = 0;           // exact repeats (the first copy is used)
+  size_t vertices = 0;                    // output vertices: the input points used by faces
+  size_t unusedPoints = 0;                // distinct input points in no face
   size_t faces = 0;
-  size_t boundaryEdges = 0;
-  size_t holes = 0;
-  size_t seeds = 0;
-  size_t nonManifoldVerticesRemoved = 0;
-  size_t facesRemoved = 0;
+  size_t boundaryEdges = 0;               // edges with one face
+  size_t holes = 0;                       // boundary loops
+  size_t seeds = 0;                       // seed triangles (sec. 3.1), one or more per component
+  size_t seedAttempts = 0;                // points tried as seed starts
+  size_t nonManifoldVerticesRemoved = 0;  // sec. 4.2
+  size_t facesRemoved = 0;                // faces of the extra fans removed by sec. 4.2
+  size_t nonManifoldVertices = 0;         // left in the output (0 unless the removal is off)
+  double spacing = 0;                     // mean nearest-neighbour spacing of the cloud
+  double maxSearchRadiusFactor = 0;       // the factor used
+  size_t workingBytes = 0;                // engine memory at its peak (points, grid, edges, faces)
   double seconds = 0;
   std::vector<std::string> warnings;
 };
@@ -40,8 +50,10 @@ struct Stat {
 Params suggestParams(const CMeshO& cloud);
 
 // Triangulates the live vertices of `cloud` into `out` (cleared first): out's vertices are copies
-// of the input points (same order as the layer's live vertices), faces consistently oriented, with
-// per-face quality Q_t. Throws growth::Error on bad input and growth::Cancelled on cancel.
+// of the input points that the faces use (in the layer's order; unused points are left out), faces
+// consistently oriented, with per-face quality Q_t. A cloud where no seed triangle exists gives an
+// empty `out` and a warning. Throws growth::Error on bad input or parameters and
+// growth::Cancelled on cancel (out is then empty).
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
            vcg::CallBackPos* cb = nullptr);
 

@@ -1,0 +1,223 @@
+#pragma once
+// The point–edge map (PEM) of Robust G2S, sec. 3.2 step 4.3: for every point, the edges incident
+// to it and the directions in which triangles traverse them.
+//
+// A consistently oriented 2-manifold traverses every directed edge (half-edge) at most once: an
+// edge with one triangle is traversed one way, an edge with two triangles once each way. So the
+// paper's two topological rules for a new triangle — "an edge that already pertains to another
+// triangle must be traversed with consistent orientation" and (implicitly) "no edge gets a third
+// triangle" — are together exactly "none of the new triangle's three half-edges is used yet"
+// (canAddTriangle). Boundary (free) edges are the edges used in one direction only.
+//
+// Storage is compact and flat: each point owns an inline block of kInline 32-bit entries (the
+// neighbour's index plus two direction bits and one marker bit); a point with more neighbours
+// chains further blocks from a shared pool. Valences of interpolating meshes are about 6, so
+// almost every lookup is a scan of one cache line. No std::map/std::set, no per-point allocation.
+#include <cassert>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <vector>
+
+namespace growth {
+
+class PointEdgeMap {
+public:
+  // Largest number of points (indices use 29 bits of an entry).
+  static constexpr std::uint32_t kMaxPoints = (1u << 29) - 1;
+
+  PointEdgeMap() = default;
+  explicit PointEdgeMap(size_t points) { reset(points); }
+
+  void reset(size_t points) {
+    if (points > kMaxPoints) throw std::length_error("PointEdgeMap: too many points");
+    slot_.assign(points * kInline, 0);
+    count_.assign(points, 0);
+    pool_.clear();
+  }
+
+  size_t pointCount() const { return count_.size(); }
+
+  // Half-edge a→b is traversed by a triangle.
+  bool used(std::uint32_t a, std::uint32_t b) const {
+    const std::uint32_t* e = find(a, b);
+    return e != nullptr && (*e & kOut) != 0;
+  }
+  // Number of triangles on edge {a, b} (0, 1 or 2).
+  int triangles(std::uint32_t a, std::uint32_t b) const {
+    const std::uint32_t* e = find(a, b);
+    return e == nullptr ? 0 : int((*e & kOut) != 0) + int((*e & kIn) != 0);
+  }
+  // Number of edges at v that carry at least one triangle.
+  int degree(std::uint32_t v) const {
+    int d = 0;
+    forEachEntry(v, [&](std::uint32_t e) { d += (e & (kOut | kIn)) != 0; });
+    return d;
+  }
+  // v is a vertex of no triangle.
+  bool isolated(std::uint32_t v) const { return degree(v) == 0; }
+  // v has an edge with exactly one triangle (it lies on a front or a boundary).
+  bool hasFreeEdge(std::uint32_t v) const {
+    bool f = false;
+    forEachEntry(v, [&](std::uint32_t e) { f = f || ((e & kOut) != 0) != ((e & kIn) != 0); });
+    return f;
+  }
+  // v is a vertex of some triangle and all its edges have two triangles: its fan is closed (or
+  // all its fans are), so a new triangle at v would make it non-manifold.
+  bool closed(std::uint32_t v) const { return !isolated(v) && !hasFreeEdge(v); }
+
+  // None of the half-edges a→b, b→c, c→a is used: adding the triangle keeps every edge at two
+  // triangles at most, traversed once in each direction.
+  bool canAddTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    return a != b && b != c && c != a && !used(a, b) && !used(b, c) && !used(c, a);
+  }
+
+  // Records triangle (a, b, c). Returns a bit mask of its edges that were new (had no triangle):
+  // bit 0 for {a,b}, bit 1 for {b,c}, bit 2 for {c,a}. Precondition: canAddTriangle(a, b, c).
+  unsigned addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    assert(canAddTriangle(a, b, c));
+    unsigned fresh = 0;
+    fresh |= addHalfEdge(a, b) ? 1u : 0u;
+    fresh |= addHalfEdge(b, c) ? 2u : 0u;
+    fresh |= addHalfEdge(c, a) ? 4u : 0u;
+    return fresh;
+  }
+
+  // Forgets triangle (a, b, c) (its three half-edges must be used).
+  void removeTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    removeHalfEdge(a, b);
+    removeHalfEdge(b, c);
+    removeHalfEdge(c, a);
+  }
+
+  // Calls f(w, outUsed, inUsed) for every edge {v, w} carrying a triangle: outUsed when v→w is
+  // traversed, inUsed when w→v is.
+  template <class F>
+  void forEachEdge(std::uint32_t v, F&& f) const {
+    forEachEntry(v, [&](std::uint32_t e) {
+      if ((e & (kOut | kIn)) != 0) f(e & kIndex, (e & kOut) != 0, (e & kIn) != 0);
+    });
+  }
+
+  // A marker bit per half-edge entry v→w (for walks such as boundary-loop tracing).
+  bool marked(std::uint32_t v, std::uint32_t w) const {
+    const std::uint32_t* e = find(v, w);
+    return e != nullptr && (*e & kMark) != 0;
+  }
+  void setMark(std::uint32_t v, std::uint32_t w, bool on) {
+    std::uint32_t* e = find(v, w);
+    if (e != nullptr) *e = on ? (*e | kMark) : (*e & ~kMark);
+  }
+
+  void clearMarks() {
+    for (std::uint32_t& e : slot_) e &= ~kMark;
+    for (std::uint32_t& e : pool_) e &= ~kMark;
+  }
+
+  size_t memoryBytes() const {
+    return slot_.capacity() * sizeof(std::uint32_t) + count_.capacity() + pool_.capacity() * sizeof(std::uint32_t);
+  }
+
+private:
+  static constexpr std::uint32_t kInline = 8;          // entries per block (one is the link when chained)
+  static constexpr std::uint32_t kIndex = (1u << 29) - 1;
+  static constexpr std::uint32_t kMark = 1u << 29;
+  static constexpr std::uint32_t kOut = 1u << 30;       // v→w used
+  static constexpr std::uint32_t kIn = 1u << 31;        // w→v used
+
+  // Entries of v: count_[v] of them. With count <= kInline all are inline; otherwise the inline
+  // block holds kInline-1 entries and its last slot the index of the next block in pool_, which
+  // holds kInline-1 entries and a link again (the last block may be partly filled).
+  template <class F>
+  void forEachEntry(std::uint32_t v, F&& f) const {
+    const std::uint32_t n = count_[v];
+    const std::uint32_t* blk = &slot_[size_t(v) * kInline];
+    if (n <= kInline) {
+      for (std::uint32_t i = 0; i < n; ++i) f(blk[i]);
+      return;
+    }
+    std::uint32_t left = n;
+    for (;;) {
+      const std::uint32_t here = left <= kInline ? left : kInline - 1;
+      for (std::uint32_t i = 0; i < here; ++i) f(blk[i]);
+      left -= here;
+      if (left == 0) return;
+      blk = &pool_[blk[kInline - 1]];
+    }
+  }
+
+  std::uint32_t* find(std::uint32_t v, std::uint32_t w) {
+    return const_cast<std::uint32_t*>(static_cast<const PointEdgeMap*>(this)->find(v, w));
+  }
+  const std::uint32_t* find(std::uint32_t v, std::uint32_t w) const {
+    std::uint32_t n = count_[v];
+    const std::uint32_t* blk = &slot_[size_t(v) * kInline];
+    for (;;) {
+      const std::uint32_t here = n <= kInline ? n : kInline - 1;
+      for (std::uint32_t i = 0; i < here; ++i)
+        if ((blk[i] & kIndex) == w) return &blk[i];
+      n -= here;
+      if (n == 0) return nullptr;
+      blk = &pool_[blk[kInline - 1]];
+    }
+  }
+
+  // Appends an entry for w at v (no check for an existing one).
+  std::uint32_t* append(std::uint32_t v, std::uint32_t w) {
+    const std::uint32_t n = count_[v];
+    if (n == 255) throw std::length_error("PointEdgeMap: more than 255 edges at one point");
+    // Find the last block and how many entries it holds (at most kInline).
+    bool inPool = false;
+    size_t base = size_t(v) * kInline;
+    std::uint32_t rem = n;
+    while (rem > kInline) {
+      rem -= kInline - 1;
+      base = (inPool ? pool_[base + kInline - 1] : slot_[base + kInline - 1]);
+      inPool = true;
+    }
+    ++count_[v];
+    if (rem < kInline) {
+      std::uint32_t* e = inPool ? &pool_[base + rem] : &slot_[base + rem];
+      *e = w;
+      return e;
+    }
+    // The last block is full: chain a new block, moving the block's last entry there.
+    const std::uint32_t nb = static_cast<std::uint32_t>(pool_.size());
+    pool_.resize(pool_.size() + kInline, 0);
+    std::uint32_t& link = inPool ? pool_[base + kInline - 1] : slot_[base + kInline - 1];
+    pool_[nb] = link;
+    link = nb;
+    pool_[nb + 1] = w;
+    return &pool_[nb + 1];
+  }
+
+  // Marks v→w used; returns true when the edge {v, w} had no triangle before.
+  bool addHalfEdge(std::uint32_t v, std::uint32_t w) {
+    std::uint32_t* ev = find(v, w);
+    bool fresh = false;
+    if (ev == nullptr) {
+      ev = append(v, w);
+      fresh = true;
+    } else {
+      fresh = (*ev & (kOut | kIn)) == 0;
+    }
+    *ev |= kOut;
+    std::uint32_t* ew = find(w, v);
+    if (ew == nullptr) ew = append(w, v);
+    *ew |= kIn;
+    return fresh;
+  }
+
+  void removeHalfEdge(std::uint32_t v, std::uint32_t w) {
+    std::uint32_t* ev = find(v, w);
+    if (ev != nullptr) *ev &= ~kOut;
+    std::uint32_t* ew = find(w, v);
+    if (ew != nullptr) *ew &= ~kIn;
+  }
+
+  std::vector<std::uint32_t> slot_;   // kInline per point
+  std::vector<std::uint8_t> count_;   // entries per point
+  std::vector<std::uint32_t> pool_;   // overflow blocks of kInline
+};
+
+} // namespace growth

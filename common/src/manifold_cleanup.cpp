@@ -1,0 +1,178 @@
+#include <growth/manifold_cleanup.h>
+
+#include <algorithm>
+#include <utility>
+
+namespace growth {
+
+namespace {
+
+// Vertex → incident triangles (compressed rows), built once; dead triangles are skipped on use.
+struct Incidence {
+  std::vector<std::uint32_t> start; // vertexCount + 1
+  std::vector<std::uint32_t> face;
+
+  Incidence(const std::vector<Triangle>& faces, size_t vertexCount, const std::vector<char>& alive)
+      : start(vertexCount + 1, 0) {
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (alive[f])
+        for (std::uint32_t v : faces[f]) ++start[v + 1];
+    for (size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
+    face.resize(start[vertexCount]);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (alive[f])
+        for (std::uint32_t v : faces[f]) face[fill[v]++] = static_cast<std::uint32_t>(f);
+  }
+};
+
+// The fans of one vertex: a union–find over its alive triangles, joined across every edge at the
+// vertex that has exactly two of them. Scratch arrays are reused from vertex to vertex.
+class FanFinder {
+public:
+  explicit FanFinder(const std::vector<Triangle>& faces) : faces_(faces) {}
+
+  // Analyses vertex v; returns its number of fans (0 for a vertex of no alive triangle).
+  int analyse(std::uint32_t v, const Incidence& inc, const std::vector<char>& alive) {
+    local_.clear();
+    for (std::uint32_t k = inc.start[v]; k < inc.start[v + 1]; ++k)
+      if (alive[inc.face[k]]) local_.push_back(inc.face[k]);
+    const size_t d = local_.size();
+    if (d == 0) return 0;
+    keyed_.clear();
+    for (size_t i = 0; i < d; ++i) {
+      const Triangle& t = faces_[local_[i]];
+      for (std::uint32_t w : t)
+        if (w != v) keyed_.emplace_back(w, static_cast<std::uint32_t>(i));
+    }
+    std::sort(keyed_.begin(), keyed_.end());
+    parent_.resize(d);
+    open_.assign(d, 0);
+    for (size_t i = 0; i < d; ++i) parent_[i] = static_cast<std::uint32_t>(i);
+    int fans = static_cast<int>(d);
+    for (size_t g = 0; g < keyed_.size();) {
+      size_t h = g + 1;
+      while (h < keyed_.size() && keyed_[h].first == keyed_[g].first) ++h;
+      if (h - g == 2) {
+        const std::uint32_t ra = root(keyed_[g].second), rb = root(keyed_[g + 1].second);
+        if (ra != rb) {
+          parent_[std::max(ra, rb)] = std::min(ra, rb);
+          --fans;
+        }
+      } else {
+        // A boundary edge (one triangle) or a non-manifold edge (three or more): the triangles
+        // on it are not joined there, and their fans are open.
+        for (size_t k = g; k < h; ++k) open_[keyed_[k].second] = 1;
+      }
+      g = h;
+    }
+    return fans;
+  }
+
+  // After analyse() found several fans: the local indices of the triangles outside the kept fan.
+  void extraFans(std::vector<std::uint32_t>& removeFaces) {
+    const size_t d = local_.size();
+    // Per root: triangle count, open flag, lowest triangle index.
+    size_.assign(d, 0);
+    fanOpen_.assign(d, 0);
+    lowest_.assign(d, ~0u);
+    for (size_t i = 0; i < d; ++i) {
+      const std::uint32_t r = root(static_cast<std::uint32_t>(i));
+      ++size_[r];
+      fanOpen_[r] |= open_[i];
+      lowest_[r] = std::min(lowest_[r], local_[i]);
+    }
+    std::uint32_t keep = ~0u;
+    for (size_t r = 0; r < d; ++r) {
+      if (size_[r] == 0) continue;
+      if (keep == ~0u) {
+        keep = static_cast<std::uint32_t>(r);
+        continue;
+      }
+      const bool closedR = !fanOpen_[r], closedK = !fanOpen_[keep];
+      if (closedR != closedK) {
+        if (closedR) keep = static_cast<std::uint32_t>(r);
+      } else if (size_[r] != size_[keep]) {
+        if (size_[r] > size_[keep]) keep = static_cast<std::uint32_t>(r);
+      } else if (lowest_[r] < lowest_[keep]) {
+        keep = static_cast<std::uint32_t>(r);
+      }
+    }
+    removeFaces.clear();
+    for (size_t i = 0; i < d; ++i)
+      if (root(static_cast<std::uint32_t>(i)) != keep) removeFaces.push_back(local_[i]);
+  }
+
+private:
+  std::uint32_t root(std::uint32_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+
+  const std::vector<Triangle>& faces_;
+  std::vector<std::uint32_t> local_, parent_, size_, lowest_;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> keyed_;
+  std::vector<char> open_, fanOpen_;
+};
+
+bool degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
+
+} // namespace
+
+ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,
+                                              std::vector<char>& alive) {
+  ManifoldCleanupStat st;
+  alive.resize(faces.size(), 1);
+  for (size_t f = 0; f < faces.size(); ++f)
+    if (alive[f] && degenerate(faces[f])) {
+      alive[f] = 0;
+      ++st.facesRemoved;
+    }
+  const Incidence inc(faces, vertexCount, alive);
+  FanFinder fans(faces);
+
+  // Work list: every vertex once, then every vertex of a removed triangle again.
+  std::vector<std::uint32_t> work(vertexCount);
+  for (size_t v = 0; v < vertexCount; ++v) work[v] = static_cast<std::uint32_t>(v);
+  std::vector<char> queued(vertexCount, 1), counted(vertexCount, 0);
+  std::vector<std::uint32_t> removeFaces;
+  for (size_t head = 0; head < work.size(); ++head) {
+    const std::uint32_t v = work[head];
+    queued[v] = 0;
+    if (fans.analyse(v, inc, alive) <= 1) continue;
+    if (!counted[v]) {
+      counted[v] = 1;
+      ++st.nonManifoldVertices;
+    }
+    fans.extraFans(removeFaces);
+    for (std::uint32_t f : removeFaces) {
+      alive[f] = 0;
+      ++st.facesRemoved;
+      for (std::uint32_t u : faces[f])
+        if (u != v && !queued[u]) {
+          queued[u] = 1;
+          work.push_back(u);
+        }
+    }
+  }
+  return st;
+}
+
+size_t countNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,
+                                const std::vector<char>& alive) {
+  std::vector<char> live(alive);
+  live.resize(faces.size(), 1);
+  for (size_t f = 0; f < faces.size(); ++f)
+    if (live[f] && degenerate(faces[f])) live[f] = 0;
+  const Incidence inc(faces, vertexCount, live);
+  FanFinder fans(faces);
+  size_t n = 0;
+  for (size_t v = 0; v < vertexCount; ++v)
+    if (fans.analyse(static_cast<std::uint32_t>(v), inc, live) > 1) ++n;
+  return n;
+}
+
+} // namespace growth

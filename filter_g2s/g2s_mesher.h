@@ -1,0 +1,144 @@
+#pragma once
+// The Robust G2S mesh-growing engine (Di Angelo, Di Stefano, Giaccari, sections 3 and 4), working
+// on an array of distinct points. g2s.h wraps it for a MeshLab layer; tests drive its parts here.
+//
+//   seeds (sec. 3.1)  →  front growth by the G2S criterion (sec. 3.2) driven by the priority
+//   queue (sec. 4.1), with topological tests on the point–edge map  →  re-seeding until no valid
+//   seed is left  →  non-manifold vertex elimination (sec. 4.2, growth/manifold_cleanup.h).
+//
+// Everything is flat arrays indexed by point: the points (double), the spatial hash
+// (growth::PointGrid), the point–edge map (growth::PointEdgeMap), the triangles, and a bucketed
+// queue of free edges (growth::BucketQueue, one FIFO per priority index).
+#include "g2s.h"
+#include "g2s_geometry.h"
+
+#include <growth/bucket_queue.h>
+#include <growth/manifold_cleanup.h>
+#include <growth/point_edge_map.h>
+#include <growth/point_grid.h>
+#include <growth/progress.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace growth {
+namespace g2s {
+
+// A free edge in the front queue: half-edge a→b of the front triangle (a, b, c) is used, b→a is
+// not; p is the candidate point found for the new triangle (b, a, p).
+struct FrontEdge {
+  std::uint32_t a, b, c, p;
+};
+
+// The outcome of the search for a free edge's reference point (sec. 3.2, steps 4.1–4.2).
+struct Candidate {
+  std::int64_t point = -1;  // -1: none found up to the maximum radius, the edge is a boundary edge
+  int sizeLevel = 0;        // pl_d in [1, n]: the search level at which it was found
+  int flatLevel = 0;        // pl_f in [1, m]: flatness class of the angle β
+  double betaRad = 0;       // angle between the front triangle's and the new triangle's normals
+  bool single = false;      // the only candidate of its search region, taken without the G2S test
+  bool closesLoop = false;  // closes a loop of three free edges (see findCandidate)
+  bool valid() const { return point >= 0; }
+  int priority(int m) const { return priorityIndex(sizeLevel, flatLevel, m); } // PI, eq. 4.1
+};
+
+class Mesher {
+public:
+  // `points`: distinct, finite. `spacing`: the cloud's mean nearest-neighbour spacing (sizes the
+  // grid and bounds seed edges). `params` must be valid (see checkParams in g2s.cpp).
+  Mesher(std::vector<P3> points, const Params& params, double spacing);
+
+  // Seeds and grows until every point that could start a seed was tried (sec. 3.1, 3.2, 4.1).
+  void meshAll(Progress* progress = nullptr);
+
+  // --- The parts, exposed for the unit tests ---
+
+  // Sec. 3.1: from point p (which must be unused), its nearest neighbour q and a third point
+  // within k·|pq| of the midpoint: the first triangle, by increasing circumradius, that is a
+  // Gabriel 2-simplex and passes the cylinder test. All three points must be unused. The triangle
+  // is returned oriented (see orientSeed). False when p starts no valid seed.
+  bool findSeedTriangle(std::uint32_t p, std::array<std::uint32_t, 3>& tri);
+  // Adds a seed triangle and queues its three edges.
+  void addSeed(const std::array<std::uint32_t, 3>& tri);
+  // Pops free edges until the queue is empty (sec. 3.2 step 4.3: "the procedure ends when the
+  // free edges' queue is empty").
+  void grow(Progress* progress = nullptr);
+
+  // Sec. 3.2 steps 4.1–4.2 for the free edge a→b of front triangle (a, b, c), considering only
+  // points that pass the topological tests now (topologyAllows).
+  Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+
+  // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
+  bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // Cylinder test (sec. 3.1, fig. 1): the points inside the infinite cylinder through the
+  // triangle's circumcircle, with axis along its normal, are all on one side of its plane.
+  bool passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // Sec. 3.2 step 4.3 for the new triangle (b, a, p) on the free edge a→b of front triangle
+  // (a, b, c): p is a new point; its edges to a and b, where they exist, are traversed in the
+  // opposite direction by their one triangle (point–edge map); and p is not an interior vertex
+  // (all of its edges already with two triangles), which would make it non-manifold.
+  bool topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const;
+
+  // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts.
+  ManifoldCleanupStat removeNonManifoldVertices();
+  // Flips every connected component whose signed volume (about its own centroid) is negative, so
+  // that closed surfaces face outwards. Each component was grown with one consistent orientation
+  // from its seed; flipping whole components keeps every edge consistent.
+  void orientComponents();
+
+  // --- Results ---
+  const std::vector<P3>& points() const { return points_; }
+  const std::vector<Triangle>& triangles() const { return tri_; }
+  const std::vector<char>& alive() const { return alive_; }
+  const PointEdgeMap& edges() const { return pem_; }
+  size_t seeds() const { return seeds_; }
+  size_t seedAttempts() const { return seedAttempts_; }
+  size_t liveTriangles() const;
+  size_t boundaryEdges() const;   // edges with one live triangle
+  size_t boundaryLoops();         // holes: loops of boundary edges
+  size_t memoryBytes() const;
+  double spacing() const { return spacing_; }
+
+private:
+  struct Near {
+    std::uint32_t id;
+    P3 p;
+  };
+
+  void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
+  bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
+                 std::uint32_t b, std::uint32_t c); // G2S emptiness, using near_ then the grid
+  void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  double localSpacing(std::uint32_t v) const;
+  void orientSeed(std::array<std::uint32_t, 3>& tri);
+  bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
+
+  Params params_;
+  double spacing_ = 0;
+  double seedMaxEdge_ = 0;
+  std::vector<P3> points_;
+  vcg::Box3d box_;
+  PointGrid grid_;
+  PointEdgeMap pem_;
+  std::vector<float> edgeLengthSum_;   // per point: sum of the lengths of its mesh edges
+  std::vector<std::uint16_t> edgeCount_;
+  std::vector<Triangle> tri_;
+  std::vector<char> alive_;
+  BucketQueue<FrontEdge> queue_;
+  size_t usedPoints_ = 0;
+  size_t seeds_ = 0, seedAttempts_ = 0;
+  std::vector<Near> near_;             // scratch: points of the last gathered ball
+
+  struct Scored {
+    double key1, key2;
+    std::uint32_t id;
+    Ball ball;
+    double beta;
+  };
+  std::vector<Scored> scored_;         // scratch: candidates being ranked
+};
+
+} // namespace g2s
+} // namespace growth
