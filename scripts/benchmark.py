@@ -350,7 +350,8 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
         row["status"] = "failed: " + failure_reason(r["log"])
         return row
     if ply_face_count(mesh) == 0:
-        row["status"] = "no faces: " + failure_reason(r["log"])
+        row["status"] = ("no faces in the saved mesh (meshlabserver saves the current layer: is the new "
+                         "layer current?): " + failure_reason(r["log"]))
         return row
     row["status"] = "ok"
 
