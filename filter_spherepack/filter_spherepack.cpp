@@ -144,11 +144,15 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
-  Log("Sphere Packing: %zu points (%zu duplicates dropped), d = %g, s = %g%s", st.inputPoints,
-      st.duplicatesDropped, st.sphereDiameter, st.splatSize, p.localSplatSizes ? " (local splat sizes)" : "");
+  Log("Sphere Packing: %zu points (%zu duplicates dropped), d = %g, s = %g%s (mean splat radius %g)", st.inputPoints,
+      st.duplicatesDropped, st.sphereDiameter, st.splatSize, p.localSplatSizes ? " with local splat sizes" : "",
+      st.meanSplatRadius);
   Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f, %zu holes left open, "
       "%zu of %zu boxes where d looked too large", st.vertices, st.faces, st.smallestEdge, st.qualityAvg,
       st.holes, st.boxesDTooLarge, st.boxes);
-  Log("Sphere Packing: time %.3f s", st.seconds);
+  Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
+      st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
+  Log("Sphere Packing: time %.3f s (box grid %.3f, splats %.3f, growth %.3f, regions %.3f)", st.seconds,
+      st.secondsBoxGrid, st.secondsSplats, st.secondsGrowth, st.secondsTriangulation);
   return true;
 }

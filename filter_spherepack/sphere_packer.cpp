@@ -1,17 +1,504 @@
 #include "sphere_packer.h"
 
+#include <growth/borders.h>
+#include <growth/box_grid.h>
+#include <growth/bucket_queue.h>
+#include <growth/candidates.h>
+#include <growth/crossing.h>
 #include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+#include <growth/point_grid.h>
+#include <growth/progress.h>
+#include <growth/region_triangulation.h>
+#include <growth/splats.h>
+#include <growth/vertex_grid.h>
 
 #include <common/ml_mesh_type.h>
+#include <vcg/complex/allocate.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
 
 namespace growth {
 namespace spherepack {
 
-Params suggestParams(const CMeshO&) { return Params(); }
+namespace {
 
-void build(const CMeshO&, CMeshO& out, const Params&, Stat&, vcg::CallBackPos*) {
+constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
+
+// Surface area of a cloud, estimated from the cells of side `cell` that hold points: a plane cuts
+// on average 1.5/cell² cubes per unit area (the mean of |nx| + |ny| + |nz| over the sphere).
+double estimateArea(const std::vector<vcg::Point3d>& pts, const vcg::Box3d& box, double cell) {
+  if (pts.empty() || !(cell > 0)) return 0;
+  const double extent = std::max(box.DimX(), std::max(box.DimY(), box.DimZ()));
+  cell = std::max(cell, extent / double(BoxIndexer::kMax - 4));
+  const BoxIndexer ix(box.min - vcg::Point3d(cell, cell, cell), cell);
+  KeyHash h(pts.size() / 4 + 16);
+  int n = 0;
+  for (const auto& p : pts) {
+    KeyHash::Key k;
+    if (ix.keyOf(p, k) && h.findOrInsert(k, n) == n) ++n;
+  }
+  return double(n) * cell * cell / 1.5;
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+// A queued vertex candidate: its parents (a made it when it was inserted), the splat it lies on
+// and which of the two circle–plane intersections it is. The position is recomputed bit for bit
+// when it is popped (candidates.h), so an entry takes 16 bytes instead of 40.
+struct Candidate {
+  std::uint32_t a, b, splat;
+  std::uint8_t root;
+};
+
+// The disk growing of sec. 3.3–3.6 on prepared splats and box grid.
+class Growth {
+public:
+  Growth(const InputCloud& in, const BoxGrid& grid, const std::vector<float>& radius, double d, const Params& p,
+         Stat& st, Progress& progress, size_t expectedVertices)
+      : in_(in), grid_(grid), radius_(radius), d_(d), d2_(d * d), w_(p.windowSize), params_(p), st_(st),
+        progress_(progress), expected_(std::max<size_t>(expectedVertices, 16)),
+        queue_(CandidatePriority::levels(p.windowSize)) {
+    splats_ = SplatSet{&in.points, &in.normals, &radius};
+    lists_.reset(in.points.size());
+    vgrid_.reset(grid.indexer().origin(), d, expected_);
+    graph_.reserve(expected_ + expected_ / 4);
+  }
+
+  const BorderGraph& graph() const { return graph_; }
+  const SplatVertexLists& lists() const { return lists_; }
+
+  // Sec. 3.3: the two starting vertices (already projected onto their splats).
+  void start(const vcg::Point3d& s1, std::uint32_t splat1, const vcg::Point3d& s2, std::uint32_t splat2) {
+    insertVertex(s1, splat1);
+    insertVertex(s2, splat2);
+  }
+
+  // Sec. 3.4–3.6: pop candidates by priority until none is left.
+  void run() {
+    size_t pops = 0;
+    std::vector<std::uint32_t> nearby;
+    while (!queue_.empty()) {
+      int popped = 0;
+      const Candidate cd = queue_.pop(&popped);
+      if ((++pops & 1023) == 0)
+        progress_.update(std::min(0.99, double(graph_.vertexCount()) / double(expected_)));
+
+      vcg::Point3d x;
+      const auto& pos = graph_.positions();
+      const ParentCircle circle = parentCircle(pos[cd.a], pos[cd.b], d_);
+      if (!circleSplatPoint(circle, in_.points[cd.splat], in_.normals[cd.splat], radius_[cd.splat], cd.root, x))
+        continue; // cannot happen: the same computation succeeded when it was queued
+
+      // Sec. 3.6: no vertex closer than d.
+      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b)) {
+        ++st_.rejectedTooClose;
+        continue;
+      }
+      // Sec. 3.6: a candidate whose priority got worse since it was queued goes to its new level.
+      const int level = levelOf(cd.a, cd.b, x);
+      if (level > popped) {
+        queue_.push(level, cd);
+        ++st_.requeued;
+        ++st_.candidates;
+        continue;
+      }
+      if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
+      // Sec. 3.6, fig. 4b: projected along the approximated surface normal, the new edges must not
+      // cross existing edges within d in normal direction.
+      const vcg::Point3d n = normalAt(x, cd.splat);
+      nearby.clear();
+      vgrid_.forEachInBall(x, crossingSearchRadius(d_), pos, [&](std::uint32_t v, double) { nearby.push_back(v); });
+      if (newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
+        ++st_.rejectedCrossing;
+        continue;
+      }
+      const int gapA = graph_.gapOf(cd.a, x), gapB = graph_.gapOf(cd.b, x);
+      // The corners chosen at the parents (in their own planes, sec. 3.5) must also hold the new
+      // edges in the projection along n used for the crossing check; when they do not, the edge
+      // is too steep for the local normals to tell its side, and inserting it would twist the
+      // borders (a choice where the paper is silent, for the manifold guarantee of sec. 3.1).
+      if (!graph_.gapContains(cd.a, gapA, x, n) || !graph_.gapContains(cd.b, gapB, x, n)) {
+        ++st_.rejectedInconsistent;
+        continue;
+      }
+      const std::uint32_t c = insertVertex(x, cd.splat, &n, /*enumerateLater=*/true);
+      if (!graph_.connect(c, cd.a, gapA, cd.b, gapB))
+        throw std::logic_error("sphere packing: could not connect a new vertex"); // degrees checked above
+      if (params_.checkInvariants) checkInvariants(c, cd.a, cd.b);
+      enumerate(c);
+    }
+  }
+
+private:
+  // Vertex normal: the box normal of the box containing x (sec. 4.1: "used as vertex normal for
+  // all vertices lying in b_j"), or the splat normal when that box refers to no point.
+  vcg::Point3d normalAt(const vcg::Point3d& x, std::uint32_t splat) const {
+    const int box = grid_.boxOf(x);
+    return box >= 0 ? grid_.boxNormal(box) : in_.normals[splat];
+  }
+
+  std::uint32_t insertVertex(const vcg::Point3d& x, std::uint32_t splat, const vcg::Point3d* normal = nullptr,
+                             bool enumerateLater = false) {
+    const std::uint32_t v = graph_.addVertex(x, normal != nullptr ? *normal : normalAt(x, splat));
+    vgrid_.insert(v, x);
+    if (!enumerateLater) enumerate(v);
+    return v;
+  }
+
+  // Sec. 3.5 priority of a candidate at x with parents a and b, from the current graph.
+  int levelOf(std::uint32_t a, std::uint32_t b, const vcg::Point3d& x) const {
+    const int da = graph_.degree(a), db = graph_.degree(b);
+    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
+    const int dist = w_ > 0 ? graph_.borderDistance(a, graph_.gapOf(a, x), b, graph_.gapOf(b, x), w_) : 0;
+    return CandidatePriority::level(da, db, dist, w_);
+  }
+
+  // Sec. 3.4/4.4: new candidates with v as a parent, from the splats near v and their vertex lists.
+  void enumerate(std::uint32_t v) {
+    const auto& pos = graph_.positions();
+    const vcg::Point3d x = pos[v];
+    near_.clear();
+    vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
+    enumerateCandidates(v, pos, d_, grid_, splats_, lists_,
+                        [&](std::uint32_t u, std::uint32_t s, int root, const vcg::Point3d& y) {
+                          // A candidate already closer than d to a vertex can never be inserted
+                          // (vertices are never removed): drop it now instead of when popped.
+                          for (std::uint32_t w : near_)
+                            if (w != v && w != u && (pos[w] - y).SquaredNorm() < d2_) return;
+                          queue_.push(levelOf(v, u, y), Candidate{v, u, s, static_cast<std::uint8_t>(root)});
+                          ++st_.candidates;
+                        });
+  }
+
+  void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
+    const auto& pos = graph_.positions();
+    for (std::uint32_t v = 0; v < c; ++v) {
+      const double dist = (pos[v] - pos[c]).Norm();
+      if (dist < d_ * (1 - 1e-12))
+        throw std::logic_error("sphere packing invariant: vertices " + std::to_string(v) + " and " +
+                               std::to_string(c) + " are " + fmt(dist) + " < d apart");
+    }
+    for (std::uint32_t p : {a, b}) {
+      const double len = (pos[p] - pos[c]).Norm();
+      if (std::abs(len - d_) > 1e-9 * d_)
+        throw std::logic_error("sphere packing invariant: edge of length " + fmt(len) + " != d");
+    }
+  }
+
+  const InputCloud& in_;
+  const BoxGrid& grid_;
+  const std::vector<float>& radius_;
+  const double d_, d2_;
+  const int w_;
+  const Params& params_;
+  Stat& st_;
+  Progress& progress_;
+  const size_t expected_;
+  SplatSet splats_;
+  SplatVertexLists lists_;
+  VertexGrid vgrid_;
+  BorderGraph graph_;
+  BucketQueue<Candidate> queue_;
+  std::vector<std::uint32_t> near_;
+};
+
+// Closest splat to x (smallest distance to its disk) and the projection of x onto it.
+bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
+                             const PointGrid& pg, double maxRadius, vcg::Point3d& proj, std::uint32_t& splat) {
+  double d2 = 0;
+  const int nearest = pg.nearest(x, &d2);
+  if (nearest < 0) return false;
+  double best = std::numeric_limits<double>::infinity();
+  int bestIdx = -1;
+  pg.forEachInBall(x, std::sqrt(d2) + maxRadius, [&](int i, double) {
+    const double dd = squaredDistanceToDisk(x, in.points[size_t(i)], in.normals[size_t(i)], radius[size_t(i)]);
+    if (dd < best || (dd == best && i < bestIdx)) best = dd, bestIdx = i;
+  });
+  if (bestIdx < 0) return false;
+  splat = static_cast<std::uint32_t>(bestIdx);
+  proj = projectOntoDisk(x, in.points[splat], in.normals[splat], radius[splat]);
+  return true;
+}
+
+} // namespace
+
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points) {
+  CloudScale sc;
+  sc.spacing = meanSpacing(points);
+  if (!(sc.spacing > 0) || !std::isfinite(sc.spacing)) return sc;
+  vcg::Box3d box;
+  for (const auto& p : points) box.Add(p);
+  sc.area = estimateArea(points, box, 6 * sc.spacing);
+  sc.areaSpacing = std::sqrt(sc.area / double(std::max<size_t>(points.size(), 1)));
+  return sc;
+}
+
+double defaultDiameter(const CloudScale& scale) { return kDefaultDiameterPerSpacing * scale.spacing; }
+
+double defaultSplatSize(const CloudScale& scale, double d) {
+  const double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
+  return s > 0 ? std::min(s, d) : d;
+}
+
+Params suggestParams(const CMeshO& cloud) {
+  Params p;
+  try {
+    CloudCheck check;
+    check.needNormals = false;
+    check.allowFaces = true;
+    const InputCloud in = readCloud(cloud, check);
+    const CloudScale sc = cloudScale(in.points);
+    if (sc.spacing > 0 && std::isfinite(sc.spacing)) {
+      p.sphereDiameter = defaultDiameter(sc);
+      p.splatSize = defaultSplatSize(sc, p.sphereDiameter);
+    }
+  } catch (const std::exception&) {
+    // An unusable cloud: keep the static defaults; build() will explain what is wrong.
+  }
+  return p;
+}
+
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto lap = [last = t0]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
   out.Clear();
-  throw Error("Sphere Packing: not implemented yet.");
+  st = Stat();
+  Progress progress(cb);
+  progress.phase("Sphere packing: reading the cloud", 0, 2);
+
+  CloudCheck check;
+  check.needNormals = true;
+  check.allowFaces = false;
+  check.minPoints = 3;
+  const InputCloud in = readCloud(cloud, check);
+  st.inputPoints = in.points.size();
+  st.duplicatesDropped = in.duplicatesDropped;
+
+  // Parameters.
+  if (params.windowSize < 0 || params.windowSize > 1000)
+    throw Error("The window size w must be between 0 and 1000 (the paper uses 8).");
+  if (params.maxBorderLength < 3)
+    throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
+  const CloudScale scale = cloudScale(in.points);
+  const double diag = in.box.Diag();
+  double d = params.sphereDiameter;
+  if (!(d > 0)) d = defaultDiameter(scale);
+  if (!std::isfinite(d) || !(d > 0)) throw Error("The sphere diameter d must be a positive number.");
+  if (d > 0.5 * diag) {
+    throw Error("The sphere diameter d = " + fmt(d) + " is larger than the cloud (bounding box diagonal " +
+                fmt(diag) + "): no mesh with edges that long fits on it. Use a smaller d, e.g. the default " +
+                fmt(defaultDiameter(scale)) + ".");
+  }
+  double s = params.splatSize;
+  if (!(s > 0)) s = defaultSplatSize(scale, d);
+  if (!std::isfinite(s)) throw Error("The splat radius s must be a positive number.");
+  st.sphereDiameter = d;
+  st.splatSize = s;
+
+  const double area = scale.area;
+  const double expected = area / (d * d * kTriangleAreaFactor);
+  if (expected > double(params.maxOutputVertices)) {
+    const double dMin = std::sqrt(area / (double(params.maxOutputVertices) * kTriangleAreaFactor));
+    throw Error("The sphere diameter d = " + fmt(d) + " is too small for this cloud: the mesh would have about " +
+                fmt(expected) + " vertices (surface area about " + fmt(area) + " / (d²·√3/2)), more than the limit of " +
+                std::to_string(params.maxOutputVertices) + ". Use a larger d (at least about " + fmt(dMin) +
+                "; the default for this cloud is " + fmt(defaultDiameter(scale)) + ").");
+  }
+
+  // Sec. 4.1: box grid, normal filter, box normals.
+  progress.phase("Sphere packing: box grid", 2, 12);
+  lap();
+  BoxGrid grid;
+  grid.build(in.points, in.normals, d, &progress);
+  st.boxes = grid.boxCount();
+  st.boxesDTooLarge = grid.dTooLargeCount();
+  st.secondsBoxGrid = lap();
+
+  // Sec. 4.3: splat radii.
+  progress.phase("Sphere packing: splat sizes", 12, 20);
+  SplatSizeStats splatStats;
+  const std::vector<float> radius =
+      computeSplatRadii(in.points, in.normals, grid, s, params.localSplatSizes, &splatStats, &progress);
+  st.meanSplatRadius = splatStats.meanRadius;
+  st.splatsUnbounded = splatStats.unbounded;
+  st.splatsClamped = splatStats.clamped;
+  st.secondsSplats = lap();
+  double maxRadius = 0;
+  for (float r : radius) maxRadius = std::max(maxRadius, double(r));
+
+  // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
+  progress.phase("Sphere packing: starting vertices", 20, 21);
+  PointGrid pg;
+  pg.build(in.points, d);
+  vcg::Point3d s1, s2;
+  std::uint32_t splat1 = 0, splat2 = 0;
+  if (params.useStartPoints) {
+    for (const auto& q : params.startPoint)
+      if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
+        throw Error("The starting points must have finite coordinates.");
+    projectOntoClosestSplat(params.startPoint[0], in, radius, pg, maxRadius, s1, splat1);
+    projectOntoClosestSplat(params.startPoint[1], in, radius, pg, maxRadius, s2, splat2);
+    const double dist = (s1 - s2).Norm();
+    if (dist < d || dist > 2 * d)
+      throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
+                  " apart; they must be between d = " + fmt(d) + " and 2d = " + fmt(2 * d) +
+                  " apart (paper, section 3.3). Move them, or let the filter choose them.");
+  } else {
+    // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
+    // in turn (isolated ones skipped: fewer than 3 other points within d), s1 on its own splat,
+    // s2 the projection of a point 1.5·d away in s1's tangent plane, 12 directions tried.
+    std::vector<std::uint32_t> order(in.points.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    const size_t tries = std::min<size_t>(order.size(), 64);
+    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(tries), order.end(),
+                      [&](std::uint32_t a, std::uint32_t b) {
+                        return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2] : a < b;
+                      });
+    bool found = false;
+    for (size_t t = 0; t < tries && !found; ++t) {
+      const std::uint32_t i = order[t];
+      int around = 0;
+      pg.forEachInBall(in.points[i], d, [&](int, double) { ++around; });
+      if (around < 4) continue;
+      vcg::Point3d e1, e2;
+      tangentFrame(in.normals[i], e1, e2);
+      for (int k = 0; k < 12 && !found; ++k) {
+        const double phi = 2 * 3.14159265358979323846 * k / 12;
+        const vcg::Point3d target = in.points[i] + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+        vcg::Point3d q;
+        std::uint32_t sq = 0;
+        if (!projectOntoClosestSplat(target, in, radius, pg, maxRadius, q, sq)) continue;
+        const double dist = (q - in.points[i]).Norm();
+        if (dist >= d && dist <= 2 * d) {
+          s1 = in.points[i];
+          splat1 = i;
+          s2 = q;
+          splat2 = sq;
+          found = true;
+        }
+      }
+    }
+    if (!found)
+      throw Error("Could not place two starting vertices between d and 2d apart near the top of the cloud: d = " +
+                  fmt(d) + " is probably too large or the splats too small (s = " + fmt(s) +
+                  "). Give the starting points by hand or change d.");
+  }
+
+  // Sec. 3.4–3.6: disk growing.
+  progress.phase("Sphere packing: growing", 21, 92);
+  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+  growth.start(s1, splat1, s2, splat2);
+  growth.run();
+  const BorderGraph& g = growth.graph();
+  st.secondsGrowth = lap();
+
+  // Sec. 3.7: triangulate the regions.
+  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+  EdgeSet edges(g.edgeCount() * 2 + 16);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
+    for (int k = 0; k < g.degree(v); ++k)
+      if (v < g.neighbour(v, k)) edges.insert(v, g.neighbour(v, k));
+  std::vector<Triangle> faces;
+  faces.reserve(2 * g.vertexCount() + 16);
+  const RegionStats rs = triangulateRegions(g.borders(), g.positions(), g.normals(), params.maxBorderLength, edges, faces);
+  st.holes = rs.holes;
+  st.longestBorder = rs.longestBorder;
+
+  // Output: referenced vertices only, box normals, Q_t per face.
+  progress.phase("Sphere packing: writing the mesh", 97, 100);
+  std::vector<std::int32_t> remap(g.vertexCount(), -1);
+  std::vector<std::uint32_t> used;
+  used.reserve(g.vertexCount());
+  for (const auto& f : faces)
+    for (std::uint32_t v : f)
+      if (remap[v] < 0) {
+        remap[v] = static_cast<std::int32_t>(used.size());
+        used.push_back(v);
+      }
+  // Deterministic vertex order: by the order of creation.
+  std::sort(used.begin(), used.end());
+  for (size_t i = 0; i < used.size(); ++i) remap[used[i]] = static_cast<std::int32_t>(i);
+
+  {
+    size_t unreached = 0;
+    for (std::uint32_t i = 0; i < in.points.size(); ++i) {
+      bool any = false;
+      growth.lists().forEach(i, [&](std::uint32_t) { any = true; });
+      unreached += any ? 0 : 1;
+    }
+    st.unreachedPoints = unreached;
+  }
+
+  if (!faces.empty()) {
+    auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
+    for (size_t i = 0; i < used.size(); ++i, ++vi) {
+      vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
+      vi->N() = CMeshO::CoordType::Construct(g.normal(used[i]));
+    }
+    out.face.EnableQuality();
+    auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, faces.size());
+    double qsum = 0, minEdge = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < faces.size(); ++k, ++fi) {
+      const auto& f = faces[k];
+      for (int j = 0; j < 3; ++j) fi->V(j) = &out.vert[size_t(remap[f[j]])];
+      const vcg::Point3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
+      const double l1 = (b - a).SquaredNorm(), l2 = (c - b).SquaredNorm(), l3 = (a - c).SquaredNorm();
+      const double area2 = ((b - a) ^ (c - a)).Norm();
+      const double q = (l1 + l2 + l3) > 0 ? 2 * std::sqrt(3.0) * area2 / (l1 + l2 + l3) : 0;
+      fi->Q() = static_cast<CMeshO::ScalarType>(q);
+      qsum += q;
+      minEdge = std::min(minEdge, std::sqrt(std::min(l1, std::min(l2, l3))));
+    }
+    st.qualityAvg = qsum / double(faces.size());
+    st.smallestEdge = minEdge;
+    const MeshTopology topo = measureTopology(out);
+    st.nonManifoldVertices = topo.nonManifoldVertices;
+    st.nonManifoldEdges = topo.nonManifoldEdges;
+    st.boundaryLoops = topo.boundaryLoops;
+  }
+  st.vertices = used.size();
+  st.faces = faces.size();
+
+  if (st.boxesDTooLarge > 0)
+    st.warnings.push_back("In " + std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) +
+                          " boxes no direction agrees with all point normals within distance d: d = " + fmt(d) +
+                          " looks too large for this cloud (thin parts, or normals that are noisy or not "
+                          "consistently oriented), so a manifold result is not guaranteed (paper, section 4.1). "
+                          "Try a smaller d, or re-orient the normals.");
+  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0)
+    st.warnings.push_back("The mesh is not manifold (" + std::to_string(st.nonManifoldVertices) + " vertices, " +
+                          std::to_string(st.nonManifoldEdges) + " edges): the noise of the cloud is probably larger "
+                          "than d/2 (paper, section 5.3), or d is too large for its thin parts. Try a larger d "
+                          "for noise, a smaller d for thin parts.");
+  if (st.unreachedPoints * 100 > in.points.size())
+    st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
+                          " % of the points have no vertex within d: the cloud has parts not connected to the "
+                          "starting vertices, or the splats do not cover the surface there (increase the splat "
+                          "radius s), or the growth was stopped by a defect.");
+  if (faces.empty())
+    throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
+                " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
+                "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
+
+  st.secondsTriangulation = lap();
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 } // namespace spherepack

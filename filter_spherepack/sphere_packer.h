@@ -4,6 +4,12 @@
 //
 // One entry point, in the manner of vcglib's IsotropicRemeshing: a Params struct with defaults, a
 // Stat struct of counters, and build(). Working state (grids, queues, borders) stays inside.
+//
+// The parts, one header each in common/include/growth/: box_grid.h (sec. 4.1), splats.h (sec. 3.2,
+// 4.3), candidates.h (fig. 4c, sec. 4.4), borders.h (sec. 3.4, 3.5, 4.2), crossing.h (sec. 3.6),
+// region_triangulation.h (sec. 3.7), vertex_grid.h (the vertex look-ups of sec. 3.6 and 4.4),
+// bucket_queue.h (one FIFO per priority level, sec. 4.4). This file holds the initialization
+// (sec. 3.3) and the growth loop (sec. 3.4–3.6) that tie them together.
 #include <vcg/space/point3.h>
 #include <cstring> // wrap/callback.h uses strcpy without including <cstring>
 #include <wrap/callback.h>
@@ -18,28 +24,67 @@ namespace spherepack {
 
 struct Params {
   double sphereDiameter = 0;     // d, absolute; <= 0: derived from the cloud's mean spacing
-  double splatSize = 0;          // initial (global) splat radius s, absolute; <= 0: derived
+  double splatSize = 0;          // initial (global) splat radius s, absolute; <= 0: derived from d
   bool localSplatSizes = true;   // sec. 4.3 per-point splat radii (off: the global s everywhere)
   int windowSize = 8;            // w, sec. 4.2
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
   vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
+                                 // others by brute force (O(V²)); a violation throws std::logic_error
 };
+
+// The scale of a cloud, from which the defaults are derived.
+struct CloudScale {
+  double spacing = 0;        // mean nearest-neighbour distance (growth::meanSpacing)
+  double area = 0;           // estimated surface area (occupied cells of side 6·spacing)
+  double areaSpacing = 0;    // sqrt(area / points): the side of the area each point stands for
+};
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points);
+
+// Defaults. d = 7 × the mean spacing: the paper asks for d >= 2ν (noise ν, sec. 5.3); 7 spacings
+// keep the merged Stanford bunny scans (normals off by > 40° on 1% of the points, points up to
+// 2.6 spacings off the surface) manifold, and give ~0.08·n vertices for n points.
+// s = 1.3 × sqrt(area per point), at most d: large enough to cover the surface (the Voronoi cells
+// of the points have that area; random samplings need ~2.6 spacings, scans ~1.9), small enough
+// that disks tilted by noisy normals do not reach far off the surface (sec. 4.3, 5.2).
+constexpr double kDefaultDiameterPerSpacing = 7.0;
+constexpr double kDefaultSplatPerAreaSpacing = 1.3;
+double defaultDiameter(const CloudScale& scale);
+double defaultSplatSize(const CloudScale& scale, double d);
 
 struct Stat {
   size_t inputPoints = 0;
   size_t duplicatesDropped = 0;
   double sphereDiameter = 0;     // d actually used
   double splatSize = 0;          // s actually used
-  size_t vertices = 0;
+  double meanSplatRadius = 0;    // mean of the per-point radii (= s with local sizes off)
+  size_t splatsUnbounded = 0;    // local sizes: points without a closed Delaunay fan (kept s)
+  size_t splatsClamped = 0;      // local sizes: points whose Voronoi radius exceeded s (kept s)
+  size_t vertices = 0;           // output vertices
   size_t faces = 0;
-  size_t holes = 0;              // regions left open (border longer than maxBorderLength)
+  size_t holes = 0;              // regions left open (border longer than maxBorderLength, or not
+                                 // triangulable)
+  size_t longestBorder = 0;      // border edges of the longest region
   size_t boxes = 0;
   size_t boxesDTooLarge = 0;     // boxes whose box normal has a negative product with a point normal
+  size_t candidates = 0;         // candidates queued (including re-queued ones)
+  size_t requeued = 0;           // stale candidates moved to their new level (sec. 3.6)
+  size_t rejectedTooClose = 0;   // candidates closer than d to a vertex (sec. 3.6)
+  size_t rejectedCrossing = 0;   // candidates whose edges crossed existing edges (sec. 3.6, fig. 4b)
+  size_t rejectedInconsistent = 0; // candidates whose edges fall into other corners seen along n
+  size_t unreachedPoints = 0;    // input points with no vertex within d of their splat
+  size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan
+  size_t nonManifoldEdges = 0;   // output edges with more than two faces
+  size_t boundaryLoops = 0;      // boundary loops of the output (holes, including the ∂max ones)
   double smallestEdge = 0;
   double qualityAvg = 0;         // Q_avg of the output
   double seconds = 0;
+  double secondsBoxGrid = 0;     // of which: box grid and box normals (sec. 4.1)
+  double secondsSplats = 0;      //           splat radii (sec. 4.3)
+  double secondsGrowth = 0;      //           initialization and disk growing (sec. 3.3–3.6)
+  double secondsTriangulation = 0; //         regions and output (sec. 3.7)
   std::vector<std::string> warnings;
 };
 

@@ -242,3 +242,26 @@ TEST(CandidatePriority, LevelsFollowSection35) {
   EXPECT_EQ(growth::CandidatePriority::levels(0), 3);          // w = 0: breadth-first after the start
   EXPECT_EQ(growth::CandidatePriority::level(2, 2, 0, 0), 2);
 }
+
+TEST(Borders, GapSeenAlongAnotherNormal) {
+  // Centre with neighbours at 0°, 90°, 180° (tangent plane z = 0). A direction at 45° lies in the
+  // gap (0°, 90°); seen along a normal tilted towards it nothing changes, but a steep target right
+  // above the centre, slightly to one side, flips to another gap when the projection axis tilts.
+  BorderGraph g;
+  const auto c = g.addVertex(Point3d(0, 0, 0), kUp);
+  for (const Point3d& p : {Point3d(1, 0, 0), Point3d(0, 1, 0), Point3d(-1, 0, 0)}) {
+    const auto v = g.addVertex(p, kUp);
+    ASSERT_TRUE(g.addEdge(c, g.gapOf(c, p), v, -1));
+  }
+  const Point3d flat(1, 1, 0);
+  const int gap = g.gapOf(c, flat);
+  EXPECT_TRUE(g.gapContains(c, gap, flat, kUp));
+  EXPECT_TRUE(g.gapContains(c, gap, flat, Point3d(0.2, 0.1, 1).Normalize()));
+  const Point3d steep(0.05, 0.05, 1); // nearly along the normal, at 45° in the plane
+  const int g2 = g.gapOf(c, steep);
+  EXPECT_EQ(g2, gap);
+  EXPECT_FALSE(g.gapContains(c, g2, steep, Point3d(0.3, 0, 1).Normalize())); // now seen at ~180°
+  // A vertex with one edge has one gap all around: it holds every direction.
+  ASSERT_EQ(g.degree(1), 1);
+  EXPECT_TRUE(g.gapContains(1, 0, Point3d(5, -3, 2), Point3d(1, 0, 0)));
+}

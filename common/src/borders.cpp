@@ -71,6 +71,19 @@ int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {
   return best;
 }
 
+bool BorderGraph::gapContains(std::uint32_t v, int gap, const vcg::Point3d& target, const vcg::Point3d& n) const {
+  const Rotation& r = rot_[v];
+  if (r.degree < 2) return true;
+  vcg::Point3d e1, e2;
+  tangentFrame(n, e1, e2);
+  auto angle = [&](const vcg::Point3d& x) {
+    const vcg::Point3d t = x - pos_[v];
+    return std::atan2(t * e2, t * e1);
+  };
+  const double a0 = angle(pos_[r.nb[gap]]), a1 = angle(pos_[r.nb[(gap + 1) % r.degree]]);
+  return ccw(a0, angle(target)) < ccw(a0, a1);
+}
+
 HalfEdge BorderGraph::next(HalfEdge h) const {
   const std::uint32_t u = h.v, v = rot_[u].nb[h.slot];
   const int j = slotOf(v, u);

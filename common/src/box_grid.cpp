@@ -12,7 +12,34 @@ namespace growth {
 // ---------------------------------------------------------------------------------------------
 // Sphere sampling
 
-SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 10))) {}
+SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8))) {
+  size_t total = 0;
+  for (int depth = 0; depth <= level_; ++depth) {
+    offset_.push_back(total);
+    total += size_t(6) << (2 * depth);
+  }
+  centre_.resize(total);
+  cosAlpha_.resize(total);
+  sinAlpha_.resize(total);
+  for (int depth = 0; depth <= level_; ++depth) {
+    const std::uint32_t m = std::uint32_t(1) << depth;
+    const double size = 2.0 / double(m);
+    for (int face = 0; face < 6; ++face)
+      for (std::uint32_t y = 0; y < m; ++y)
+        for (std::uint32_t x = 0; x < m; ++x) {
+          const double u0 = -1.0 + double(x) * size, v0 = -1.0 + double(y) * size;
+          const vcg::Point3d c = faceDirection(face, u0 + 0.5 * size, v0 + 0.5 * size);
+          double minCos = 1;
+          if (depth < level_)
+            for (int k = 0; k < 4; ++k)
+              minCos = std::min(minCos, faceDirection(face, u0 + (k & 1) * size, v0 + (k >> 1) * size) * c);
+          const size_t i = cellIndex(face, depth, x, y);
+          centre_[i] = c;
+          cosAlpha_[i] = minCos;
+          sinAlpha_[i] = std::sqrt(std::max(0.0, 1.0 - minCos * minCos));
+        }
+  }
+}
 
 vcg::Point3d SphereSampling::faceDirection(int face, double u, double v) const {
   const int axis = face / 2;
@@ -69,46 +96,86 @@ vcg::Point3d SphereSampling::maxMinDirectionBruteForce(const std::vector<vcg::Po
 vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
                                              size_t count, double* minDotOut) const {
   // Best-first branch and bound over the quadtree of each cube face. For a cell with centre
-  // direction c, every direction n of the cell satisfies |n - c| <= chord (the largest distance
-  // from c to the directions of the cell's corners; the angle to c is quasi-convex over the
-  // square, so its maximum is at a corner), and min_k <n_k, n> <= min_k <n_k, c> + |n - c|.
-  // So value(c) + chord bounds every sample of the cell, and the search is exact over S_F.
+  // direction c, every direction n of the cell is within the angle α of c (the largest angle
+  // from c to the cell's corners: the angle to c is quasi-convex over the square, so its maximum
+  // is at a corner). With θ = angle(n_k, c) for the normal n_k worst at c (<n_k, c> = value(c)),
+  // angle(n_k, n) >= θ − α, hence min_k <n_k, n> <= cos(max(0, θ − α)) for every n of the cell:
+  // a bound that is tight near the optimum, so few cells per level survive. Exact over S_F.
   struct Cell {
     double bound;
-    double value;
     int face, depth;
     std::uint32_t x, y;
     bool operator<(const Cell& o) const { return bound < o.bound; }
   };
-  std::priority_queue<Cell> heap;
+  thread_local std::vector<Cell> heap;
+  heap.clear();
   double best = -std::numeric_limits<double>::infinity();
   vcg::Point3d bestDir(0, 0, 1);
-
-  auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
-    const double cellSize = 2.0 / double(std::uint32_t(1) << depth);
-    const double u0 = -1.0 + double(x) * cellSize, v0 = -1.0 + double(y) * cellSize;
-    const vcg::Point3d c = faceDirection(face, u0 + 0.5 * cellSize, v0 + 0.5 * cellSize);
-    double chord = 0;
-    if (depth < level_) {
-      for (int k = 0; k < 4; ++k) {
-        const vcg::Point3d corner = faceDirection(face, u0 + (k & 1) * cellSize, v0 + (k >> 1) * cellSize);
-        chord = std::max(chord, (corner - c).Norm());
+  // The normal that decided the last evaluation is tried first: it usually decides the next one
+  // too, so the cut-off is hit after a few products.
+  size_t hint = 0;
+  auto value = [&](const vcg::Point3d& n, double cutoff) {
+    const vcg::Point3d& q0 = normals[idx[hint]];
+    double m = q0[0] * n[0] + q0[1] * n[1] + q0[2] * n[2];
+    if (m <= cutoff) return m;
+    for (size_t k = 0; k < count; ++k) {
+      const vcg::Point3d& q = normals[idx[k]];
+      const double s = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
+      if (s < m) {
+        m = s;
+        hint = k;
+        if (m <= cutoff) return m;
       }
     }
-    const double value = minDot(normals, idx, count, c, best - chord);
-    if (value + chord <= best) return; // cannot beat the best sample found so far
-    if (depth == level_) {
-      best = value;
+    return m;
+  };
+
+  // A good first guess: the leaf holding the direction of the summed normals.
+  {
+    vcg::Point3d m(0, 0, 0);
+    for (size_t k = 0; k < count; ++k) m += normals[idx[k]];
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+      if (std::abs(m[a]) > std::abs(m[axis])) axis = a;
+    if (std::abs(m[axis]) > 0) {
+      const int face = 2 * axis + (m[axis] > 0 ? 0 : 1);
+      const double inv = 1.0 / std::abs(m[axis]);
+      const std::uint32_t cells = std::uint32_t(1) << level_;
+      auto leaf = [&](double t) {
+        const double f = (t * inv + 1.0) * 0.5 * double(cells);
+        return static_cast<std::uint32_t>(std::min(double(cells - 1), std::max(0.0, std::floor(f))));
+      };
+      const vcg::Point3d& c = centre_[cellIndex(face, level_, leaf(m[(axis + 1) % 3]), leaf(m[(axis + 2) % 3]))];
+      best = value(c, -std::numeric_limits<double>::infinity());
       bestDir = c;
+    }
+  }
+
+  auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
+    const size_t i = cellIndex(face, depth, x, y);
+    const vcg::Point3d& c = centre_[i];
+    const double ca = cosAlpha_[i], sa = sinAlpha_[i];
+    // value(c) <= cutoff = cos(min(π, acos(best) + α)) means cos(max(0, θ − α)) <= best.
+    double cutoff;
+    if (best >= 1) cutoff = 2.0;
+    else if (best < -ca) cutoff = -1.0; // acos(best) + α > π
+    else cutoff = best * ca - std::sqrt(std::max(0.0, 1 - best * best)) * sa;
+    const double v = value(c, cutoff);
+    if (v <= cutoff) return;
+    if (depth == level_) {
+      if (v > best) best = v, bestDir = c;
       return;
     }
-    heap.push(Cell{value + chord, value, face, depth, x, y});
+    const double bound = v >= ca ? 1.0 : v * ca + std::sqrt(std::max(0.0, 1 - v * v)) * sa; // cos(θ − α)
+    heap.push_back(Cell{bound, face, depth, x, y});
+    std::push_heap(heap.begin(), heap.end());
   };
 
   for (int f = 0; f < 6; ++f) push(f, 0, 0, 0);
   while (!heap.empty()) {
-    const Cell cell = heap.top();
-    heap.pop();
+    std::pop_heap(heap.begin(), heap.end());
+    const Cell cell = heap.back();
+    heap.pop_back();
     if (cell.bound <= best) break; // best-first: nothing left can improve
     for (int k = 0; k < 4; ++k)
       push(cell.face, cell.depth + 1, 2 * cell.x + std::uint32_t(k & 1), 2 * cell.y + std::uint32_t(k >> 1));

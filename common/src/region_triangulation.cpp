@@ -56,14 +56,34 @@ std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vecto
 bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector<vcg::Point3d>& pos,
                      const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
   std::vector<std::uint32_t> loop = loopIn;
-  std::vector<double> angle(loop.size());
+  std::vector<double> angle;
   auto angleAt = [&](size_t i) {
     const size_t n = loop.size();
     return innerAngle(pos[loop[(i + n - 1) % n]], pos[loop[i]], pos[loop[(i + 1) % n]], nrm[loop[i]]);
   };
+  // Spikes u→v→u enclose no area (a dangling edge, or what is left of a lobe of a region pinched
+  // at u once that lobe is filled): drop v and the second u, without a face.
+  auto removeSpikes = [&]() {
+    bool removed = true;
+    while (removed && loop.size() >= 3) {
+      removed = false;
+      const size_t n = loop.size();
+      for (size_t i = 0; i < n; ++i) {
+        if (loop[(i + n - 1) % n] != loop[(i + 1) % n]) continue;
+        const size_t j = (i + 1) % n; // the second u
+        loop.erase(loop.begin() + std::ptrdiff_t(std::max(i, j)));
+        loop.erase(loop.begin() + std::ptrdiff_t(std::min(i, j)));
+        removed = true;
+        break;
+      }
+    }
+  };
+  removeSpikes();
+  angle.resize(loop.size());
   for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(i);
 
-  // Is some other loop vertex inside the ear (u, v, w) at index i, projected on v's plane?
+  // Is a vertex of the loop (other than u, v, w themselves, wherever they repeat) inside or on
+  // the ear (u, v, w) at index i, projected on v's plane?
   auto earContainsVertex = [&](size_t i) {
     const size_t n = loop.size();
     const std::uint32_t u = loop[(i + n - 1) % n], v = loop[i], w = loop[(i + 1) % n];
@@ -76,7 +96,7 @@ bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector
       if (x == u || x == v || x == w) continue;
       double px, py;
       f.project(pos[x], px, py);
-      // Counter-clockwise triangle (u, v=origin, w): inside or on it when all three >= 0.
+      // Counter-clockwise triangle (u, v = origin, w): inside or on it when all three >= 0.
       if (orient2(ux, uy, 0, 0, px, py) >= 0 && orient2(0, 0, wx, wy, px, py) >= 0 &&
           orient2(wx, wy, ux, uy, px, py) >= 0)
         return true;
@@ -84,18 +104,20 @@ bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector
     return false;
   };
 
+  std::vector<size_t> order;
   while (loop.size() > 3) {
     const size_t n = loop.size();
     // Smallest angle first; the strict ear rules first, then the relaxed ones.
-    std::vector<size_t> order(n);
+    order.resize(n);
     for (size_t i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return angle[a] != angle[b] ? angle[a] < angle[b] : a < b; });
+    std::sort(order.begin(), order.end(),
+              [&](size_t a, size_t b) { return angle[a] != angle[b] ? angle[a] < angle[b] : a < b; });
     size_t pick = n;
     for (int strict = 1; strict >= 0 && pick == n; --strict)
       for (size_t i : order) {
         if (!(angle[i] < kPi)) break;
         const std::uint32_t u = loop[(i + n - 1) % n], w = loop[(i + 1) % n];
-        if (edges.contains(u, w)) continue;
+        if (u == w || edges.contains(u, w)) continue;
         if (strict && earContainsVertex(i)) continue;
         pick = i;
         break;
@@ -105,13 +127,21 @@ bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector
     faces.push_back(Triangle{u, v, w});
     edges.insert(u, w);
     loop.erase(loop.begin() + std::ptrdiff_t(pick));
-    angle.erase(angle.begin() + std::ptrdiff_t(pick));
-    const size_t k = loop.size();
-    const size_t iu = (pick + k - 1) % k, iw = pick % k;
-    angle[iu] = angleAt(iu);
-    angle[iw] = angleAt(iw);
+    const size_t before = loop.size();
+    removeSpikes();
+    if (loop.size() != before) {
+      angle.resize(loop.size());
+      for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(i);
+    } else {
+      angle.erase(angle.begin() + std::ptrdiff_t(pick));
+      const size_t k = loop.size();
+      const size_t iu = (pick + k - 1) % k, iw = pick % k;
+      angle[iu] = angleAt(iu);
+      angle[iw] = angleAt(iw);
+    }
   }
-  if (loop.size() == 3) faces.push_back(Triangle{loop[0], loop[1], loop[2]});
+  if (loop.size() == 3 && loop[0] != loop[1] && loop[1] != loop[2] && loop[0] != loop[2])
+    faces.push_back(Triangle{loop[0], loop[1], loop[2]});
   return true;
 }
 
@@ -127,13 +157,14 @@ RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& bo
       ++st.longBorders;
       continue;
     }
-    bool complete = true;
-    for (const auto& loop : splitAtRepeatedVertices(b)) {
-      if (loop.size() < 3) continue; // a spike: the edge has the region on both sides
-      if (!triangulateLoop(loop, pos, nrm, edges, faces)) complete = false;
+    bool ok = true;
+    for (const auto& loop : splitAtRepeatedVertices(b))
+      if (loop.size() >= 3 && !triangulateLoop(loop, pos, nrm, edges, faces)) ok = false;
+    if (ok) {
+      ++st.triangulated;
+    } else {
+      ++st.holes;
     }
-    if (complete) ++st.triangulated;
-    else ++st.holes;
   }
   return st;
 }

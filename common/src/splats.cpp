@@ -148,8 +148,9 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
       double r = -1;
       if (box >= 0) {
         nb.clear();
+        const double reach2 = 4 * globalRadius * globalRadius;
         for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-          if (*it != i) nb.push_back(points[*it]);
+          if (*it != i && (points[*it] - points[i]).SquaredNorm() <= reach2) nb.push_back(points[*it]);
         r = localSplatRadius(points[i], normals[i], nb);
       }
       if (r < 0) {

@@ -63,6 +63,11 @@ public:
   // outgoing half-edge; 0 for a vertex with one edge (one gap all around); -1 for a lone vertex.
   int gapOf(std::uint32_t v, const vcg::Point3d& target) const;
 
+  // Whether the corner `gap` of v (as returned by gapOf) contains the direction towards `target`
+  // when the edges are projected onto the plane orthogonal to another unit normal `n` instead of
+  // normal(v). True for vertices with fewer than two edges (one gap all around).
+  bool gapContains(std::uint32_t v, int gap, const vcg::Point3d& target, const vcg::Point3d& n) const;
+
   std::uint32_t target(HalfEdge h) const { return rot_[h.v].nb[h.slot]; }
   HalfEdge next(HalfEdge h) const;
   HalfEdge prev(HalfEdge h) const;

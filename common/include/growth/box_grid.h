@@ -160,7 +160,15 @@ public:
 
 private:
   vcg::Point3d faceDirection(int face, double u, double v) const;
+  size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
+    return offset_[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
+  }
   int level_;
+  // Per quadtree cell of every depth: centre direction and cos/sin of the largest angle from the
+  // centre to the cell's corners (precomputed once: the search then needs no trigonometry).
+  std::vector<size_t> offset_;
+  std::vector<vcg::Point3d> centre_;
+  std::vector<double> cosAlpha_, sinAlpha_;
 };
 
 // Sec. 4.1 normal filter on one box: returns how many of idx[0..count) remain (kept in order at

@@ -13,9 +13,10 @@
 //
 // Where the paper is silent we add the checks that keep the output a manifold (they never fire on
 // a region that is a convex polygon in projection, the usual case of length ~4, sec. 3.7):
-//  - a border that passes through a vertex twice (a region pinched at that vertex, or a dangling
-//    spike) is first split there into simple loops, each triangulated on its own; loops shorter
-//    than 3 (spikes) give no face;
+//  - a border that passes through a vertex twice (a region pinched at that vertex, a dangling
+//    spike, or borders twisted where noise defeats the projections) is first split there into
+//    simple loops, each triangulated on its own; loops shorter than 3 (spikes) give no face, and
+//    spikes u→v→u met while cutting are dropped the same way;
 //  - an ear is cut only when its angle is below 180°, its diagonal u–w is not an edge yet (of G or
 //    of a triangle already made) and no other vertex of the loop lies inside it in projection;
 //    when no ear qualifies, the smallest angle below 180° whose diagonal is new is cut anyway;

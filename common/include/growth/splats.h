@@ -75,7 +75,10 @@ struct SplatSizeStats {
 };
 
 // Splat radius of every point: the global s, or (local) min(s, local Voronoi radius) from the
-// points of the box containing each point.
+// points of the box containing each point. Of those, only the points within 2s of p are handed to
+// localSplatRadius: a farther point can only be a Delaunay neighbour of p when p's Voronoi cell
+// reaches beyond s, and then the radius is clamped to s anyway; so the result is the same, at a
+// cost that does not grow with the box (d) but with s.
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local,
                                      SplatSizeStats* stats = nullptr, Progress* progress = nullptr);

@@ -1,0 +1,148 @@
+// spherepack_run: runs the sphere-packing engine outside MeshLab and prints its statistics.
+//
+//   spherepack_run cloud.ply [options]                  a PLY point cloud with normals
+//   spherepack_run --shape sphere|torus|patch --points N [--seed S] [--nonuniform] [--noise NU]
+//                  [--outliers FRACTION] [options]      a generated cloud
+// options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
+//          --global-splats  --w W  --border B  --repeat R (best of R runs)
+//          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
+//          -o out.ply (save the mesh)
+// Prints one "key: value" per line. Time is the engine's own (Stat::seconds).
+#include "sphere_packer.h"
+
+#include <growth/cloud_generator.h>
+#include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+
+#include <common/ml_mesh_type.h>
+#include <wrap/io_trimesh/export_ply.h>
+#include <wrap/io_trimesh/import_ply.h>
+
+#include <sys/resource.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+static void usage() {
+  std::fprintf(stderr,
+               "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch --points N [--seed S] [--nonuniform]\n"
+               "                      [--noise NU] [--outliers FRACTION]\n"
+               "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B]\n"
+               "       [--repeat R] [--measure] [--points-only] [-o out.ply]\n");
+}
+
+static long peakRssKiB() {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss;
+}
+
+int main(int argc, char** argv) {
+  std::string in, out;
+  growth::CloudSpec spec;
+  bool generated = false, measure = false, pointsOnly = false;
+  double dSpacings = 0, sOverD = 0;
+  int repeat = 1;
+  growth::spherepack::Params params;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> const char* {
+        if (i + 1 >= argc) throw growth::Error("missing value after " + a);
+        return argv[++i];
+      };
+      if (a == "--shape") spec.shape = growth::parseShape(value()), generated = true;
+      else if (a == "--points") spec.count = std::strtoull(value(), nullptr, 10);
+      else if (a == "--seed") spec.seed = std::strtoull(value(), nullptr, 10);
+      else if (a == "--nonuniform") spec.nonUniform = true;
+      else if (a == "--noise") spec.noiseBound = std::atof(value());
+      else if (a == "--outliers") spec.outlierFraction = std::atof(value());
+      else if (a == "--d") params.sphereDiameter = std::atof(value());
+      else if (a == "--d-spacings") dSpacings = std::atof(value());
+      else if (a == "--s") params.splatSize = std::atof(value());
+      else if (a == "--s-d") sOverD = std::atof(value());
+      else if (a == "--global-splats") params.localSplatSizes = false;
+      else if (a == "--w") params.windowSize = std::atoi(value());
+      else if (a == "--border") params.maxBorderLength = std::atoi(value());
+      else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
+      else if (a == "--measure") measure = true;
+      else if (a == "--points-only") pointsOnly = true;
+      else if (a == "-o") out = value();
+      else if (a == "-h" || a == "--help") { usage(); return 0; }
+      else if (!a.empty() && a[0] != '-' && in.empty()) in = a;
+      else throw growth::Error("unknown argument " + a);
+    }
+    if (in.empty() && !generated) throw growth::Error("no input (a PLY file or --shape)");
+
+    CMeshO cloud;
+    if (generated) {
+      growth::toMesh(growth::generateCloud(spec), cloud);
+    } else {
+      int mask = 0;
+      const int err = vcg::tri::io::ImporterPLY<CMeshO>::Open(cloud, in.c_str(), mask);
+      if (err != 0 && vcg::tri::io::ImporterPLY<CMeshO>::ErrorCritical(err))
+        throw growth::Error(std::string("cannot read ") + in + ": " + vcg::tri::io::ImporterPLY<CMeshO>::ErrorMsg(err));
+      if (pointsOnly) {
+        for (auto& f : cloud.face) f.SetD();
+        cloud.fn = 0;
+        cloud.face.clear();
+      }
+    }
+    if (dSpacings > 0 || sOverD > 0) {
+      growth::CloudCheck check;
+      check.allowFaces = true;
+      const auto scale = growth::spherepack::cloudScale(growth::readCloud(cloud, check).points);
+      if (dSpacings > 0) params.sphereDiameter = dSpacings * scale.spacing;
+      if (sOverD > 0) {
+        const double d = params.sphereDiameter > 0 ? params.sphereDiameter : growth::spherepack::defaultDiameter(scale);
+        params.splatSize = sOverD * d;
+      }
+    }
+
+    CMeshO mesh;
+    growth::spherepack::Stat st;
+    double best = 1e300;
+    for (int r = 0; r < repeat; ++r) {
+      growth::spherepack::build(cloud, mesh, params, st, nullptr);
+      best = std::min(best, st.seconds);
+    }
+    std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",
+                st.inputPoints, st.sphereDiameter, st.splatSize, st.meanSplatRadius, st.splatsUnbounded, st.splatsClamped);
+    std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nsmallest_edge: %.8g\nq_avg: %.5f\n",
+                st.vertices, st.faces, st.holes, st.longestBorder, st.smallestEdge, st.qualityAvg);
+    std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
+                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\nnon_manifold_vertices: %zu\n",
+                st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,
+                st.rejectedInconsistent, st.unreachedPoints, st.nonManifoldVertices);
+    std::printf("seconds_box_grid: %.4f\nseconds_splats: %.4f\nseconds_growth: %.4f\nseconds_triangulation: %.4f\n",
+                st.secondsBoxGrid, st.secondsSplats, st.secondsGrowth, st.secondsTriangulation);
+    std::printf("seconds: %.4f\nvertices_per_second: %.0f\npeak_rss_kib: %ld\nbytes_per_point_rss: %.1f\n", best,
+                double(st.vertices) / best, peakRssKiB(), 1024.0 * double(peakRssKiB()) / double(st.inputPoints));
+    for (const auto& w : st.warnings) std::printf("warning: %s\n", w.c_str());
+    if (measure) {
+      const growth::MeshMeasures m = growth::measure(mesh);
+      std::printf("e_avg: %.6g\ne_rms_percent: %.3f\ne_min: %.8g\nq_rms_percent: %.3f\nmin_vertex_distance: %.8g\n",
+                  m.edgeMean, m.edgeRmsPercent, m.edgeMin, m.qualityRmsPercent, m.minVertexDistance);
+      std::printf("boundary_edges: %zu\nboundary_loops: %zu\nnon_manifold_edges: %zu\nnon_manifold_vertices_measured: %zu\n"
+                  "inconsistent_edges: %zu\ncomponents: %zu\nunreferenced: %zu\neuler: %d\n",
+                  m.boundaryEdges, m.boundaryLoops, m.nonManifoldEdges, m.nonManifoldVertices, m.inconsistentEdges,
+                  m.components, m.unreferencedVertices, m.eulerCharacteristic);
+      if (generated) {
+        double worst = 0;
+        for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, vcg::Point3d::Construct(v.cP())));
+        std::printf("max_distance_to_shape: %.6g\n", worst);
+      }
+    }
+    if (!out.empty()) {
+      const int mask = vcg::tri::io::Mask::IOM_VERTNORMAL | vcg::tri::io::Mask::IOM_FACEQUALITY;
+      if (vcg::tri::io::ExporterPLY<CMeshO>::Save(mesh, out.c_str(), true, mask) != 0)
+        throw growth::Error("cannot write " + out);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "spherepack_run: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
