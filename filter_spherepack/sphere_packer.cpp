@@ -92,7 +92,7 @@ public:
     while (!queue_.empty()) {
       int popped = 0;
       const Candidate cd = queue_.pop(&popped);
-      if ((++pops & 1023) == 0)
+      if ((++pops & 127) == 0)
         progress_.update(std::min(0.99, double(graph_.vertexCount()) / double(expected_)));
 
       vcg::Point3d x;

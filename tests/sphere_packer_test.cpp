@@ -1,0 +1,475 @@
+// The sphere-packing mesher end to end (sections 3 and 4 of the paper; section 5.2 for the test
+// clouds): the guarantees on generated clouds, determinism, noise, open surfaces, bad input,
+// progress and cancel.
+#include "sphere_packer.h"
+
+#include <growth/cloud_generator.h>
+#include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+
+#include <common/ml_mesh_type.h>
+#include <vcg/complex/allocate.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+namespace sp = growth::spherepack;
+using vcg::Point3d;
+
+namespace {
+
+growth::CloudSpec sphereSpec() {
+  growth::CloudSpec s;
+  s.shape = growth::Shape::Sphere;
+  s.count = 10000; // sec. 5.2
+  s.seed = 1;
+  return s;
+}
+
+growth::CloudSpec torusSpec() {
+  growth::CloudSpec s;
+  s.shape = growth::Shape::Torus;
+  s.count = 60000; // sec. 5.2: R = 2, r = 1
+  s.seed = 1;
+  return s;
+}
+
+struct Run {
+  growth::CloudSpec spec;
+  CMeshO cloud, mesh;
+  sp::Params params;
+  sp::Stat stat;
+  growth::MeshMeasures m;
+};
+
+// Builds (once per distinct key) and measures.
+std::shared_ptr<Run> build(const std::string& key, const growth::CloudSpec& spec, const sp::Params& params) {
+  static std::map<std::string, std::shared_ptr<Run>> cache;
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  auto r = std::make_shared<Run>();
+  r->spec = spec;
+  r->params = params;
+  growth::toMesh(growth::generateCloud(spec), r->cloud);
+  sp::build(r->cloud, r->mesh, params, r->stat);
+  r->m = growth::measure(r->mesh);
+  cache[key] = r;
+  return r;
+}
+
+sp::Params paperParams() {
+  sp::Params p;
+  p.sphereDiameter = 0.1; // sec. 5.2
+  p.checkInvariants = true;
+  return p;
+}
+
+// The guarantees every closed-surface run must show.
+void expectClosedManifoldMesh(const Run& r, int euler) {
+  const double d = r.stat.sphereDiameter;
+  const auto& m = r.m;
+  EXPECT_GT(m.faces, 1000u);
+  // Every edge and every pair of vertices at least d apart (float storage: relative 1e-5).
+  EXPECT_GE(m.edgeMin, d * (1 - 1e-5));
+  EXPECT_GE(m.minVertexDistance, d * (1 - 1e-5));
+  // Manifold, consistently oriented, closed, one piece, of the right topology.
+  EXPECT_EQ(m.nonManifoldEdges, 0u);
+  EXPECT_EQ(m.nonManifoldVertices, 0u);
+  EXPECT_EQ(m.inconsistentEdges, 0u);
+  EXPECT_EQ(m.boundaryEdges, 0u);
+  EXPECT_EQ(m.components, 1u);
+  EXPECT_EQ(m.eulerCharacteristic, euler);
+  EXPECT_EQ(m.unreferencedVertices, 0u);
+  EXPECT_EQ(m.degenerateFaces, 0u);
+  EXPECT_EQ(m.duplicateFaces, 0u);
+  // Quality in the range the paper reports (Q_avg 0.945–0.958, E_RMS 11–16 %).
+  EXPECT_GE(m.qualityMean, 0.94);
+  EXPECT_LE(m.edgeRmsPercent, 16.0);
+  // Stat agrees with the mesh.
+  EXPECT_EQ(r.stat.vertices, m.vertices);
+  EXPECT_EQ(r.stat.faces, m.faces);
+  EXPECT_NEAR(r.stat.qualityAvg, m.qualityMean, 1e-5);
+  EXPECT_NEAR(r.stat.smallestEdge, m.edgeMin, 1e-5 * d);
+  EXPECT_EQ(r.stat.holes, 0u);
+  EXPECT_EQ(r.stat.nonManifoldVertices, 0u);
+  EXPECT_EQ(r.stat.boxesDTooLarge, 0u);
+  EXPECT_TRUE(r.stat.warnings.empty()) << r.stat.warnings.front();
+  // Every vertex on (or within 0.01 of) the true surface (sec. 5.2, covering splat size).
+  double worst = 0;
+  for (const auto& v : r.mesh.vert) worst = std::max(worst, growth::distanceToShape(r.spec, Point3d::Construct(v.cP())));
+  EXPECT_LE(worst, 0.01);
+}
+
+} // namespace
+
+TEST(SpherePacker, UnitSphereOfSection52) {
+  const auto r = build("sphere", sphereSpec(), paperParams());
+  expectClosedManifoldMesh(*r, 2);
+  // About area / (√3/2 · d²) vertices, a little less since edges are at least d.
+  EXPECT_GT(r->m.vertices, 1000u);
+  EXPECT_LT(r->m.vertices, size_t(4 * M_PI / (0.8660254 * 0.01)));
+}
+
+TEST(SpherePacker, TorusOfSection52) {
+  const auto r = build("torus", torusSpec(), paperParams());
+  expectClosedManifoldMesh(*r, 0); // genus 1
+}
+
+TEST(SpherePacker, FacesAreOrientedLikeTheNormalsAndCarryQt) {
+  const auto r = build("sphere", sphereSpec(), paperParams());
+  ASSERT_TRUE(r->mesh.face.IsQualityEnabled());
+  for (const auto& f : r->mesh.face) {
+    const Point3d a = Point3d::Construct(f.cP(0)), b = Point3d::Construct(f.cP(1)), c = Point3d::Construct(f.cP(2));
+    const Point3d n = (b - a) ^ (c - a);
+    // Outward like the sphere's normals, and like the vertex normals (box normals, sec. 4.1).
+    EXPECT_GT(n * (a + b + c), 0);
+    for (int k = 0; k < 3; ++k) EXPECT_GT(n * Point3d::Construct(f.cV(k)->cN()), 0);
+    EXPECT_NEAR(f.cQ(), growth::triangleQuality(a, b, c), 1e-5);
+  }
+  for (const auto& v : r->mesh.vert) {
+    EXPECT_NEAR(Point3d::Construct(v.cN()).Norm(), 1.0, 1e-5);
+    EXPECT_GT(Point3d::Construct(v.cN()) * Point3d::Construct(v.cP()).Normalize(), 0.95);
+  }
+}
+
+TEST(SpherePacker, SameInputSameOutput) {
+  const auto r = build("sphere", sphereSpec(), paperParams());
+  CMeshO again;
+  sp::Stat st;
+  sp::build(r->cloud, again, r->params, st);
+  ASSERT_EQ(again.vert.size(), r->mesh.vert.size());
+  ASSERT_EQ(again.face.size(), r->mesh.face.size());
+  for (size_t i = 0; i < again.vert.size(); ++i) EXPECT_EQ(again.vert[i].cP(), r->mesh.vert[i].cP());
+  for (size_t i = 0; i < again.face.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(vcg::tri::Index(again, again.face[i].cV(k)), vcg::tri::Index(r->mesh, r->mesh.face[i].cV(k)));
+}
+
+TEST(SpherePacker, ManifoldWithNoiseUpToAThirdOfD) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.noiseBound = 0.3 * 0.1; // sec. 5.3: each point moved by a random vector of length <= ν
+  const auto r = build("sphere-noise-0.3d", spec, paperParams());
+  const auto& m = r->m;
+  EXPECT_EQ(m.nonManifoldEdges, 0u);
+  EXPECT_EQ(m.nonManifoldVertices, 0u);
+  EXPECT_EQ(m.inconsistentEdges, 0u);
+  EXPECT_EQ(m.boundaryEdges, 0u);
+  EXPECT_EQ(m.eulerCharacteristic, 2);
+  EXPECT_GE(m.edgeMin, 0.1 * (1 - 1e-5));
+  EXPECT_GE(m.minVertexDistance, 0.1 * (1 - 1e-5));
+}
+
+TEST(SpherePacker, NoiseFarBeyondHalfDGivesAWarningNotACrash) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.noiseBound = 1.0 * 0.1; // 2ν = 2d, far beyond the paper's d >= 2ν
+  const auto r = build("sphere-noise-1d", spec, paperParams());
+  ASSERT_FALSE(r->stat.warnings.empty());
+  bool mentionsNoise = false;
+  for (const auto& w : r->stat.warnings) mentionsNoise = mentionsNoise || w.find("noise") != std::string::npos;
+  EXPECT_TRUE(mentionsNoise);
+  // The guarantees that do not depend on the input still hold.
+  EXPECT_GE(r->m.edgeMin, 0.1 * (1 - 1e-5));
+  EXPECT_GE(r->m.minVertexDistance, 0.1 * (1 - 1e-5));
+  EXPECT_EQ(r->m.nonManifoldEdges, 0u);
+  EXPECT_EQ(r->m.inconsistentEdges, 0u);
+  // So much noise that no triangle fits: a clear error, no crash.
+  spec.noiseBound = 3.0 * 0.1;
+  CMeshO cloud, out;
+  growth::toMesh(growth::generateCloud(spec), cloud);
+  sp::Stat st;
+  try {
+    sp::build(cloud, out, paperParams(), st);
+    EXPECT_FALSE(st.warnings.empty());
+  } catch (const growth::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("noise"), std::string::npos) << e.what();
+    EXPECT_EQ(out.vn, 0);
+  }
+}
+
+TEST(SpherePacker, OpenPatchKeepsItsBoundaryAsAHole) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Patch;
+  spec.count = 20000;
+  spec.seed = 3;
+  sp::Params p;
+  p.checkInvariants = true;
+  const auto r = build("patch", spec, p);
+  const auto& m = r->m;
+  EXPECT_EQ(m.nonManifoldEdges, 0u);
+  EXPECT_EQ(m.nonManifoldVertices, 0u);
+  EXPECT_EQ(m.inconsistentEdges, 0u);
+  EXPECT_EQ(m.boundaryLoops, 1u); // the outer border, longer than ∂max, stays open
+  EXPECT_EQ(r->stat.holes, 1u);
+  EXPECT_GT(r->stat.longestBorder, size_t(p.maxBorderLength));
+  EXPECT_EQ(m.eulerCharacteristic, 1); // a disk
+  EXPECT_GE(m.qualityMean, 0.94);
+  double worst = 0;
+  for (const auto& v : r->mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, Point3d::Construct(v.cP())));
+  EXPECT_LE(worst, 0.01);
+  // The limit decides: with ∂max = 3 only the triangular regions are filled, the quadrilaterals
+  // (the most common regions, sec. 3.7) stay open too.
+  sp::Params tight = p;
+  tight.maxBorderLength = 3;
+  const auto t = build("patch-border-3", spec, tight);
+  EXPECT_GT(t->stat.holes, 100u);
+  EXPECT_LT(t->m.faces, r->m.faces / 2);
+  EXPECT_EQ(t->m.vertices > 0, true);
+}
+
+TEST(SpherePacker, WindowZeroIsBreadthFirstAndStillManifold) {
+  sp::Params p = paperParams();
+  p.windowSize = 0;
+  const auto r = build("sphere-w0", sphereSpec(), p);
+  EXPECT_EQ(r->m.nonManifoldVertices, 0u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  EXPECT_GE(r->m.edgeMin, 0.1 * (1 - 1e-5));
+  // A different growth order (sec. 4.2: w = 0 is the breadth-first strategy): a different mesh.
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  bool differs = r->mesh.vert.size() != ref->mesh.vert.size();
+  for (size_t i = 0; !differs && i < r->mesh.vert.size(); ++i) differs = r->mesh.vert[i].cP() != ref->mesh.vert[i].cP();
+  EXPECT_TRUE(differs);
+}
+
+TEST(SpherePacker, GlobalSplatSizeAtTheCoveringSize) {
+  // Sec. 5.2: a global splat size just large enough to cover the sphere keeps the vertices on it.
+  sp::Params p = paperParams();
+  p.localSplatSizes = false;
+  p.splatSize = 0.05;
+  const auto r = build("sphere-global-0.05", sphereSpec(), p);
+  expectClosedManifoldMesh(*r, 2);
+  EXPECT_NEAR(r->stat.meanSplatRadius, 0.05, 1e-9);
+  // Splats too small to cover: the growth stops early (sec. 5.2), with a warning.
+  p.splatSize = 0.005;
+  CMeshO out;
+  sp::Stat st;
+  try {
+    sp::build(build("sphere", sphereSpec(), paperParams())->cloud, out, p, st);
+    EXPECT_LT(st.vertices, r->stat.vertices / 2);
+    EXPECT_FALSE(st.warnings.empty());
+  } catch (const growth::Error& e) {
+    EXPECT_EQ(out.vn, 0) << e.what();
+  }
+}
+
+TEST(SpherePacker, StartingPointsGivenByTheUser) {
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  sp::Params p = paperParams();
+  p.useStartPoints = true;
+  p.startPoint[0] = Point3d(0, 0, -1.2); // projected onto the closest splats (bottom of the sphere)
+  p.startPoint[1] = Point3d(0.15, 0, -1.2);
+  CMeshO out;
+  sp::Stat st;
+  sp::build(ref->cloud, out, p, st);
+  const auto m = growth::measure(out);
+  EXPECT_EQ(m.nonManifoldVertices, 0u);
+  EXPECT_EQ(m.boundaryEdges, 0u);
+  EXPECT_GE(m.qualityMean, 0.94);
+  // The output hardly depends on the start (sec. 5.2: 0.9499–0.9504 over eight starts).
+  EXPECT_NEAR(m.qualityMean, ref->m.qualityMean, 0.01);
+  EXPECT_NEAR(double(m.vertices), double(ref->m.vertices), 0.03 * double(ref->m.vertices));
+  // Projections not between d and 2d apart: refused with the reason.
+  p.startPoint[1] = Point3d(0.02, 0, -1.2);
+  CMeshO none;
+  try {
+    sp::build(ref->cloud, none, p, st);
+    FAIL() << "starting points too close were accepted";
+  } catch (const growth::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("between d"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(none.vn, 0);
+}
+
+TEST(SpherePacker, SuggestedParametersComeFromTheSpacing) {
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  const sp::Params p = sp::suggestParams(ref->cloud);
+  growth::CloudCheck check;
+  const double spacing = growth::meanSpacing(growth::readCloud(ref->cloud, check).points);
+  EXPECT_NEAR(p.sphereDiameter, sp::kDefaultDiameterPerSpacing * spacing, 1e-12);
+  EXPECT_GT(p.splatSize, 0);
+  EXPECT_LE(p.splatSize, p.sphereDiameter);
+  EXPECT_EQ(p.windowSize, 8);
+  EXPECT_EQ(p.maxBorderLength, 40);
+  // The defaults work without tuning.
+  CMeshO out;
+  sp::Stat st;
+  sp::build(ref->cloud, out, p, st);
+  const auto m = growth::measure(out);
+  EXPECT_EQ(m.nonManifoldVertices, 0u);
+  EXPECT_EQ(m.boundaryEdges, 0u);
+  EXPECT_GE(m.qualityMean, 0.94);
+  // An unusable layer gives the static defaults, without throwing.
+  CMeshO empty;
+  const sp::Params q = sp::suggestParams(empty);
+  EXPECT_EQ(q.sphereDiameter, 0);
+}
+
+namespace {
+// Runs build on `cloud` and returns the growth::Error message ("" when it did not throw).
+std::string errorOf(const CMeshO& cloud, const sp::Params& p = sp::Params()) {
+  CMeshO out;
+  sp::Stat st;
+  try {
+    sp::build(cloud, out, p, st);
+  } catch (const growth::Error& e) {
+    EXPECT_EQ(out.vn, 0);
+    EXPECT_EQ(out.fn, 0);
+    return e.what();
+  }
+  return "";
+}
+
+void smallSphere(CMeshO& m, size_t n = 2000) {
+  growth::CloudSpec s = sphereSpec();
+  s.count = n;
+  growth::toMesh(growth::generateCloud(s), m);
+}
+} // namespace
+
+TEST(SpherePackerBadInput, EmptyLayer) {
+  CMeshO m;
+  EXPECT_NE(errorOf(m).find("no vertices"), std::string::npos);
+}
+
+TEST(SpherePackerBadInput, NoNormalsSaysHowToComputeThem) {
+  CMeshO m;
+  smallSphere(m);
+  for (auto& v : m.vert) v.N() = CMeshO::CoordType(0, 0, 0);
+  const std::string e = errorOf(m);
+  EXPECT_NE(e.find("Compute normals for point sets"), std::string::npos) << e;
+}
+
+TEST(SpherePackerBadInput, NaNCoordinates) {
+  CMeshO m;
+  smallSphere(m);
+  m.vert[7].P()[1] = std::nanf("");
+  EXPECT_NE(errorOf(m).find("NaN"), std::string::npos);
+}
+
+TEST(SpherePackerBadInput, AllPointsIdentical) {
+  CMeshO m;
+  vcg::tri::Allocator<CMeshO>::AddVertices(m, 50);
+  for (auto& v : m.vert) v.P() = CMeshO::CoordType(1, 2, 3), v.N() = CMeshO::CoordType(0, 0, 1);
+  EXPECT_NE(errorOf(m).find("identical"), std::string::npos);
+}
+
+TEST(SpherePackerBadInput, DLargerThanTheCloud) {
+  CMeshO m;
+  smallSphere(m);
+  sp::Params p;
+  p.sphereDiameter = 5.0; // the unit sphere's box diagonal is 3.46
+  const std::string e = errorOf(m, p);
+  EXPECT_NE(e.find("larger than the cloud"), std::string::npos) << e;
+}
+
+TEST(SpherePackerBadInput, DSoSmallThatTheOutputWouldExplode) {
+  CMeshO m;
+  smallSphere(m);
+  sp::Params p;
+  p.sphereDiameter = 1e-4; // 4π / (0.866e-8) ≈ 1.5e9 vertices
+  const std::string e = errorOf(m, p);
+  EXPECT_NE(e.find("too small"), std::string::npos) << e;
+  EXPECT_NE(e.find("vertices"), std::string::npos) << e;
+  // The limit is a parameter.
+  p.sphereDiameter = 0.05;
+  p.maxOutputVertices = 1000; // ~5800 needed
+  EXPECT_NE(errorOf(m, p).find("too small"), std::string::npos);
+}
+
+TEST(SpherePackerBadInput, AMeshInsteadOfACloud) {
+  CMeshO m;
+  smallSphere(m, 100);
+  vcg::tri::Allocator<CMeshO>::AddFace(m, &m.vert[0], &m.vert[1], &m.vert[2]);
+  const std::string e = errorOf(m);
+  EXPECT_NE(e.find("is a mesh"), std::string::npos) << e;
+}
+
+TEST(SpherePackerBadInput, BadWindowOrBorderLimit) {
+  CMeshO m;
+  smallSphere(m);
+  sp::Params p;
+  p.windowSize = -1;
+  EXPECT_NE(errorOf(m, p).find("window"), std::string::npos);
+  p = sp::Params();
+  p.maxBorderLength = 2;
+  EXPECT_NE(errorOf(m, p).find("border limit"), std::string::npos);
+}
+
+TEST(SpherePackerBadInput, DTooLargeForAThinPlateIsWarnedAbout) {
+  // Two sheets 0.05 apart with opposite normals (a thin plate); d = 0.2 sees both in its boxes.
+  CMeshO m;
+  const int n = 60;
+  vcg::tri::Allocator<CMeshO>::AddVertices(m, 2 * n * n);
+  size_t k = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      for (int side = 0; side < 2; ++side, ++k) {
+        m.vert[k].P() = CMeshO::CoordType(i * 0.02f + 0.007f * side, j * 0.02f, side ? -0.025f : 0.025f);
+        m.vert[k].N() = CMeshO::CoordType(0, 0, side ? -1.0f : 1.0f);
+      }
+  sp::Params p;
+  p.sphereDiameter = 0.2;
+  CMeshO out;
+  sp::Stat st;
+  try {
+    sp::build(m, out, p, st);
+  } catch (const growth::Error&) {
+  }
+  EXPECT_GT(st.boxesDTooLarge, 0u);
+  bool warned = false;
+  for (const auto& w : st.warnings) warned = warned || w.find("too large") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+namespace {
+int g_calls = 0, g_cancelAt = -1, g_lastPercent = -1;
+bool g_monotonic = true;
+bool countingCallback(const int pos, const char*) {
+  ++g_calls;
+  if (pos < g_lastPercent) g_monotonic = false;
+  g_lastPercent = pos;
+  return g_cancelAt < 0 || g_calls < g_cancelAt;
+}
+} // namespace
+
+TEST(SpherePackerProgress, AFewHundredUpdatesAtMost) {
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  g_calls = 0;
+  g_cancelAt = -1;
+  g_lastPercent = -1;
+  g_monotonic = true;
+  CMeshO out;
+  sp::Stat st;
+  sp::build(ref->cloud, out, paperParams(), st, countingCallback);
+  EXPECT_GE(g_calls, 10);
+  EXPECT_LE(g_calls, 400);
+  EXPECT_TRUE(g_monotonic);
+  EXPECT_GT(out.fn, 0);
+}
+
+TEST(SpherePackerProgress, CancelLeavesNothing) {
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  g_calls = 0;
+  g_cancelAt = -1;
+  CMeshO all;
+  sp::Stat st0;
+  sp::build(ref->cloud, all, paperParams(), st0, countingCallback);
+  const int total = g_calls;
+  ASSERT_GE(total, 10);
+  // Cancel in every phase: reading, box grid, splats, growth (several times), triangulation.
+  for (int at : {1, 3, 8, total / 3, total / 2, (2 * total) / 3, total - 1}) {
+    g_calls = 0;
+    g_cancelAt = at;
+    g_lastPercent = -1;
+    CMeshO out;
+    sp::Stat st;
+    EXPECT_THROW(sp::build(ref->cloud, out, paperParams(), st, countingCallback), growth::Cancelled) << at;
+    EXPECT_EQ(out.vn, 0);
+    EXPECT_EQ(out.fn, 0);
+  }
+  g_cancelAt = -1;
+}
