@@ -60,19 +60,24 @@ MeshFilterInterface::FILTER_ARITY FilterSpherePackPlugin::filterArity(QAction*) 
 
 void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
   if (ID(action) != FP_SPHERE_PACKING) return;
+  // Lengths default to 0 = automatic (like Ball Pivoting's radius): derived from each cloud when
+  // the filter runs, so the same .mlx script suits clouds of any scale. The tooltips show what
+  // "automatic" gives for the current layer.
   const growth::spherepack::Params def = growth::spherepack::suggestParams(m.cm);
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
-  parlst.addParam(RichAbsPerc("sphereDiameter", float(def.sphereDiameter), 0.0f, diag,
+  const QString autoD = def.sphereDiameter > 0 ? QString(" For this layer: %1.").arg(def.sphereDiameter) : QString();
+  const QString autoS = def.splatSize > 0 ? QString(" For this layer: %1.").arg(def.splatSize) : QString();
+  parlst.addParam(RichAbsPerc("sphereDiameter", 0.0f, 0.0f, diag,
       "Sphere diameter d (target edge length)",
       "Diameter of the touching spheres: every edge of the result is at least this long and most "
-      "edges are close to it. The default is derived from the mean point spacing. Keep it at least "
-      "twice the noise of the scan, and small compared with the thinnest part of the object."));
-  parlst.addParam(RichAbsPerc("splatSize", float(def.splatSize), 0.0f, diag,
+      "edges are close to it. 0 = automatic: 7 times the mean point spacing." + autoD + " Keep it at "
+      "least twice the noise of the scan, and small compared with the thinnest part of the object."));
+  parlst.addParam(RichAbsPerc("splatSize", 0.0f, 0.0f, diag,
       "Splat radius s",
       "Radius of the disks placed on the points (the global splat size). They must cover the "
       "surface: too small and the growth stops early; too large and vertices drift off the surface "
-      "in curved regions. With local splat sizes on, this is the starting size before the "
-      "per-point sizes are computed."));
+      "in curved or noisy regions. With local splat sizes on, no splat is larger than this. "
+      "0 = automatic: 1.3 times the square root of the surface area per point, at most d." + autoS));
   parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
       "Compute an individual splat radius for each point from its tangent-plane Delaunay/Voronoi "
       "neighbourhood (paper, section 4.3); off uses the global splat radius everywhere."));
