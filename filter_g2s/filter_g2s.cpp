@@ -4,7 +4,6 @@
 
 #include <growth/error.h>
 
-#include <vcg/complex/append.h>
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/normal.h>
 
@@ -58,14 +57,17 @@ void FilterG2SPlugin::initParameterSet(QAction* action, MeshModel& m, RichParame
       "A seed triangle's third point is searched within k times the length of its first edge from "
       "that edge's midpoint (paper, section 3.1)."));
   parlst.addParam(RichFloat("maxSearchRadius", float(def.maxSearchRadiusFactor), "Maximum search radius",
-      "Largest search sphere radius for a front edge, in multiples of the local point spacing "
-      "(paper, section 3.2). Larger values bridge sparser regions but may create long triangles. "
-      "The default is derived from the cloud."));
+      "Largest search sphere radius for a front edge, in multiples of the local spacing (the mean "
+      "length of the mesh edges already at the edge's two points); the search starts at the "
+      "edge's length and grows in n steps up to it (paper, section 3.2). Larger values bridge "
+      "sparser regions and fill more holes but may create long triangles. 0 uses the default."));
   parlst.addParam(RichInt("sizeLevels", def.sizeLevels, "Size priority levels n",
-      "Number of priority levels for the size of the search neighbourhood (paper, section 4.1)."));
+      "Number of search radii from the edge length to the maximum search radius; the radius at "
+      "which a front edge finds its point is its size priority (paper, sections 3.2 and 4.1)."));
   parlst.addParam(RichInt("flatnessLevels", def.flatnessLevels, "Flatness priority levels m",
-      "Number of priority levels for the angle between the front triangle and the candidate "
-      "triangle (paper, section 4.1)."));
+      "Number of classes of the angle (0 to 180 degrees) between the front triangle and the "
+      "candidate triangle; flatter continuations are grown first, which avoids twisted surfaces "
+      "near thin parts (paper, section 4.1)."));
   parlst.addParam(RichBool("removeNonManifoldVertices", def.removeNonManifoldVertices,
       "Remove non-manifold vertices",
       "Remove the triangles of the extra fans around vertices whose triangles form more than one "
@@ -95,39 +97,46 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   p.removeNonManifoldVertices = par.getBool("removeNonManifoldVertices");
   p.randomSeed = static_cast<std::uint64_t>(par.getInt("randomSeed"));
 
+  // The engine writes straight into the new layer (no copy of a large mesh); on any failure the
+  // layer is removed again, so the document is left as it was.
   growth::g2s::Stat st;
-  CMeshO result;
+  MeshModel* out = md.addNewMesh("", in->label() + " (robust G2S)", false);
+  out->updateDataMask(MeshModel::MM_FACEQUALITY);
+  QString failure;
   try {
-    growth::g2s::build(in->cm, result, p, st, cb);
+    growth::g2s::build(in->cm, out->cm, p, st, cb);
+    if (st.faces == 0)
+      failure = QString("Robust G2S: ") + (st.warnings.empty() ? QString("no surface was built.")
+                                                               : QString::fromStdString(st.warnings.front()));
   } catch (const growth::Cancelled&) {
-    errorMessage = "Robust G2S was cancelled; no layer was added.";
-    return false;
+    failure = "Robust G2S was cancelled; no layer was added.";
   } catch (const growth::Error& e) {
-    errorMessage = QString("Robust G2S: ") + e.what();
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
+    failure = QString("Robust G2S: ") + e.what();
   } catch (const std::bad_alloc&) {
-    errorMessage = "Robust G2S ran out of memory.";
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
+    failure = "Robust G2S ran out of memory.";
   } catch (const std::exception& e) {
-    errorMessage = QString("Robust G2S failed: ") + e.what();
+    failure = QString("Robust G2S failed: ") + e.what();
+  }
+  if (!failure.isEmpty()) {
+    md.delMesh(out);
+    md.setCurrentMesh(in->id());
+    errorMessage = failure;
     Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
     return false;
   }
-
-  MeshModel* out = md.addNewMesh("", in->label() + " (robust G2S)", true);
-  out->updateDataMask(MeshModel::MM_FACEQUALITY);
-  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
+  md.setCurrentMesh(out->id());
   vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
   vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
   vcg::tri::UpdateNormal<CMeshO>::PerVertexAngleWeighted(out->cm);
   vcg::tri::UpdateNormal<CMeshO>::NormalizePerVertex(out->cm);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
-  Log("Robust G2S: %zu points (%zu duplicates dropped), %zu seeds", st.inputPoints, st.duplicatesDropped, st.seeds);
-  Log("Robust G2S: %zu faces, %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces)",
-      st.faces, st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved);
-  Log("Robust G2S: time %.3f s", st.seconds);
+  Log("Robust G2S: %zu points (%zu duplicates dropped), mean spacing %g, maximum search radius %.2f x local spacing",
+      st.inputPoints, st.duplicatesDropped, st.spacing, st.maxSearchRadiusFactor);
+  Log("Robust G2S: %zu faces on %zu vertices (%zu points unused), %zu seeds", st.faces, st.vertices,
+      st.unusedPoints, st.seeds);
+  Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces)",
+      st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved);
+  Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

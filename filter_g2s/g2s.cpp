@@ -32,37 +32,6 @@ void checkParams(const Params& p) {
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
 
-// Interleaves the low 21 bits of x with two zero bits after each (Morton code helper).
-std::uint64_t spread(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
-// The points in Morton (Z-curve) order of cells of side `cell`: points near each other in space get
-// indices near each other, so the per-point arrays of the mesher are walked cache-friendly as the
-// front advances. Ties keep the input order (deterministic).
-std::vector<std::uint32_t> spatialOrder(const std::vector<P3>& pts, const vcg::Box3d& box, double cell) {
-  const double extent = std::max(box.DimX(), std::max(box.DimY(), box.DimZ()));
-  cell = std::max(cell, extent / double((1 << 21) - 2));
-  const double inv = cell > 0 ? 1.0 / cell : 0.0;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(pts.size());
-  for (size_t i = 0; i < pts.size(); ++i) {
-    std::uint64_t c[3];
-    for (int a = 0; a < 3; ++a)
-      c[a] = static_cast<std::uint64_t>(std::min(std::max((pts[i][a] - box.min[a]) * inv, 0.0), double((1 << 21) - 1)));
-    key[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
-  }
-  std::sort(key.begin(), key.end());
-  std::vector<std::uint32_t> order(pts.size());
-  for (size_t i = 0; i < pts.size(); ++i) order[i] = key[i].second;
-  return order;
-}
-
 } // namespace
 
 Params suggestParams(const CMeshO&) {
@@ -73,6 +42,12 @@ Params suggestParams(const CMeshO&) {
 
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, vcg::CallBackPos* cb) {
   const auto t0 = std::chrono::steady_clock::now();
+  auto lap = [last = t0]() mutable {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last).count();
+    last = now;
+    return s;
+  };
   out.Clear();
   stat = Stat();
   try {
@@ -91,22 +66,18 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     if (input.points.size() > PointEdgeMap::kMaxPoints)
       throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
                   " points, more than this filter can handle; subsample it first.");
-    stat.spacing = meanSpacing(input.points);
-
-    // Internal order: spatially coherent (see spatialOrder).
-    const std::vector<std::uint32_t> order = spatialOrder(input.points, input.box, 2.0 * stat.spacing);
-    std::vector<P3> pts(order.size());
-    std::vector<int> layerIndex(order.size());
-    for (size_t i = 0; i < order.size(); ++i) {
-      pts[i] = input.points[order[i]];
-      layerIndex[i] = input.vertexIndex[order[i]];
-    }
-    input.points = std::vector<P3>();
-    input.vertexIndex = std::vector<int>();
-
+    // The mesher sorts the points into its grid's cell order and measures their spacing.
+    std::vector<int> vertexIndex;
+    vertexIndex.swap(input.vertexIndex);
     progress.phase("Robust G2S: growing the mesh", 3, 92);
-    Mesher mesher(std::move(pts), p, stat.spacing);
+    Mesher mesher(std::move(input.points), p);
+    stat.spacing = mesher.spacing();
+    std::vector<int> layerIndex(mesher.size());
+    for (size_t i = 0; i < layerIndex.size(); ++i) layerIndex[i] = vertexIndex[mesher.order()[i]];
+    vertexIndex = std::vector<int>();
+    stat.secondsSetup = lap();
     mesher.meshAll(&progress);
+    stat.secondsGrowth = lap();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
 
@@ -124,8 +95,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     mesher.orientComponents();
     stat.workingBytes = mesher.memoryBytes() + layerIndex.capacity() * sizeof(int);
 
+    stat.secondsCleanup = lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
     const std::vector<Triangle>& tri = mesher.triangles();
+    const std::vector<P3>& pt = mesher.points();
     const std::vector<char>& alive = mesher.alive();
     auto isAlive = [&](size_t f) { return alive.size() != tri.size() || alive[f] != 0; };
     // Output vertices: the used input points, in the layer's order.
@@ -148,7 +121,6 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
         if (outIndex[li] >= 0) out.vert[static_cast<size_t>(outIndex[li])].P() = cloud.vert[li].cP();
       out.face.EnableQuality();
       vcg::tri::Allocator<CMeshO>::AddFaces(out, faces);
-      const std::vector<P3>& pt = mesher.points();
       size_t k = 0;
       for (size_t f = 0; f < tri.size(); ++f) {
         if (!isAlive(f)) continue;
@@ -158,6 +130,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
         face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(pt[tri[f][0]], pt[tri[f][1]], pt[tri[f][2]]));
         if ((k & 65535) == 0) progress.update(double(k) / double(faces));
       }
+      progress.update(1.0);
     } else {
       stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
                               "few or too scattered to lie on a surface (try a larger seed search factor k).");
@@ -167,6 +140,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     out.Clear();
     throw;
   }
+  stat.secondsOutput = lap();
   stat.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 

@@ -42,7 +42,11 @@ struct Stat {
   double spacing = 0;                     // mean nearest-neighbour spacing of the cloud
   double maxSearchRadiusFactor = 0;       // the factor used
   size_t workingBytes = 0;                // engine memory at its peak (points, grid, edges, faces)
-  double seconds = 0;
+  double seconds = 0;                     // whole run
+  double secondsSetup = 0;                // reading, checks, spacing, spatial order, grid
+  double secondsGrowth = 0;               // seeds and front growth
+  double secondsCleanup = 0;              // sec. 4.2, boundary and hole counts, orientation
+  double secondsOutput = 0;               // filling the output mesh
   std::vector<std::string> warnings;
 };
 

@@ -29,20 +29,68 @@ std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
 } // namespace
 
 Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
-    : params_(params), spacing_(spacing), points_(std::move(points)),
-      queue_(std::max(1, params.sizeLevels * params.flatnessLevels)) {
-  box_.SetNull();
-  for (const P3& p : points_) box_.Add(p);
-  if (!(spacing_ > 0)) spacing_ = std::max(roughSpacing(box_, points_.size()), 1e-12 * (1.0 + box_.Diag()));
-  // Cells of twice the mean spacing: a typical query ball (radius about 2 spacings, see
-  // findCandidate) then touches 8–27 cells holding a handful of points each.
-  grid_.build(points_, 2.0 * spacing_);
-  pem_.reset(points_.size());
-  edgeLengthSum_.assign(points_.size(), 0.f);
-  edgeCount_.assign(points_.size(), 0);
+    : params_(params), spacing_(spacing), queue_(std::max(1, params.sizeLevels * params.flatnessLevels)) {
+  const size_t n = points.size();
+  if (spacing_ > 0) {
+    grid_.build(std::move(points), kCellSpacings * spacing_);
+  } else {
+    // Spacing unknown: build with a guess from the bounding box, measure the spacing on the grid,
+    // and rebuild only when the guess was far off.
+    vcg::Box3d box;
+    for (const P3& p : points) box.Add(p);
+    const double guess = 0.5 * roughSpacing(box, n);
+    grid_.build(std::move(points), kCellSpacings * guess);
+    spacing_ = sampleSpacing();
+    const double cellWanted = kCellSpacings * spacing_;
+    const double ratio = grid_.cellSize() / cellWanted;
+    if (spacing_ > 0 && (ratio < 0.5 || ratio > 2.0)) {
+      const std::vector<std::uint32_t> first = grid_.order();
+      grid_.build(std::vector<P3>(grid_.points()), cellWanted);
+      std::vector<std::uint32_t> composed(n);
+      for (size_t i = 0; i < n; ++i) composed[i] = first[grid_.order()[i]];
+      grid_.setOrder(std::move(composed));
+    }
+  }
+  if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
+  pts_ = grid_.points().data();
+  pem_.reset(n);
+  edgeLengthSum_.assign(n, 0.f);
+  edgeCount_.assign(n, 0);
+  freeEdges_.assign(n, 0);
+  for (int k = 1; k < params_.flatnessLevels; ++k)
+    cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
+  tri_.reserve(2 * n + 16); // a closed surface has 2N − 4 + 4g triangles
   // A seed edge joins a point to its nearest neighbour; farther than this it is an isolated
   // point (an outlier), which starts no surface.
   seedMaxEdge_ = 2.0 * std::max(1.0, params_.maxSearchRadiusFactor) * spacing_;
+}
+
+double Mesher::sampleSpacing() const {
+  // Mean nearest-neighbour distance over up to 4096 points at a fixed stride of the grid order
+  // (spread over the whole cloud), like growth::meanSpacing but on this grid.
+  const size_t n = grid_.size();
+  if (n < 2) return 0;
+  const size_t stride = std::max<size_t>(1, n / 4096);
+  double sum = 0;
+  size_t count = 0;
+  for (size_t i = 0; i < n; i += stride) {
+    double d2 = 0;
+    if (grid_.nearest(grid_.point(std::uint32_t(i)), std::int64_t(i), std::numeric_limits<double>::infinity(), &d2) >= 0) {
+      sum += std::sqrt(d2);
+      ++count;
+    }
+  }
+  return count > 0 ? sum / double(count) : 0;
+}
+
+int Mesher::flatnessLevelOfCos(double cosBeta) const {
+  // pl_f = 1 + the number of class limits kπ/m (k = 1..m−1) that β reaches; cos is decreasing.
+  int level = 1;
+  for (double limit : cosLimit_) {
+    if (cosBeta > limit) break; // most candidates are flat: one comparison
+    ++level;
+  }
+  return level;
 }
 
 double Mesher::localSpacing(std::uint32_t v) const {
@@ -51,36 +99,33 @@ double Mesher::localSpacing(std::uint32_t v) const {
 
 void Mesher::gather(const P3& centre, double radius) {
   near_.clear();
-  grid_.forEachInBall(centre, radius, [&](int i, double) {
-    near_.push_back(Near{static_cast<std::uint32_t>(i), points_[static_cast<size_t>(i)]});
-  });
+  grid_.forEachInBall(centre, radius, [&](std::uint32_t i, double) { near_.push_back(Near{i, pts_[i]}); });
 }
 
 bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
-                       std::uint32_t b, std::uint32_t c) {
+                       std::uint32_t b, std::uint32_t c) const {
   for (const Near& q : near_)
     if (q.id != a && q.id != b && q.id != c && strictlyInside((q.p - ball.centre).SquaredNorm(), ball.radius2))
       return false;
   const double radius = std::sqrt(ball.radius2);
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
-  bool empty = true;
-  grid_.forEachInBall(ball.centre, radius, [&](int i, double d2) {
-    const auto id = static_cast<std::uint32_t>(i);
-    if (empty && id != a && id != b && id != c && strictlyInside(d2, ball.radius2)) empty = false;
+  return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
+    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2);
   });
-  return empty;
 }
 
-bool Mesher::isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+bool Mesher::isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
   Ball ball;
-  if (!circumBall(points_[a], points_[b], points_[c], ball)) return false;
-  near_.clear();
-  return emptyBall(ball, 0.0, ball.centre, a, b, c);
+  if (!circumBall(pts_[a], pts_[b], pts_[c], ball)) return false;
+  const double radius = std::sqrt(ball.radius2);
+  return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
+    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2);
+  });
 }
 
-bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  const P3 &A = points_[a], &B = points_[b], &C = points_[c];
+bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
   Ball ball;
   if (!circumBall(A, B, C, ball)) return false;
   const P3 n = unitNormal(A, B, C);
@@ -91,24 +136,23 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // of radius R·√2, from the triangle outwards in both directions until the slabs leave the
   // cloud's bounding box; the walk stops as soon as points on both sides were seen.
   const double step = 2.0 * radius, queryRadius = radius * std::sqrt(2.0);
-  vcg::Box3d bb = box_;
+  vcg::Box3d bb = grid_.box();
   bb.Offset(queryRadius);
   bool above = false, below = false;
-  auto visit = [&](int i, double) {
-    const auto id = static_cast<std::uint32_t>(i);
-    if (id == a || id == b || id == c) return;
-    const P3 d = points_[id] - ball.centre;
+  auto bothSides = [&](std::uint32_t i, double) {
+    if (i == a || i == b || i == c) return false;
+    const P3 d = pts_[i] - ball.centre;
     const double h = d * n;
-    if (!strictlyInside(d.SquaredNorm() - h * h, ball.radius2)) return;
+    if (!strictlyInside(d.SquaredNorm() - h * h, ball.radius2)) return false;
     if (h > eps) above = true;
     else if (h < -eps) below = true;
+    return above && below;
   };
   for (int side : {1, -1}) {
     for (long j = side > 0 ? 0 : 1;; ++j) {
       const P3 centre = ball.centre + n * (double(side) * double(j) * step);
       if (!bb.IsIn(centre)) break;
-      grid_.forEachInBall(centre, queryRadius, visit);
-      if (above && below) return false;
+      if (grid_.anyInBall(centre, queryRadius, bothSides)) return false;
     }
   }
   return true;
@@ -116,36 +160,39 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 bool Mesher::topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const {
   if (p == a || p == b || p == c) return false;
+  if (isolated(p)) return true; // no edge at p yet: nothing can conflict
+  if (interior(p)) return false;
   // New triangle (b, a, p): half-edges b→a (free by construction), a→p and p→b must be unused.
-  if (pem_.used(a, p) || pem_.used(p, b)) return false;
-  return !pem_.closed(p);
+  return !pem_.used(a, p) && !pem_.used(p, b);
 }
 
 Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   Candidate none;
-  const P3 &A = points_[a], &B = points_[b], &C = points_[c];
-  const double edge = (B - A).Norm();
+  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
+  const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
   if (!(edge > 0)) return none;
   const P3 dir = growingDirection(A, B, C);
   if (isZero(dir)) return none;
   const P3 frontNormal = (B - A) ^ (C - A);
+  const double frontNorm = frontNormal.Norm();
   // A free edge that closes a loop of three free edges (a→b, b→p, p→a all used one way only):
   // the triangle (b, a, p) is the only one that can ever be placed there, so it is the candidate,
   // G2S or not. On a curved or noisy surface the G2S ball of such a triangle can hold a vertex of
   // a neighbouring triangle barely inside (the Gabriel test is not symmetric across an edge as
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
-  {
+  if (freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
     pem_.forEachEdge(b, [&](std::uint32_t p, bool out, bool in) {
       if (ear < 0 && out && !in && p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
     });
     if (ear >= 0) {
-      const P3& E = points_[static_cast<size_t>(ear)];
+      const P3& E = pts_[ear];
       Candidate cand;
       cand.point = ear;
       cand.sizeLevel = 1;
-      cand.betaRad = angleBetween(frontNormal, (A - B) ^ (E - B));
-      cand.flatLevel = flatnessLevel(cand.betaRad, params_.flatnessLevels);
+      const P3 earNormal = (A - B) ^ (E - B);
+      cand.cosBeta = (frontNormal * earNormal) / (frontNorm * earNormal.Norm());
+      cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
       cand.closesLoop = true;
       return cand;
     }
@@ -156,59 +203,90 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // follow the local density, so non-uniform clouds get a radius that fits each region).
   const double local = 0.5 * (localSpacing(a) + localSpacing(b));
   const double maxRadius = std::max(edge, params_.maxSearchRadiusFactor * local);
-  const int n = params_.sizeLevels, m = params_.flatnessLevels;
+  const int n = params_.sizeLevels;
+  // The gathered ball of a level covers its search sphere (which reaches from t − r > −|ab|/2
+  // to t + r along the growing direction, t its centre's distance from the edge) and the region
+  // half an edge behind the edge, where the G2S balls of well-shaped candidates reach (a candidate
+  // seeing ab under at least 30° has a G2S ball of radius <= |ab| within [−|ab|/2, t + r]), so
+  // most G2S tests need no second grid query. These balls are nested (all tangent at the point
+  // half an edge behind the edge), so the first level gets its own gather and all further levels
+  // share the gather of the last one: at most two grid queries per edge.
+  auto gatherBall = [&](double radius, P3& centre, double& gatherRadius) {
+    const double t = std::sqrt(std::max(radius * radius - 0.25 * edge * edge, 0.0));
+    gatherRadius = 0.5 * (t + radius + 0.5 * edge);
+    centre = mid + dir * (0.5 * (t + radius - 0.5 * edge));
+  };
+  P3 gatherCentre;
+  double gatherRadius = 0;
+  bool gatheredFirst = false, gatheredLast = false;
   double previous = -1;
   for (int level = 1; level <= n; ++level) {
     const double radius = searchRadius(level, n, edge, maxRadius);
     if (radius <= previous) continue;
     previous = radius;
+    if (!gatheredFirst) {
+      gatherBall(radius, gatherCentre, gatherRadius);
+      gather(gatherCentre, gatherRadius);
+      gatheredFirst = true;
+    } else if (!gatheredLast) {
+      gatherBall(searchRadius(n, n, edge, maxRadius), gatherCentre, gatherRadius);
+      gather(gatherCentre, gatherRadius);
+      gatheredLast = true;
+    }
     const P3 centre = searchCentre(A, B, dir, radius);
-    // One gather covers the search sphere and, around the edge's midpoint, the G2S balls of the
-    // well-shaped candidates, so most G2S tests need no second grid query.
-    const double gatherRadius = (centre - mid).Norm() + radius;
-    gather(mid, gatherRadius);
     const double r2 = radius * radius * (1.0 + 1e-12);
+    // The points of the search sphere (other than the front triangle's), moved to the front of
+    // near_ (so that G2S tests, which most often fail on one of them, stop early), each with the
+    // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
     size_t found = 0;
     scored_.clear();
-    for (const Near& q : near_) {
-      if (q.id == a || q.id == b || q.id == c) continue;
-      if ((q.p - centre).SquaredNorm() > r2) continue;
-      ++found;
-      if (!topologyAllows(a, b, c, q.id)) continue;
-      Ball ball;
-      if (!circumBall(B, A, q.p, ball)) continue; // collinear with the edge: no triangle
-      const double beta = angleBetween(frontNormal, (A - B) ^ (q.p - B));
-      scored_.push_back(Scored{double(flatnessLevel(beta, m)), ball.radius2, q.id, ball, beta});
+    for (size_t k = 0; k < near_.size(); ++k) {
+      const Near q = near_[k];
+      if ((q.p - centre).SquaredNorm() > r2 || q.id == a || q.id == b || q.id == c) continue;
+      std::swap(near_[k], near_[found++]);
+      const double n2 = ((A - B) ^ (q.p - B)).SquaredNorm();
+      const double aq2 = (q.p - A).SquaredNorm(), bq2 = (q.p - B).SquaredNorm();
+      if (!(n2 > 1e-20 * edge2 * aq2)) continue; // collinear with the edge: no triangle
+      scored_.push_back(Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), q.id, 0});
     }
     if (scored_.empty()) continue;
-    if (found == 1) {
-      // Sec. 3.2 step 4.2: a single point in the search region is taken directly.
-      const Scored& s = scored_.front();
+    auto accept = [&](std::uint32_t id, bool single) {
+      const P3 newNormal = (A - B) ^ (pts_[id] - B);
       Candidate cand;
-      cand.point = s.id;
+      cand.point = id;
       cand.sizeLevel = level;
-      cand.flatLevel = int(s.key1);
-      cand.betaRad = s.beta;
-      cand.single = true;
+      cand.cosBeta = (frontNormal * newNormal) / (frontNorm * newNormal.Norm());
+      cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
+      cand.single = single;
       return cand;
+    };
+    // Sec. 3.2 step 4.2: a single point in the search region is taken directly (when the
+    // topological tests allow it).
+    if (found == 1) {
+      if (topologyAllows(a, b, c, scored_.front().id)) return accept(scored_.front().id, true);
+      continue;
     }
     // Several points: the reference point is the one whose smallest sphere through it and the
     // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
-    // plane), the flattest class first and then the smallest sphere: sec. 4.1's aim of growing
-    // where the surface continues most flatly, and the tightest triangle within a class.
-    std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
-      if (x.key1 != y.key1) return x.key1 < y.key1;
-      if (x.key2 != y.key2) return x.key2 < y.key2;
-      return x.id < y.id;
-    });
-    for (const Scored& s : scored_) {
-      if (!emptyBall(s.ball, gatherRadius, mid, a, b, s.id)) continue;
-      Candidate cand;
-      cand.point = s.id;
-      cand.sizeLevel = level;
-      cand.flatLevel = int(s.key1);
-      cand.betaRad = s.beta;
-      return cand;
+    // plane), the one with the smallest such sphere: the point a sphere growing from the edge
+    // meets first, as in the planar Delaunay case. (Measured against "flattest class first" on
+    // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
+    // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
+    // tested in that order (a repeated minimum: there are only a few), skipping the points the
+    // topological tests reject.
+    for (size_t tested = 0; tested < scored_.size(); ++tested) {
+      size_t best = tested;
+      for (size_t k = tested + 1; k < scored_.size(); ++k) {
+        const Scored &x = scored_[k], &y = scored_[best];
+        if (x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id) best = k;
+      }
+      std::swap(scored_[tested], scored_[best]);
+      const std::uint32_t id = scored_[tested].id;
+      if (!topologyAllows(a, b, c, id)) continue;
+      Ball ball;
+      if (!circumBall(B, A, pts_[id], ball)) continue;
+      if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id)) continue;
+      return accept(id, false);
     }
     // Points were found but none spans an empty sphere with the edge: the G2S point lies farther
     // out, so the radius grows on (the paper grows it when no point is found; a region holding
@@ -219,19 +297,33 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
   const std::uint32_t t[3] = {u, v, w};
-  for (std::uint32_t x : t)
-    if (pem_.isolated(x)) ++usedPoints_;
+  bool wasUsed[3];
+  for (int k = 0; k < 3; ++k) {
+    wasUsed[k] = !isolated(t[k]);
+    usedPoints_ += !wasUsed[k];
+  }
   const unsigned fresh = pem_.addTriangle(u, v, w);
   tri_.push_back(Triangle{u, v, w});
   for (int k = 0; k < 3; ++k) {
-    if ((fresh & (1u << k)) == 0) continue;
     const std::uint32_t x = t[k], y = t[(k + 1) % 3];
-    const float len = float((points_[x] - points_[y]).Norm());
-    edgeLengthSum_[x] += len;
-    edgeLengthSum_[y] += len;
-    if (edgeCount_[x] < 65535) ++edgeCount_[x];
-    if (edgeCount_[y] < 65535) ++edgeCount_[y];
+    if ((fresh & (1u << k)) != 0) {
+      const float len = float((pts_[x] - pts_[y]).Norm());
+      edgeLengthSum_[x] += len;
+      edgeLengthSum_[y] += len;
+      if (edgeCount_[x] < 65535) ++edgeCount_[x];
+      if (edgeCount_[y] < 65535) ++edgeCount_[y];
+      ++freeEdges_[x];
+      ++freeEdges_[y];
+    } else {
+      --freeEdges_[x]; // the edge now has its second triangle
+      --freeEdges_[y];
+    }
   }
+  // A used vertex whose two edges in the new triangle are both new got a second fan: it may end
+  // non-manifold unless later triangles join the fans (sec. 4.2 examines it).
+  for (int k = 0; k < 3; ++k)
+    if (wasUsed[k] && (fresh & (1u << k)) != 0 && (fresh & (1u << ((k + 2) % 3))) != 0)
+      joinedAtVertex_.push_back(t[k]);
   // Every new edge is a free edge of the front: find its candidate and queue it (sec. 4.1).
   for (int k = 0; k < 3; ++k)
     if ((fresh & (1u << k)) != 0) queueEdge(t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
@@ -250,7 +342,7 @@ void Mesher::grow(Progress* progress) {
   while (!queue_.empty()) {
     const FrontEdge e = queue_.pop();
     // Closed from the other side since it was queued: no longer a free edge.
-    if (!pem_.used(e.a, e.b) || pem_.used(e.b, e.a)) continue;
+    if (pem_.used(e.b, e.a)) continue;
     if (!topologyAllows(e.a, e.b, e.c, e.p)) {
       // The mesh changed around the edge since its candidate was chosen: choose again among the
       // points that pass the tests now, at the priority that gives (or make it a boundary edge).
@@ -259,7 +351,7 @@ void Mesher::grow(Progress* progress) {
     }
     addTriangle(e.b, e.a, e.p);
     if (progress != nullptr && (++tick & 1023) == 0)
-      progress->update(double(usedPoints_) / double(points_.size()));
+      progress->update(double(usedPoints_) / double(grid_.size()));
   }
 }
 
@@ -278,8 +370,8 @@ bool Mesher::triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) cons
   return found;
 }
 
-void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) {
-  const P3 &A = points_[tri[0]], &B = points_[tri[1]], &C = points_[tri[2]];
+void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
+  const P3 &A = pts_[tri[0]], &B = pts_[tri[1]], &C = pts_[tri[2]];
   const P3 n = (B - A) ^ (C - A);
   const P3 centroid = (A + B + C) / 3.0;
   // Next to an existing part of the mesh (a seed inside a hole), agree with its orientation so
@@ -289,7 +381,7 @@ void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) {
   bool haveRef = false;
   for (const Near& q : near_) {
     const double d2 = (q.p - centroid).SquaredNorm();
-    if (d2 >= best || pem_.isolated(q.id)) continue;
+    if (d2 >= best || isolated(q.id)) continue;
     std::array<std::uint32_t, 3> t;
     if (triangleAt(q.id, t)) {
       best = d2;
@@ -299,40 +391,42 @@ void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) {
   }
   double side;
   if (haveRef)
-    side = n * ((points_[ref[1]] - points_[ref[0]]) ^ (points_[ref[2]] - points_[ref[0]]));
+    side = n * ((pts_[ref[1]] - pts_[ref[0]]) ^ (pts_[ref[2]] - pts_[ref[0]]));
   else
-    side = n * (centroid - box_.Center()); // a new component: outwards from the cloud's centre
+    side = n * (centroid - grid_.box().Center()); // a new component: outwards from the cloud's centre
   if (side < 0) std::swap(tri[1], tri[2]);
 }
 
 bool Mesher::findSeedTriangle(std::uint32_t p, std::array<std::uint32_t, 3>& tri) {
   ++seedAttempts_;
-  if (!pem_.isolated(p)) return false;
+  if (!isolated(p)) return false;
   double d2 = 0;
-  const int nearest = grid_.nearest(points_[p], &d2, static_cast<int>(p), seedMaxEdge_);
+  const std::int64_t nearest = grid_.nearest(pts_[p], p, seedMaxEdge_, &d2);
   if (nearest < 0) return false;
   const auto q = static_cast<std::uint32_t>(nearest);
-  if (!pem_.isolated(q)) return false;
+  if (!isolated(q)) return false;
   const double edge = std::sqrt(d2);
   if (!(edge > 0)) return false;
-  const P3 &P = points_[p], &Q = points_[q];
+  const P3 &P = pts_[p], &Q = pts_[q];
   const P3 mid = (P + Q) * 0.5;
   const double radius = params_.seedSearchFactor * edge;
   gather(mid, radius);
   scored_.clear();
   for (const Near& x : near_) {
-    if (x.id == p || x.id == q || !pem_.isolated(x.id)) continue;
+    if (x.id == p || x.id == q || !isolated(x.id)) continue;
     Ball ball;
     if (!circumBall(P, Q, x.p, ball)) continue;
-    scored_.push_back(Scored{ball.radius2, 0, x.id, ball, 0});
+    scored_.push_back(Scored{0, ball.radius2, x.id, 1});
   }
   std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
-    return x.key1 != y.key1 ? x.key1 < y.key1 : x.id < y.id;
+    return x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id;
   });
   const size_t tries = std::min(scored_.size(), kMaxSeedTriangles);
   for (size_t k = 0; k < tries; ++k) {
     const Scored s = scored_[k];
-    if (!emptyBall(s.ball, radius, mid, p, q, s.id)) continue;
+    Ball ball;
+    if (!circumBall(P, Q, pts_[s.id], ball)) continue;
+    if (!emptyBall(ball, radius, mid, p, q, s.id)) continue;
     if (!passesCylinderTest(p, q, s.id)) continue;
     tri = {p, q, s.id};
     orientSeed(tri);
@@ -347,7 +441,7 @@ void Mesher::addSeed(const std::array<std::uint32_t, 3>& tri) {
 }
 
 void Mesher::meshAll(Progress* progress) {
-  const size_t n = points_.size();
+  const size_t n = grid_.size();
   if (n < 3) return;
   // Seed points in a seeded pseudo-random order (sec. 3.1 step 3.1): start + i·stride mod n with
   // the stride coprime to n visits every point once, without storing a permutation. Every unused
@@ -356,14 +450,14 @@ void Mesher::meshAll(Progress* progress) {
   // leaves no valid seed behind.
   Random rng(params_.randomSeed);
   const std::uint64_t start = rng.next() % n;
-  std::uint64_t stride = n > 2 ? 1 + rng.next() % (n - 1) : 1;
+  std::uint64_t stride = 1 + rng.next() % (n - 1);
   while (gcd(stride, n) != 1) stride = stride % (n - 1) + 1;
   std::array<std::uint32_t, 3> tri;
   for (std::uint64_t i = 0; i < n; ++i) {
     const auto p = static_cast<std::uint32_t>((start + i * stride) % n);
     if (progress != nullptr && (i & 1023) == 0)
       progress->update(std::max(double(usedPoints_), double(i)) / double(n));
-    if (!pem_.isolated(p)) continue;
+    if (!isolated(p)) continue;
     if (!findSeedTriangle(p, tri)) continue;
     addSeed(tri);
     grow(progress);
@@ -372,14 +466,16 @@ void Mesher::meshAll(Progress* progress) {
 
 ManifoldCleanupStat Mesher::removeNonManifoldVertices() {
   alive_.assign(tri_.size(), 1);
-  const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, points_.size(), alive_);
+  std::sort(joinedAtVertex_.begin(), joinedAtVertex_.end());
+  joinedAtVertex_.erase(std::unique(joinedAtVertex_.begin(), joinedAtVertex_.end()), joinedAtVertex_.end());
+  const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, grid_.size(), alive_, &joinedAtVertex_);
   for (size_t f = 0; f < tri_.size(); ++f)
     if (!alive_[f]) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
   return st;
 }
 
 void Mesher::orientComponents() {
-  const size_t n = points_.size();
+  const size_t n = grid_.size();
   if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
   std::vector<std::uint32_t> parent(n);
   for (size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
@@ -397,32 +493,38 @@ void Mesher::orientComponents() {
       if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
     }
   }
-  // Centroid of each component's face corners, then its signed volume about that centroid.
-  std::vector<P3> centre(n, P3(0, 0, 0));
-  std::vector<double> volume(n, 0.0);
-  std::vector<std::uint32_t> corners(n, 0);
+  // Number the components, then the centroid of each one's face corners and its signed volume
+  // about that centroid.
+  std::vector<std::uint32_t> component(n, ~0u);
+  std::uint32_t components = 0;
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
     const std::uint32_t r = root(tri_[f][0]);
-    for (std::uint32_t v : tri_[f]) centre[r] += points_[v];
-    corners[r] += 3;
+    if (component[r] == ~0u) component[r] = components++;
   }
-  for (size_t r = 0; r < n; ++r)
-    if (corners[r] > 0) centre[r] /= double(corners[r]);
+  std::vector<P3> centre(components, P3(0, 0, 0));
+  std::vector<double> volume(components, 0.0), corners(components, 0.0);
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
-    const std::uint32_t r = root(tri_[f][0]);
-    const P3 a = points_[tri_[f][0]] - centre[r], b = points_[tri_[f][1]] - centre[r],
-             c = points_[tri_[f][2]] - centre[r];
-    volume[r] += a * (b ^ c);
+    const std::uint32_t k = component[root(tri_[f][0])];
+    for (std::uint32_t v : tri_[f]) centre[k] += pts_[v];
+    corners[k] += 3;
   }
+  for (std::uint32_t k = 0; k < components; ++k) centre[k] /= corners[k];
   for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f] || !(volume[root(tri_[f][0])] < 0)) continue;
+    if (!alive_[f]) continue;
+    const std::uint32_t k = component[root(tri_[f][0])];
+    const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
+    volume[k] += a * (b ^ c);
+  }
+  std::vector<size_t> flipped;
+  for (size_t f = 0; f < tri_.size(); ++f) {
+    if (!alive_[f] || !(volume[component[root(tri_[f][0])]] < 0)) continue;
     pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
     std::swap(tri_[f][1], tri_[f][2]);
+    flipped.push_back(f);
   }
-  for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f] && volume[root(tri_[f][0])] < 0) pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+  for (size_t f : flipped) pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
 }
 
 size_t Mesher::liveTriangles() const {
@@ -432,7 +534,7 @@ size_t Mesher::liveTriangles() const {
 
 size_t Mesher::boundaryEdges() const {
   size_t n = 0;
-  for (std::uint32_t v = 0; v < points_.size(); ++v)
+  for (std::uint32_t v = 0; v < grid_.size(); ++v)
     pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { n += out && !in; });
   return n;
 }
@@ -451,7 +553,7 @@ size_t Mesher::boundaryLoops() {
     });
     return found;
   };
-  for (std::uint32_t v = 0; v < points_.size(); ++v) {
+  for (std::uint32_t v = 0; v < grid_.size(); ++v) {
     std::uint32_t w;
     while (nextFrom(v, w)) {
       ++loops;
@@ -467,9 +569,10 @@ size_t Mesher::boundaryLoops() {
 }
 
 size_t Mesher::memoryBytes() const {
-  return points_.capacity() * sizeof(P3) + grid_.memoryBytes() + pem_.memoryBytes() +
-         edgeLengthSum_.capacity() * sizeof(float) + edgeCount_.capacity() * sizeof(std::uint16_t) +
-         tri_.capacity() * sizeof(Triangle) + alive_.capacity();
+  return grid_.memoryBytes() + pem_.memoryBytes() + edgeLengthSum_.capacity() * sizeof(float) +
+         edgeCount_.capacity() * sizeof(std::uint16_t) + freeEdges_.capacity() +
+         tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
+         joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }
 
 } // namespace g2s

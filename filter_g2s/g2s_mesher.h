@@ -6,16 +6,17 @@
 //   queue (sec. 4.1), with topological tests on the point–edge map  →  re-seeding until no valid
 //   seed is left  →  non-manifold vertex elimination (sec. 4.2, growth/manifold_cleanup.h).
 //
-// Everything is flat arrays indexed by point: the points (double), the spatial hash
-// (growth::PointGrid), the point–edge map (growth::PointEdgeMap), the triangles, and a bucketed
-// queue of free edges (growth::BucketQueue, one FIFO per priority index).
+// Everything is flat arrays indexed by point: the points in the spatial hash's cell order
+// (MortonGrid, g2s_grid.h), the point–edge map (growth::PointEdgeMap), per-point edge statistics,
+// the triangles, and a bucketed queue of free edges (growth::BucketQueue, one FIFO per priority
+// index). Point indices are the grid's: order()[i] is the caller's index of point i.
 #include "g2s.h"
 #include "g2s_geometry.h"
+#include "g2s_grid.h"
 
 #include <growth/bucket_queue.h>
 #include <growth/manifold_cleanup.h>
 #include <growth/point_edge_map.h>
-#include <growth/point_grid.h>
 #include <growth/progress.h>
 
 #include <array>
@@ -36,8 +37,8 @@ struct Candidate {
   std::int64_t point = -1;  // -1: none found up to the maximum radius, the edge is a boundary edge
   int sizeLevel = 0;        // pl_d in [1, n]: the search level at which it was found
   int flatLevel = 0;        // pl_f in [1, m]: flatness class of the angle β
-  double betaRad = 0;       // angle between the front triangle's and the new triangle's normals
-  bool single = false;      // the only candidate of its search region, taken without the G2S test
+  double cosBeta = 1;       // cos β, β the angle between the front and the new triangle's normals
+  bool single = false;      // the only point of its search region, taken without the G2S test
   bool closesLoop = false;  // closes a loop of three free edges (see findCandidate)
   bool valid() const { return point >= 0; }
   int priority(int m) const { return priorityIndex(sizeLevel, flatLevel, m); } // PI, eq. 4.1
@@ -45,9 +46,14 @@ struct Candidate {
 
 class Mesher {
 public:
-  // `points`: distinct, finite. `spacing`: the cloud's mean nearest-neighbour spacing (sizes the
-  // grid and bounds seed edges). `params` must be valid (see checkParams in g2s.cpp).
-  Mesher(std::vector<P3> points, const Params& params, double spacing);
+  // Grid cells are this many mean spacings wide. The mesher's queries are balls of about 2–3
+  // spacings; larger cells scan more points but probe fewer cells, and probes cost more
+  // (measured with tools/g2s_grid_bench.cpp and callgrind: 6–8 best, 8 slightly ahead).
+  static constexpr double kCellSpacings = 8.0;
+
+  // `points`: distinct, finite (at least one). `spacing`: the cloud's mean nearest-neighbour
+  // spacing, or <= 0 to measure it on a sample. `params` must be valid (checkParams in g2s.cpp).
+  Mesher(std::vector<P3> points, const Params& params, double spacing = 0);
 
   // Seeds and grows until every point that could start a seed was tried (sec. 3.1, 3.2, 4.1).
   void meshAll(Progress* progress = nullptr);
@@ -70,17 +76,19 @@ public:
   Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
 
   // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
-  bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Cylinder test (sec. 3.1, fig. 1): the points inside the infinite cylinder through the
   // triangle's circumcircle, with axis along its normal, are all on one side of its plane.
-  bool passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  bool passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Sec. 3.2 step 4.3 for the new triangle (b, a, p) on the free edge a→b of front triangle
   // (a, b, c): p is a new point; its edges to a and b, where they exist, are traversed in the
   // opposite direction by their one triangle (point–edge map); and p is not an interior vertex
   // (all of its edges already with two triangles), which would make it non-manifold.
   bool topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const;
 
-  // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts.
+  // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts. Only the
+  // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
+  // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
   // Flips every connected component whose signed volume (about its own centroid) is negative, so
   // that closed surfaces face outwards. Each component was grown with one consistent orientation
@@ -88,7 +96,9 @@ public:
   void orientComponents();
 
   // --- Results ---
-  const std::vector<P3>& points() const { return points_; }
+  size_t size() const { return grid_.size(); }
+  const std::vector<P3>& points() const { return grid_.points(); }
+  const std::vector<std::uint32_t>& order() const { return grid_.order(); }
   const std::vector<Triangle>& triangles() const { return tri_; }
   const std::vector<char>& alive() const { return alive_; }
   const PointEdgeMap& edges() const { return pem_; }
@@ -105,38 +115,45 @@ private:
     std::uint32_t id;
     P3 p;
   };
+  struct Scored {
+    int flatLevel;     // pl_f
+    double radius2;    // squared circumradius of the candidate triangle
+    std::uint32_t id;
+    double cosBeta;
+  };
 
+  double sampleSpacing() const;
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
-                 std::uint32_t b, std::uint32_t c); // G2S emptiness, using near_ then the grid
+                 std::uint32_t b, std::uint32_t c) const; // G2S emptiness, using near_ then the grid
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
+  bool interior(std::uint32_t v) const { return edgeCount_[v] != 0 && freeEdges_[v] == 0; }
   double localSpacing(std::uint32_t v) const;
-  void orientSeed(std::array<std::uint32_t, 3>& tri);
+  int flatnessLevelOfCos(double cosBeta) const;
+  void orientSeed(std::array<std::uint32_t, 3>& tri) const;
   bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
 
   Params params_;
   double spacing_ = 0;
   double seedMaxEdge_ = 0;
-  std::vector<P3> points_;
-  vcg::Box3d box_;
-  PointGrid grid_;
+  MortonGrid grid_;
+  const P3* pts_ = nullptr;            // grid_.points().data()
   PointEdgeMap pem_;
-  std::vector<float> edgeLengthSum_;   // per point: sum of the lengths of its mesh edges
+  // Per point, during growth: the sum of the lengths of its edges, their number, and how many of
+  // them have one triangle only (free edges; an interior vertex has none).
+  std::vector<float> edgeLengthSum_;
   std::vector<std::uint16_t> edgeCount_;
+  std::vector<std::uint8_t> freeEdges_;
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
+  std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
   BucketQueue<FrontEdge> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
+  std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
   std::vector<Near> near_;             // scratch: points of the last gathered ball
-
-  struct Scored {
-    double key1, key2;
-    std::uint32_t id;
-    Ball ball;
-    double beta;
-  };
   std::vector<Scored> scored_;         // scratch: candidates being ranked
 };
 

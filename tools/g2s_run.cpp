@@ -119,6 +119,8 @@ int main(int argc, char** argv) {
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
     std::printf("seconds: %.4f\n", best);
+    std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,
+                st.secondsGrowth, st.secondsCleanup, st.secondsOutput);
     std::printf("triangles_per_second: %.0f\n", double(st.faces) / best);
     std::printf("working_bytes_per_point: %.1f\n", double(st.workingBytes) / double(st.inputPoints));
     std::printf("peak_rss_mib: %.1f\n", double(peakRssKiB()) / 1024.0);

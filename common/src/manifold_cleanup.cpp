@@ -123,7 +123,7 @@ bool degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2]
 } // namespace
 
 ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,
-                                              std::vector<char>& alive) {
+                                              std::vector<char>& alive, const std::vector<std::uint32_t>* suspects) {
   ManifoldCleanupStat st;
   alive.resize(faces.size(), 1);
   for (size_t f = 0; f < faces.size(); ++f)
@@ -134,10 +134,20 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
   const Incidence inc(faces, vertexCount, alive);
   FanFinder fans(faces);
 
-  // Work list: every vertex once, then every vertex of a removed triangle again.
-  std::vector<std::uint32_t> work(vertexCount);
-  for (size_t v = 0; v < vertexCount; ++v) work[v] = static_cast<std::uint32_t>(v);
-  std::vector<char> queued(vertexCount, 1), counted(vertexCount, 0);
+  // Work list: every vertex (or suspect) once, then every vertex of a removed triangle again.
+  std::vector<std::uint32_t> work;
+  std::vector<char> queued(vertexCount, 0), counted(vertexCount, 0);
+  if (suspects != nullptr) {
+    for (std::uint32_t v : *suspects)
+      if (v < vertexCount && !queued[v]) {
+        queued[v] = 1;
+        work.push_back(v);
+      }
+  } else {
+    work.resize(vertexCount);
+    for (size_t v = 0; v < vertexCount; ++v) work[v] = static_cast<std::uint32_t>(v);
+    std::fill(queued.begin(), queued.end(), 1);
+  }
   std::vector<std::uint32_t> removeFaces;
   for (size_t head = 0; head < work.size(); ++head) {
     const std::uint32_t v = work[head];

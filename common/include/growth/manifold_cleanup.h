@@ -35,8 +35,12 @@ struct ManifoldCleanupStat {
 // Removes the extra fans of every non-manifold vertex of the triangles with alive[f] != 0 (alive
 // has one entry per triangle and is updated in place; removed triangles get 0). Vertex indices
 // must be < vertexCount. Triangles with a repeated vertex are removed as degenerate first.
+// `suspects`: when given, only these vertices can be non-manifold to begin with (a mesher that
+// knows where fans were started knows them); they and the vertices of removed triangles are
+// examined, instead of every vertex.
 ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,
-                                              std::vector<char>& alive);
+                                              std::vector<char>& alive,
+                                              const std::vector<std::uint32_t>* suspects = nullptr);
 
 // Number of vertices of the alive triangles whose incident triangles form more than one fan.
 size_t countNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,

@@ -1,0 +1,117 @@
+#include "g2s_grid.h"
+
+#include <algorithm>
+
+namespace growth {
+namespace g2s {
+
+void MortonGrid::build(std::vector<P3> points, double cellSize) {
+  const size_t n = points.size();
+  pts_.clear();
+  fx_.clear();
+  fy_.clear();
+  fz_.clear();
+  order_.clear();
+  table_.clear();
+  cells_ = 0;
+  box_.SetNull();
+  for (const P3& p : points) box_.Add(p);
+  if (n == 0) return;
+
+  const double extent = std::max(box_.DimX(), std::max(box_.DimY(), box_.DimZ()));
+  cell_ = std::max(cellSize, extent / double(kMaxCoord - 1));
+  if (!(cell_ > 0) || !std::isfinite(cell_)) cell_ = 1.0; // all points identical
+  inv_ = 1.0 / cell_;
+  for (int a = 0; a < 3; ++a) maxCell_[a] = std::min(coord(box_.max[a], a), kMaxCoord);
+
+  std::vector<std::uint64_t> key(n), keyTmp(n);
+  std::vector<std::uint32_t> idx(n), idxTmp(n);
+  std::uint64_t maxKey = 0;
+  for (size_t i = 0; i < n; ++i) {
+    std::uint64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::uint64_t(std::min(std::max<std::int64_t>(coord(points[i][a], a), 0), maxCell_[a]));
+    key[i] = morton(c[0], c[1], c[2]);
+    idx[i] = static_cast<std::uint32_t>(i);
+    maxKey = std::max(maxKey, key[i]);
+  }
+  // Stable LSD radix sort on 16-bit digits, only over the digits the keys use: equal keys keep
+  // the input order, so the result is deterministic.
+  std::vector<std::uint32_t> count(65537);
+  for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += 16) {
+    std::fill(count.begin(), count.end(), 0u);
+    for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & 0xffff) + 1];
+    for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
+    for (size_t i = 0; i < n; ++i) {
+      const std::uint32_t to = count[(key[i] >> shift) & 0xffff]++;
+      keyTmp[to] = key[i];
+      idxTmp[to] = idx[i];
+    }
+    key.swap(keyTmp);
+    idx.swap(idxTmp);
+  }
+  keyTmp = std::vector<std::uint64_t>();
+  idxTmp = std::vector<std::uint32_t>();
+
+  pts_.resize(n);
+  fx_.assign(n + 4, std::numeric_limits<float>::max()); // padded for whole 4-lane loads
+  fy_.assign(n + 4, std::numeric_limits<float>::max());
+  fz_.assign(n + 4, std::numeric_limits<float>::max());
+  for (size_t i = 0; i < n; ++i) {
+    pts_[i] = points[idx[i]];
+    fx_[i] = float(pts_[i][0] - box_.min[0]);
+    fy_[i] = float(pts_[i][1] - box_.min[1]);
+    fz_[i] = float(pts_[i][2] - box_.min[2]);
+  }
+  // Float rounding of a relative coordinate is at most 2^-24 of the extent; the query centre's
+  // as well: a distance computed in float errs by less than 4·√3·2^-24·extent (with margin).
+  floatSlack_ = 8.0 * std::sqrt(3.0) * std::ldexp(extent, -24) + 1e-300;
+  points = std::vector<P3>();
+  order_.swap(idx);
+
+  for (size_t i = 0; i < n; ++i) cells_ += (i == 0 || key[i] != key[i - 1]);
+  size_t cap = 16;
+  while (cap < 4 * cells_) cap *= 2; // load <= 1/4: clustered keys make short probe runs
+  mask_ = cap - 1;
+  blockShift_ = 64 + 3; // 64 − log2(cap / 8)
+  for (size_t c = cap; c > 1; c >>= 1) --blockShift_;
+  table_.assign(cap, Slot());
+  for (size_t i = 0; i < n;) {
+    size_t j = i + 1;
+    while (j < n && key[j] == key[i]) ++j;
+    size_t h = slotOf(key[i]);
+    while (table_[h].key != kEmpty) h = (h + 1) & mask_;
+    table_[h].key = key[i];
+    table_[h].begin = static_cast<std::uint32_t>(i);
+    table_[h].end = static_cast<std::uint32_t>(j);
+    i = j;
+  }
+}
+
+std::int64_t MortonGrid::nearest(const P3& c, std::int64_t exclude, double maxRadius, double* squaredDistance) const {
+  if (pts_.empty()) return -1;
+  // Balls of doubling radius: once the best point found lies within the ball's radius, every
+  // closer point was visited too.
+  const double reach = (c - box_.Center()).Norm() + 0.5 * box_.Diag() + cell_;
+  // Start at a quarter cell: the mesher's cells are several spacings wide.
+  double radius = std::min(0.25 * cell_, maxRadius);
+  for (;;) {
+    std::int64_t best = -1;
+    double bestD2 = std::numeric_limits<double>::infinity();
+    forEachInBall(c, radius, [&](std::uint32_t i, double d2) {
+      if (std::int64_t(i) == exclude) return;
+      if (d2 < bestD2 || (d2 == bestD2 && std::int64_t(i) < best)) {
+        bestD2 = d2;
+        best = i;
+      }
+    });
+    if (best >= 0 || radius >= maxRadius || radius >= reach) {
+      if (best >= 0 && squaredDistance != nullptr) *squaredDistance = bestD2;
+      return best;
+    }
+    radius = std::min(2.0 * radius, maxRadius);
+  }
+}
+
+} // namespace g2s
+} // namespace growth

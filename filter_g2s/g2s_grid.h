@@ -1,0 +1,233 @@
+#pragma once
+// Spatial hashing of the points for Robust G2S (sec. 3 step 2: "an original hash table data
+// structure ... which makes possible a more efficient search for the nearest neighbourhoods").
+//
+// The grid *owns* the points and stores them sorted by cell, cells in Morton (Z-curve) order: the
+// index of a point in the grid is its index everywhere in the mesher, so per-point arrays are laid
+// out in space-filling-curve order and the advancing front walks memory coherently. Building is
+// one stable LSD radix sort of the 63-bit cell keys; a query probes one open-addressing table
+// whose 16-byte entries hold the cell key and its point range (one cache line per probe) and
+// scans contiguous coordinates. Only occupied cells are stored: memory grows with the cloud, not
+// with its bounding box.
+//
+// Compared with growth::PointGrid (separate key/start arrays, x-major order that is not the
+// caller's point order, a second sort for a spatial order) this removes a build and two memory
+// indirections per cell; tools/g2s_grid_bench.cpp measures both and vcglib's GridStaticPtr on the
+// mesher's query pattern.
+#include <vcg/space/box3.h>
+#include <vcg/space/point3.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace growth {
+namespace g2s {
+
+class MortonGrid {
+public:
+  using P3 = vcg::Point3d;
+
+  // Takes the points (finite), sorts them into cell order with cubic cells of side `cellSize`
+  // (enlarged when the box would need more than 2^21 cells along an axis). order()[i] is then
+  // the caller's index of the point now at i.
+  void build(std::vector<P3> points, double cellSize);
+
+  size_t size() const { return pts_.size(); }
+  const std::vector<P3>& points() const { return pts_; }
+  const P3& point(std::uint32_t i) const { return pts_[i]; }
+  const std::vector<std::uint32_t>& order() const { return order_; }
+  // Replaces order() (after rebuilding the grid from its own points, to keep the caller's indices).
+  void setOrder(std::vector<std::uint32_t> order) { order_.swap(order); }
+  double cellSize() const { return cell_; }
+  size_t cellCount() const { return cells_; }
+  const vcg::Box3d& box() const { return box_; }
+
+  // Calls f(index, squaredDistance) for every point with |p − c| <= radius, cell by cell.
+  template <class F>
+  void forEachInBall(const P3& c, double radius, F&& f) const {
+    visitBall(c, radius, [&](std::uint32_t i, double d2) {
+      f(i, d2);
+      return false;
+    });
+  }
+
+  // Calls stop(index, squaredDistance) for the points with |p − c| <= radius until it returns
+  // true; returns whether it did (early exit for emptiness tests).
+  template <class F>
+  bool anyInBall(const P3& c, double radius, F&& stop) const {
+    return visitBall(c, radius, stop);
+  }
+
+  // The point nearest to c other than `exclude`, within maxRadius; -1 when there is none.
+  std::int64_t nearest(const P3& c, std::int64_t exclude = -1,
+                       double maxRadius = std::numeric_limits<double>::infinity(),
+                       double* squaredDistance = nullptr) const;
+
+  size_t memoryBytes() const {
+    return pts_.capacity() * sizeof(P3) + 3 * fx_.capacity() * sizeof(float) +
+           order_.capacity() * sizeof(std::uint32_t) +
+           table_.capacity() * sizeof(Slot);
+  }
+
+  // Morton code helpers (public for the tests).
+  static std::uint64_t spread(std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffull;
+    x = (x | x << 16) & 0x1f0000ff0000ffull;
+    x = (x | x << 8) & 0x100f00f00f00f00full;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
+    x = (x | x << 2) & 0x1249249249249249ull;
+    return x;
+  }
+  static std::uint64_t morton(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+    return spread(x) | spread(y) << 1 | spread(z) << 2;
+  }
+
+private:
+  static constexpr std::int64_t kMaxCoord = (std::int64_t(1) << 21) - 1;
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t(0);
+  static constexpr std::int64_t kMaxSpan = 16; // cells per axis handled by the fast query loop
+
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t begin = 0, end = 0;
+  };
+
+  // Cell coordinate of v along an axis: -1 below the box, kMaxCoord + 1 far above (truncation
+  // equals floor for the non-negative values that matter; callers clamp to [0, maxCell_]).
+  std::int64_t coord(double v, int axis) const {
+    const double c = (v - box_.min[axis]) * inv_;
+    return c < 0 ? -1 : (c > double(kMaxCoord) ? kMaxCoord + 1 : static_cast<std::int64_t>(c));
+  }
+  // Table index of a cell key: the 2×2×2 block of cells (key >> 3) is hashed, the cell's place
+  // in its block (key & 7) kept, so the cells a query probes — neighbours in space — mostly share
+  // a block and land in neighbouring slots (shared cache lines), while distant blocks spread.
+  size_t slotOf(std::uint64_t key) const {
+    return static_cast<size_t>((((key >> 3) * 0x9E3779B97F4A7C15ull) >> blockShift_) << 3 | (key & 7)) & mask_;
+  }
+  const Slot* find(std::uint64_t key) const {
+    size_t h = slotOf(key);
+    for (;;) {
+      const Slot& s = table_[h];
+      if (s.key == key) return &s;
+      if (s.key == kEmpty) return nullptr;
+      h = (h + 1) & mask_;
+    }
+  }
+
+  template <class F>
+  bool visitBall(const P3& c, double radius, F&& stop) const {
+    if (pts_.empty() || !(radius >= 0)) return false;
+    const double r2 = radius * radius;
+    // Float prefilter radius: the float coordinates (relative to the box corner) are within
+    // floatSlack_ of the exact ones, so no point within `radius` is missed; hits are re-checked
+    // exactly in double.
+    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
+    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    std::int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::max<std::int64_t>(coord(c[a] - radius, a), 0);
+      hi[a] = std::min<std::int64_t>(coord(c[a] + radius, a), maxCell_[a]);
+      if (lo[a] > hi[a]) return false;
+    }
+    // Morton bits of each cell coordinate in the (small) ranges, computed once per query.
+    std::uint64_t ky[kMaxSpan], kz[kMaxSpan];
+    if (hi[1] - lo[1] >= kMaxSpan || hi[2] - lo[2] >= kMaxSpan) return visitBallWide(c, radius, lo, hi, stop);
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ky[y - lo[1]] = spread(std::uint64_t(y)) << 1;
+    for (std::int64_t z = lo[2]; z <= hi[2]; ++z) kz[z - lo[2]] = spread(std::uint64_t(z)) << 2;
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
+      const std::uint64_t kx = spread(std::uint64_t(x));
+      for (std::int64_t y = 0; y <= hi[1] - lo[1]; ++y) {
+        const std::uint64_t kxy = kx | ky[y];
+        for (std::int64_t z = 0; z <= hi[2] - lo[2]; ++z) {
+          const Slot* s = find(kxy | kz[z]);
+          if (s == nullptr) continue;
+          if (scanCell(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // Balls spanning many cells (seldom: large seed balls, the cylinder walk on coarse clouds).
+  template <class F>
+  bool visitBallWide(const P3& c, double radius, const std::int64_t* lo, const std::int64_t* hi, F&& stop) const {
+    const double r2 = radius * radius;
+    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
+    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
+      // More cells in the box than occupied ones: walk the occupied cells instead.
+      for (const Slot& s : table_) {
+        if (s.key == kEmpty) continue;
+        if (scanCell(s.begin, s.end, c, fc, r2, r2f, stop)) return true;
+      }
+      return false;
+    }
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const Slot* s = find(morton(std::uint64_t(x), std::uint64_t(y), std::uint64_t(z)));
+          if (s != nullptr && scanCell(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+        }
+    return false;
+  }
+
+  // Scans the points [begin, end) of one cell: a float test four at a time (SSE2) on the SoA
+  // copy, then the exact double test on the hits.
+  template <class F>
+  bool scanCell(std::uint32_t begin, std::uint32_t end, const P3& c, const float* fc, double r2, float r2f,
+                F&& stop) const {
+    std::uint32_t i = begin;
+    auto exact = [&](std::uint32_t k) {
+      const P3& p = pts_[k];
+      const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+      const double d2 = dx * dx + dy * dy + dz * dz;
+      return d2 <= r2 && stop(k, d2);
+    };
+#if defined(__SSE2__)
+    // The coordinate arrays are padded by 4, so the last, partial block of a cell is loaded
+    // whole and its lanes past `end` are masked off.
+    const __m128 cx = _mm_set1_ps(fc[0]), cy = _mm_set1_ps(fc[1]), cz = _mm_set1_ps(fc[2]);
+    const __m128 rr = _mm_set1_ps(r2f);
+    for (; i < end; i += 4) {
+      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&fx_[i]), cx);
+      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&fy_[i]), cy);
+      const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&fz_[i]), cz);
+      const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+      int mask = _mm_movemask_ps(_mm_cmple_ps(d2, rr));
+      if (end - i < 4) mask &= (1 << (end - i)) - 1;
+      while (mask != 0) {
+        const int k = __builtin_ctz(static_cast<unsigned>(mask));
+        mask &= mask - 1;
+        if (exact(i + std::uint32_t(k))) return true;
+      }
+    }
+#else
+    for (; i < end; ++i) {
+      const float dx = fx_[i] - fc[0], dy = fy_[i] - fc[1], dz = fz_[i] - fc[2];
+      if (dx * dx + dy * dy + dz * dz <= r2f && exact(i)) return true;
+    }
+#endif
+    return false;
+  }
+
+  std::vector<P3> pts_;
+  std::vector<float> fx_, fy_, fz_;   // the points relative to box_.min, in float, same order
+  double floatSlack_ = 0;
+  std::vector<std::uint32_t> order_;
+  std::vector<Slot> table_;
+  vcg::Box3d box_;
+  double cell_ = 1, inv_ = 1;
+  std::int64_t maxCell_[3] = {-1, -1, -1};
+  size_t cells_ = 0, mask_ = 0;
+  int blockShift_ = 63;
+};
+
+} // namespace g2s
+} // namespace growth

@@ -1,0 +1,361 @@
+// Robust G2S end to end through the engine entry point g2s::build on MeshLab meshes: the
+// experiments of sec. 5 on generated clouds, output properties, bad input, cancel, determinism.
+#include "g2s.h"
+
+#include <growth/cloud_generator.h>
+#include <growth/error.h>
+#include <growth/input_cloud.h>
+#include <growth/mesh_measures.h>
+
+#include <common/ml_mesh_type.h>
+#include <vcg/complex/algorithms/create/ball_pivoting.h>
+#include <vcg/complex/append.h>
+#include <vcg/complex/algorithms/update/bounding.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <memory>
+#include <tuple>
+
+using growth::CloudSpec;
+using growth::Shape;
+namespace g2s = growth::g2s;
+
+namespace {
+
+// CMeshO can be neither copied nor moved: meshes live in unique_ptrs here.
+using Mesh = std::unique_ptr<CMeshO>;
+
+Mesh cloudMesh(const CloudSpec& spec) {
+  Mesh m(new CMeshO);
+  growth::toMesh(growth::generateCloud(spec), *m);
+  return m;
+}
+
+Mesh pointsMesh(const std::vector<vcg::Point3d>& pts) {
+  growth::Cloud c;
+  c.points = pts;
+  c.normals.assign(pts.size(), vcg::Point3d(0, 0, 1));
+  Mesh m(new CMeshO);
+  growth::toMesh(c, *m);
+  return m;
+}
+
+// Gaussian noise / outliers in units of the clean cloud's mean spacing (sec. 5.2).
+CloudSpec noisy(Shape shape, size_t n, double sigmaSpacings, double outliers = 0) {
+  CloudSpec spec;
+  spec.shape = shape;
+  spec.count = n;
+  const double mu = growth::meanSpacing(growth::generateCloud(spec).points);
+  spec.gaussianSigma = sigmaSpacings * mu;
+  spec.outlierFraction = outliers;
+  return spec;
+}
+
+struct Result {
+  CMeshO mesh;
+  g2s::Stat stat;
+  growth::MeshTopology topo;
+};
+
+g2s::Params defaults() {
+  CMeshO none;
+  return g2s::suggestParams(none);
+}
+
+std::unique_ptr<Result> run(const Mesh& cloud, g2s::Params p = defaults()) {
+  std::unique_ptr<Result> r(new Result);
+  g2s::build(*cloud, r->mesh, p, r->stat);
+  r->topo = growth::measureTopology(r->mesh);
+  return r;
+}
+
+// The properties every output must have.
+void expectValidOutput(const Mesh& cloudPtr, const std::unique_ptr<Result>& result) {
+  const CMeshO& cloud = *cloudPtr;
+  const Result& r = *result;
+  EXPECT_EQ(r.topo.nonManifoldEdges, 0u);
+  EXPECT_EQ(r.topo.nonManifoldVertices, 0u);
+  EXPECT_EQ(r.topo.inconsistentEdges, 0u);
+  EXPECT_EQ(r.topo.duplicateFaces, 0u);
+  EXPECT_EQ(r.topo.unreferencedVertices, 0u);
+  EXPECT_EQ(size_t(r.mesh.fn), r.stat.faces);
+  EXPECT_EQ(size_t(r.mesh.vn), r.stat.vertices);
+  EXPECT_EQ(r.topo.boundaryEdges, r.stat.boundaryEdges);
+  EXPECT_EQ(r.topo.boundaryLoops, r.stat.holes);
+  // Vertices are input points (bit for bit), each at most once.
+  std::set<std::tuple<float, float, float>> in;
+  for (const auto& v : cloud.vert) in.insert(std::make_tuple(v.cP()[0], v.cP()[1], v.cP()[2]));
+  std::set<std::tuple<float, float, float>> seen;
+  for (const auto& v : r.mesh.vert) {
+    const auto key = std::make_tuple(v.cP()[0], v.cP()[1], v.cP()[2]);
+    EXPECT_TRUE(in.count(key) == 1);
+    EXPECT_TRUE(seen.insert(key).second);
+  }
+  // Per-face quality Q_t in (0, 1], equal to the measure (float storage).
+  ASSERT_TRUE(r.mesh.face.IsQualityEnabled() || r.mesh.fn == 0);
+  for (const auto& f : r.mesh.face) {
+    const double q = growth::triangleQuality(vcg::Point3d::Construct(f.cP(0)), vcg::Point3d::Construct(f.cP(1)),
+                                             vcg::Point3d::Construct(f.cP(2)));
+    EXPECT_NEAR(f.cQ(), q, 1e-5);
+    EXPECT_GT(f.cQ(), 0);
+    EXPECT_LE(f.cQ(), 1 + 1e-6);
+  }
+}
+
+} // namespace
+
+TEST(G2SBuild, CleanSphereIsClosedWithTwoFacesPerPoint) {
+  CloudSpec spec;
+  spec.shape = Shape::Sphere;
+  spec.count = 5000;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->stat.boundaryEdges, 0u);
+  EXPECT_GE(r->stat.vertices, 4995u);
+  EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices - 4); // Euler, genus 0
+  EXPECT_EQ(r->topo.components, 1u);
+  // Closed surfaces face outwards: positive signed volume.
+  double vol = 0;
+  for (const auto& f : r->mesh.face)
+    vol += vcg::Point3d::Construct(f.cP(0)) * (vcg::Point3d::Construct(f.cP(1)) ^ vcg::Point3d::Construct(f.cP(2)));
+  EXPECT_GT(vol, 0);
+}
+
+TEST(G2SBuild, CleanTorusIsClosedGenusOne) {
+  CloudSpec spec;
+  spec.shape = Shape::Torus;
+  spec.count = 12000;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_GE(r->stat.vertices, 11990u);
+  EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices); // F = 2V − 4 + 4g, g = 1
+}
+
+TEST(G2SBuild, NonUniformDensityStaysClosed) {
+  CloudSpec spec;
+  spec.shape = Shape::Sphere;
+  spec.count = 5000;
+  spec.nonUniform = true;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices - 4);
+  EXPECT_GE(r->stat.vertices, 4990u);
+}
+
+TEST(G2SBuild, OpenPatchKeepsOneBoundaryLoop) {
+  CloudSpec spec;
+  spec.shape = Shape::Patch;
+  spec.count = 4000;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 1u);
+  EXPECT_EQ(r->topo.components, 1u);
+  EXPECT_GE(r->stat.vertices, 3990u);
+  // A disk: F = 2V − B − 2 with B boundary edges (= boundary vertices).
+  EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices - r->stat.boundaryEdges - 2);
+}
+
+TEST(G2SBuild, GaussianNoiseTenAndTwentyFivePercentStaysManifold) {
+  for (double sigma : {0.10, 0.25}) {
+    const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 5000, sigma));
+    const auto r = run(cloud);
+    SCOPED_TRACE(sigma);
+    expectValidOutput(cloud, r);
+    RecordProperty(sigma < 0.2 ? "holes_10pct" : "holes_25pct", int(r->stat.holes));
+    EXPECT_GT(r->stat.faces, size_t(0.95 * 2 * 5000));
+    if (sigma < 0.2) {
+      EXPECT_LE(r->stat.holes, 5u); // mild noise: at most a few small holes
+    }
+  }
+}
+
+TEST(G2SBuild, OutliersStayManifoldAndDoNotSpoilTheSurface) {
+  const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 5000, 0.0, 0.05));
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  // Most of the surface is meshed in one piece.
+  EXPECT_GT(r->stat.faces, size_t(0.95 * 2 * 5000));
+  EXPECT_GT(r->stat.unusedPoints, 0u); // most outliers stay unused
+}
+
+TEST(G2SBuild, NoisyTorusStaysManifold) {
+  const Mesh cloud = cloudMesh(noisy(Shape::Torus, 8000, 0.25));
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+}
+
+TEST(G2SBuild, HolesNoWorseThanBallPivotingOnNoisyClouds) {
+  // MeshLab's Ball Pivoting (vcglib) with its automatic radius on the same clouds.
+  for (double sigma : {0.10, 0.25}) {
+    const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 4000, sigma));
+    const auto r = run(cloud);
+    CMeshO bpa;
+    vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(bpa, *cloud);
+    vcg::tri::UpdateBounding<CMeshO>::Box(bpa);
+    vcg::tri::BallPivoting<CMeshO> pivot(bpa, 0, 0.2f, float(M_PI / 2));
+    pivot.BuildMesh();
+    const growth::MeshTopology bt = growth::measureTopology(bpa);
+    SCOPED_TRACE(sigma);
+    EXPECT_LE(r->stat.holes, bt.boundaryLoops) << "Ball Pivoting: " << bt.boundaryLoops << " holes, "
+                                              << bt.boundaryEdges << " boundary edges";
+    EXPECT_LE(r->stat.boundaryEdges, bt.boundaryEdges);
+  }
+}
+
+TEST(G2SBuild, SameInputSameOutput) {
+  const Mesh cloud = cloudMesh(noisy(Shape::Torus, 6000, 0.25));
+  const auto a = run(cloud), b = run(cloud);
+  ASSERT_EQ(a->mesh.fn, b->mesh.fn);
+  ASSERT_EQ(a->mesh.vn, b->mesh.vn);
+  for (size_t i = 0; i < a->mesh.vert.size(); ++i) ASSERT_TRUE(a->mesh.vert[i].cP() == b->mesh.vert[i].cP());
+  for (size_t f = 0; f < a->mesh.face.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      ASSERT_EQ(vcg::tri::Index(a->mesh, a->mesh.face[f].cV(k)), vcg::tri::Index(b->mesh, b->mesh.face[f].cV(k)));
+}
+
+TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {
+  growth::Random rng(4);
+  std::vector<vcg::Point3d> pts;
+  for (int i = 0; i < 2000; ++i) pts.push_back(vcg::Point3d(rng.uniform(0, 1), rng.uniform(0, 1), 0.5));
+  const Mesh cloud = pointsMesh(pts);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_GE(r->stat.vertices, 1990u);
+  EXPECT_EQ(r->topo.components, 1u);
+  // Every face lies in the plane.
+  for (const auto& v : r->mesh.vert) EXPECT_EQ(v.cP()[2], 0.5f);
+}
+
+TEST(G2SBuild, DuplicatePointsAreDroppedAndGiveTheSameMesh) {
+  CloudSpec spec;
+  spec.shape = Shape::Sphere;
+  spec.count = 2000;
+  const auto pts = growth::generateCloud(spec).points;
+  std::vector<vcg::Point3d> doubled(pts);
+  doubled.insert(doubled.end(), pts.begin(), pts.end());
+  const auto a = run(pointsMesh(pts)), b = run(pointsMesh(doubled));
+  EXPECT_EQ(b->stat.duplicatesDropped, pts.size());
+  EXPECT_EQ(a->stat.faces, b->stat.faces);
+  expectValidOutput(pointsMesh(doubled), b);
+}
+
+TEST(G2SBuild, BadInputGivesAClearError) {
+  CMeshO empty;
+  CMeshO out;
+  g2s::Stat st;
+  const g2s::Params p = g2s::suggestParams(empty);
+  EXPECT_THROW(g2s::build(empty, out, p, st), growth::Error);
+  EXPECT_EQ(out.fn, 0);
+  EXPECT_THROW(g2s::build(*pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0)}), out, p, st), growth::Error);
+  EXPECT_THROW(g2s::build(*pointsMesh({vcg::Point3d(1, 1, 1), vcg::Point3d(1, 1, 1), vcg::Point3d(1, 1, 1),
+                                      vcg::Point3d(1, 1, 1)}),
+                          out, p, st),
+               growth::Error);
+  std::vector<vcg::Point3d> line;
+  for (int i = 0; i < 50; ++i) line.push_back(vcg::Point3d(i, 2 * i, 3 * i));
+  EXPECT_THROW(g2s::build(*pointsMesh(line), out, p, st), growth::Error);
+  std::vector<vcg::Point3d> withNan{vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0, 1, 0),
+                                    vcg::Point3d(std::numeric_limits<double>::quiet_NaN(), 0, 0)};
+  try {
+    g2s::build(*pointsMesh(withNan), out, p, st);
+    FAIL() << "NaN accepted";
+  } catch (const growth::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("NaN"), std::string::npos);
+  }
+  EXPECT_EQ(out.fn, 0);
+  EXPECT_EQ(out.vn, 0);
+}
+
+TEST(G2SBuild, TinyCloudsGiveAValidPossiblyEmptyResult) {
+  CMeshO out;
+  g2s::Stat st;
+  const g2s::Params p = defaults();
+  // Three points: one triangle (or none); never a crash.
+  const Mesh three = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0.4, 0.8, 0)});
+  g2s::build(*three, out, p, st);
+  EXPECT_LE(out.fn, 1);
+  EXPECT_EQ(growth::measureTopology(out).nonManifoldVertices, 0u);
+  // Points too scattered for any seed: empty, with a warning.
+  // Two pairs far apart: each point's nearest neighbour is its partner, and no third point is
+  // within k times that distance.
+  const Mesh sparse = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(100, 0, 0),
+                                    vcg::Point3d(100, 1, 0.5)});
+  g2s::build(*sparse, out, p, st);
+  EXPECT_EQ(out.fn, 0);
+  EXPECT_EQ(out.vn, 0);
+  EXPECT_FALSE(st.warnings.empty());
+}
+
+TEST(G2SBuild, MeshLayerIsRefused) {
+  Mesh mesh = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0, 1, 0)});
+  vcg::tri::Allocator<CMeshO>::AddFace(*mesh, &mesh->vert[0], &mesh->vert[1], &mesh->vert[2]);
+  CMeshO out;
+  g2s::Stat st;
+  EXPECT_THROW(g2s::build(*mesh, out, defaults(), st), growth::Error);
+}
+
+TEST(G2SBuild, InvalidParametersAreRefused) {
+  CloudSpec spec;
+  spec.count = 500;
+  const Mesh cloud = cloudMesh(spec);
+  CMeshO out;
+  g2s::Stat st;
+  auto refuses = [&](void (*edit)(g2s::Params&)) {
+    g2s::Params p = g2s::suggestParams(*cloud);
+    edit(p);
+    EXPECT_THROW(g2s::build(*cloud, out, p, st), growth::Error);
+  };
+  refuses([](g2s::Params& p) { p.seedSearchFactor = 0; });
+  refuses([](g2s::Params& p) { p.seedSearchFactor = std::numeric_limits<double>::quiet_NaN(); });
+  refuses([](g2s::Params& p) { p.maxSearchRadiusFactor = 0.5; });
+  refuses([](g2s::Params& p) { p.sizeLevels = 0; });
+  refuses([](g2s::Params& p) { p.flatnessLevels = 0; });
+  refuses([](g2s::Params& p) { p.flatnessLevels = 1000; });
+  // maxSearchRadiusFactor 0 means the default.
+  g2s::Params p = g2s::suggestParams(*cloud);
+  p.maxSearchRadiusFactor = 0;
+  g2s::build(*cloud, out, p, st);
+  EXPECT_DOUBLE_EQ(st.maxSearchRadiusFactor, g2s::kDefaultMaxSearchRadiusFactor);
+}
+
+namespace {
+int g_calls = 0, g_maxPercent = -1, g_cancelAt = 1000;
+bool callback(int percent, const char*) {
+  ++g_calls;
+  g_maxPercent = std::max(g_maxPercent, percent);
+  return percent < g_cancelAt;
+}
+} // namespace
+
+TEST(G2SBuild, ProgressIsThrottledAndCancelLeavesNothing) {
+  CloudSpec spec;
+  spec.count = 20000;
+  const Mesh cloud = cloudMesh(spec);
+  CMeshO out;
+  g2s::Stat st;
+  g_calls = 0;
+  g_maxPercent = -1;
+  g_cancelAt = 1000;
+  g2s::build(*cloud, out, g2s::suggestParams(*cloud), st, callback);
+  EXPECT_GT(out.fn, 0);
+  EXPECT_LE(g_calls, 300);
+  EXPECT_GE(g_maxPercent, 95);
+  for (int at : {1, 40, 93, 97}) {
+    g_cancelAt = at;
+    EXPECT_THROW(g2s::build(*cloud, out, g2s::suggestParams(*cloud), st, callback), growth::Cancelled) << at;
+    EXPECT_EQ(out.fn, 0);
+    EXPECT_EQ(out.vn, 0);
+  }
+}

@@ -1,0 +1,166 @@
+#include "g2s_grid.h"
+
+#include <growth/cloud_generator.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <set>
+#include <vector>
+
+using growth::g2s::MortonGrid;
+using vcg::Point3d;
+
+namespace {
+
+std::vector<Point3d> torusCloud(size_t n, std::uint64_t seed) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = n;
+  spec.seed = seed;
+  return growth::generateCloud(spec).points;
+}
+
+std::set<std::uint32_t> bruteBall(const MortonGrid& g, const Point3d& c, double r) {
+  std::set<std::uint32_t> s;
+  for (std::uint32_t i = 0; i < g.size(); ++i)
+    if ((g.point(i) - c).SquaredNorm() <= r * r) s.insert(i);
+  return s;
+}
+
+} // namespace
+
+TEST(MortonGrid, MortonCodesInterleaveTheCoordinateBits) {
+  EXPECT_EQ(MortonGrid::morton(0, 0, 0), 0u);
+  EXPECT_EQ(MortonGrid::morton(1, 0, 0), 1u);
+  EXPECT_EQ(MortonGrid::morton(0, 1, 0), 2u);
+  EXPECT_EQ(MortonGrid::morton(0, 0, 1), 4u);
+  EXPECT_EQ(MortonGrid::morton(3, 0, 0), 9u);
+  EXPECT_EQ(MortonGrid::morton(0x1fffff, 0x1fffff, 0x1fffff), (std::uint64_t(1) << 63) - 1);
+}
+
+TEST(MortonGrid, EmptyAndSinglePoint) {
+  MortonGrid g;
+  g.build({}, 1.0);
+  EXPECT_EQ(g.size(), 0u);
+  EXPECT_EQ(g.nearest(Point3d(0, 0, 0)), -1);
+  int calls = 0;
+  g.forEachInBall(Point3d(0, 0, 0), 10, [&](std::uint32_t, double) { ++calls; });
+  EXPECT_EQ(calls, 0);
+
+  g.build({Point3d(1, 2, 3)}, 0.5);
+  EXPECT_EQ(g.size(), 1u);
+  EXPECT_EQ(g.nearest(Point3d(5, 5, 5)), 0);
+  EXPECT_EQ(g.nearest(Point3d(5, 5, 5), 0), -1); // excluded
+  EXPECT_EQ(g.nearest(Point3d(5, 5, 5), -1, 1.0), -1); // beyond maxRadius
+}
+
+TEST(MortonGrid, PointsAreAPermutationInCellOrder) {
+  const auto pts = torusCloud(5000, 3);
+  MortonGrid g;
+  g.build(pts, 0.2);
+  ASSERT_EQ(g.size(), pts.size());
+  std::vector<std::uint32_t> seen(g.order());
+  std::sort(seen.begin(), seen.end());
+  for (size_t i = 0; i < seen.size(); ++i) ASSERT_EQ(seen[i], i);
+  for (std::uint32_t i = 0; i < g.size(); ++i) ASSERT_TRUE(g.point(i) == pts[g.order()[i]]);
+  // Deterministic: the same input gives the same order.
+  MortonGrid h;
+  h.build(pts, 0.2);
+  EXPECT_EQ(g.order(), h.order());
+}
+
+TEST(MortonGrid, BallQueriesMatchBruteForceAtEveryCellSize) {
+  const auto pts = torusCloud(4000, 5);
+  growth::Random rng(11);
+  for (double cell : {0.02, 0.1, 0.35, 2.0, 50.0}) {
+    MortonGrid g;
+    g.build(pts, cell);
+    for (int q = 0; q < 60; ++q) {
+      const Point3d c = pts[size_t(q) * 61 % pts.size()] + rng.inBall(0.3);
+      const double r = rng.uniform(0.0, 0.5);
+      std::set<std::uint32_t> got;
+      g.forEachInBall(c, r, [&](std::uint32_t i, double d2) {
+        EXPECT_NEAR(d2, (g.point(i) - c).SquaredNorm(), 1e-12);
+        EXPECT_TRUE(got.insert(i).second) << "point reported twice";
+      });
+      EXPECT_EQ(got, bruteBall(g, c, r)) << "cell " << cell << " query " << q;
+    }
+  }
+}
+
+TEST(MortonGrid, PointsExactlyOnTheSphereAreFoundDespiteTheFloatPrefilter) {
+  // Far from the origin, where float coordinates round coarsely: the exact double test decides.
+  std::vector<Point3d> pts;
+  const Point3d o(1e6, -2e6, 3e6);
+  for (int i = 0; i < 200; ++i) pts.push_back(o + Point3d(0.001 * i, 0.0007 * (i % 13), 0.0003 * (i % 7)));
+  MortonGrid g;
+  g.build(pts, 0.01);
+  for (std::uint32_t i = 0; i < g.size(); i += 17) {
+    const Point3d c = g.point(i);
+    for (std::uint32_t j = 0; j < g.size(); j += 23) {
+      const double r = (g.point(j) - c).Norm() * (1 + 1e-12); // r² >= d² despite rounding
+      bool found = false;
+      g.forEachInBall(c, r, [&](std::uint32_t k, double) { found = found || k == j; });
+      EXPECT_TRUE(found) << i << " " << j;
+    }
+  }
+}
+
+TEST(MortonGrid, AnyInBallStopsAtTheFirstMatch) {
+  const auto pts = torusCloud(2000, 9);
+  MortonGrid g;
+  g.build(pts, 0.3);
+  int visits = 0;
+  const bool hit = g.anyInBall(g.point(0), 1.0, [&](std::uint32_t, double) {
+    ++visits;
+    return true;
+  });
+  EXPECT_TRUE(hit);
+  EXPECT_EQ(visits, 1);
+  EXPECT_FALSE(g.anyInBall(Point3d(100, 100, 100), 1.0, [](std::uint32_t, double) { return true; }));
+}
+
+TEST(MortonGrid, NearestMatchesBruteForce) {
+  const auto pts = torusCloud(3000, 13);
+  growth::Random rng(17);
+  for (double cell : {0.03, 0.3, 3.0}) {
+    MortonGrid g;
+    g.build(pts, cell);
+    for (int q = 0; q < 100; ++q) {
+      const Point3d c = q % 3 == 0 ? Point3d(rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-5, 5))
+                                   : pts[size_t(q) * 29 % pts.size()] + rng.inBall(0.1);
+      const std::int64_t exclude = q % 2 == 0 ? std::int64_t(q) : -1;
+      double best = std::numeric_limits<double>::infinity();
+      for (std::uint32_t i = 0; i < g.size(); ++i)
+        if (std::int64_t(i) != exclude) best = std::min(best, (g.point(i) - c).SquaredNorm());
+      double d2 = -1;
+      const std::int64_t got = g.nearest(c, exclude, std::numeric_limits<double>::infinity(), &d2);
+      ASSERT_GE(got, 0);
+      EXPECT_NE(got, exclude);
+      EXPECT_DOUBLE_EQ(d2, best);
+      EXPECT_DOUBLE_EQ((g.point(std::uint32_t(got)) - c).SquaredNorm(), best);
+    }
+  }
+}
+
+TEST(MortonGrid, IdenticalPointsAndFlatClouds) {
+  std::vector<Point3d> same(10, Point3d(1, 1, 1));
+  MortonGrid g;
+  g.build(same, 0.0);
+  EXPECT_EQ(g.size(), 10u);
+  int n = 0;
+  g.forEachInBall(Point3d(1, 1, 1), 0.0, [&](std::uint32_t, double) { ++n; });
+  EXPECT_EQ(n, 10);
+  // A planar cloud (zero thickness along z).
+  std::vector<Point3d> plane;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j) plane.push_back(Point3d(i * 0.1, j * 0.1, 0));
+  g.build(plane, 0.25);
+  EXPECT_EQ(bruteBall(g, Point3d(1, 1, 0), 0.35).size(), size_t([&] {
+              int k = 0;
+              g.forEachInBall(Point3d(1, 1, 0), 0.35, [&](std::uint32_t, double) { ++k; });
+              return k;
+            }()));
+}

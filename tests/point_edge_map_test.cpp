@@ -1,0 +1,130 @@
+#include <growth/point_edge_map.h>
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <stdexcept>
+
+using growth::PointEdgeMap;
+
+TEST(PointEdgeMap, EmptyMapHasNoEdges) {
+  PointEdgeMap m(4);
+  EXPECT_EQ(m.pointCount(), 4u);
+  for (std::uint32_t v = 0; v < 4; ++v) {
+    EXPECT_TRUE(m.isolated(v));
+    EXPECT_FALSE(m.hasFreeEdge(v));
+    EXPECT_FALSE(m.closed(v));
+    EXPECT_EQ(m.degree(v), 0);
+  }
+  EXPECT_FALSE(m.used(0, 1));
+  EXPECT_EQ(m.triangles(0, 1), 0);
+  EXPECT_TRUE(m.canAddTriangle(0, 1, 2));
+  EXPECT_FALSE(m.canAddTriangle(0, 0, 2)); // repeated vertex
+}
+
+TEST(PointEdgeMap, OneTriangleUsesItsThreeHalfEdgesOneWay) {
+  PointEdgeMap m(3);
+  EXPECT_EQ(m.addTriangle(0, 1, 2), 7u); // all three edges new
+  EXPECT_TRUE(m.used(0, 1) && m.used(1, 2) && m.used(2, 0));
+  EXPECT_FALSE(m.used(1, 0) || m.used(2, 1) || m.used(0, 2));
+  EXPECT_EQ(m.triangles(0, 1), 1);
+  EXPECT_EQ(m.triangles(1, 0), 1);
+  for (std::uint32_t v = 0; v < 3; ++v) {
+    EXPECT_EQ(m.degree(v), 2);
+    EXPECT_TRUE(m.hasFreeEdge(v));
+    EXPECT_FALSE(m.closed(v));
+  }
+}
+
+TEST(PointEdgeMap, ConsistentNeighbourIsAllowedInconsistentOrThirdTriangleIsNot) {
+  PointEdgeMap m(5);
+  m.addTriangle(0, 1, 2);
+  // Across edge {0,1} with consistent orientation: traverses 1→0.
+  EXPECT_TRUE(m.canAddTriangle(1, 0, 3));
+  // Same direction 0→1 as the first triangle: inconsistent orientation.
+  EXPECT_FALSE(m.canAddTriangle(0, 1, 3));
+  EXPECT_EQ(m.addTriangle(1, 0, 3), 6u); // {1,0} existed; {0,3} and {3,1} are new
+  EXPECT_EQ(m.triangles(0, 1), 2);
+  // Edge {0,1} has two triangles: no third one, in either direction.
+  EXPECT_FALSE(m.canAddTriangle(0, 1, 4));
+  EXPECT_FALSE(m.canAddTriangle(1, 0, 4));
+}
+
+TEST(PointEdgeMap, ClosedFanMakesTheCentreInterior) {
+  // Hexagon fan around vertex 0 (rim 1..6), consistently oriented.
+  PointEdgeMap m(7);
+  for (std::uint32_t i = 1; i <= 6; ++i) {
+    const std::uint32_t j = i % 6 + 1;
+    ASSERT_TRUE(m.canAddTriangle(0, i, j));
+    m.addTriangle(0, i, j);
+    if (i < 6) {
+      EXPECT_FALSE(m.closed(0)) << "open after " << i << " triangles";
+    }
+  }
+  EXPECT_TRUE(m.closed(0));
+  EXPECT_FALSE(m.hasFreeEdge(0));
+  EXPECT_EQ(m.degree(0), 6);
+  for (std::uint32_t i = 1; i <= 6; ++i) EXPECT_TRUE(m.hasFreeEdge(i));
+}
+
+TEST(PointEdgeMap, ManyNeighboursChainOverflowBlocks) {
+  // A vertex with 40 neighbours (a fan of 39 triangles): beyond the inline block.
+  const std::uint32_t n = 40;
+  PointEdgeMap m(n + 1);
+  for (std::uint32_t i = 1; i < n; ++i) m.addTriangle(0, i, i + 1);
+  EXPECT_EQ(m.degree(0), int(n));
+  std::set<std::uint32_t> seen;
+  m.forEachEdge(0, [&](std::uint32_t w, bool out, bool in) {
+    seen.insert(w);
+    EXPECT_TRUE(out || in);
+  });
+  EXPECT_EQ(seen.size(), size_t(n));
+  for (std::uint32_t i = 1; i < n; ++i) {
+    EXPECT_TRUE(m.used(0, i));
+    EXPECT_TRUE(m.used(i + 1, 0));
+    EXPECT_EQ(m.triangles(0, i), i == 1 ? 1 : 2);
+  }
+  // Close the fan: the first and last edge get their second triangle.
+  m.addTriangle(0, n, 1);
+  EXPECT_TRUE(m.closed(0));
+  // Removal restores the open fan.
+  m.removeTriangle(0, n, 1);
+  EXPECT_FALSE(m.closed(0));
+  EXPECT_FALSE(m.used(0, n));
+  EXPECT_TRUE(m.canAddTriangle(0, n, 1));
+}
+
+TEST(PointEdgeMap, RemoveTriangleMakesItsHalfEdgesFreeAgain) {
+  PointEdgeMap m(4);
+  m.addTriangle(0, 1, 2);
+  m.addTriangle(1, 0, 3);
+  m.removeTriangle(0, 1, 2);
+  EXPECT_FALSE(m.used(0, 1));
+  EXPECT_TRUE(m.used(1, 0));
+  EXPECT_EQ(m.triangles(0, 1), 1);
+  EXPECT_TRUE(m.isolated(2));
+  EXPECT_TRUE(m.canAddTriangle(0, 1, 2));
+  // A re-added edge after removal counts as new again.
+  EXPECT_EQ(m.addTriangle(0, 1, 2) & 6u, 6u);
+}
+
+TEST(PointEdgeMap, MarksAreSetPerHalfEdgeAndCleared) {
+  PointEdgeMap m(3);
+  m.addTriangle(0, 1, 2);
+  m.setMark(0, 1, true);
+  EXPECT_TRUE(m.marked(0, 1));
+  EXPECT_FALSE(m.marked(1, 0));
+  EXPECT_TRUE(m.used(0, 1)); // marks do not disturb the direction bits
+  m.clearMarks();
+  EXPECT_FALSE(m.marked(0, 1));
+  EXPECT_TRUE(m.used(0, 1));
+}
+
+TEST(PointEdgeMap, TooManyEdgesAtOnePointThrowsInsteadOfCorrupting) {
+  PointEdgeMap m(300);
+  EXPECT_THROW(
+      {
+        for (std::uint32_t i = 1; i < 299; ++i) m.addTriangle(0, i, i + 1);
+      },
+      std::length_error);
+}
