@@ -8,7 +8,6 @@
 #include <growth/error.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
-#include <growth/point_grid.h>
 #include <growth/progress.h>
 #include <growth/region_triangulation.h>
 #include <growth/splats.h>
@@ -214,18 +213,23 @@ private:
   std::vector<std::uint32_t> near_;
 };
 
-// Closest splat to x (smallest distance to its disk) and the projection of x onto it.
+// Closest splat to x (smallest distance to its disk) and the projection of x onto it (sec. 3.3).
+// The splats of the box containing x (all points within d of it) are searched; when x is farther
+// than d from every point, all splats are.
 bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
-                             const PointGrid& pg, double maxRadius, vcg::Point3d& proj, std::uint32_t& splat) {
-  double d2 = 0;
-  const int nearest = pg.nearest(x, &d2);
-  if (nearest < 0) return false;
+                             const BoxGrid& grid, vcg::Point3d& proj, std::uint32_t& splat) {
   double best = std::numeric_limits<double>::infinity();
-  int bestIdx = -1;
-  pg.forEachInBall(x, std::sqrt(d2) + maxRadius, [&](int i, double) {
-    const double dd = squaredDistanceToDisk(x, in.points[size_t(i)], in.normals[size_t(i)], radius[size_t(i)]);
-    if (dd < best || (dd == best && i < bestIdx)) best = dd, bestIdx = i;
-  });
+  std::int64_t bestIdx = -1;
+  auto consider = [&](std::uint32_t i) {
+    const double dd = squaredDistanceToDisk(x, in.points[i], in.normals[i], radius[i]);
+    if (dd < best) best = dd, bestIdx = i;
+  };
+  const int box = grid.boxOf(x);
+  if (box >= 0) {
+    for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) consider(*it);
+  }
+  if (bestIdx < 0)
+    for (std::uint32_t i = 0; i < in.points.size(); ++i) consider(i);
   if (bestIdx < 0) return false;
   splat = static_cast<std::uint32_t>(bestIdx);
   proj = projectOntoDisk(x, in.points[splat], in.normals[splat], radius[splat]);
@@ -340,21 +344,17 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
   st.secondsSplats = lap();
-  double maxRadius = 0;
-  for (float r : radius) maxRadius = std::max(maxRadius, double(r));
 
   // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
   progress.phase("Sphere packing: starting vertices", 20, 21);
-  PointGrid pg;
-  pg.build(in.points, d);
   vcg::Point3d s1, s2;
   std::uint32_t splat1 = 0, splat2 = 0;
   if (params.useStartPoints) {
     for (const auto& q : params.startPoint)
       if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
         throw Error("The starting points must have finite coordinates.");
-    projectOntoClosestSplat(params.startPoint[0], in, radius, pg, maxRadius, s1, splat1);
-    projectOntoClosestSplat(params.startPoint[1], in, radius, pg, maxRadius, s2, splat2);
+    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, s1, splat1);
+    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, s2, splat2);
     const double dist = (s1 - s2).Norm();
     if (dist < d || dist > 2 * d)
       throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
@@ -375,7 +375,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     for (size_t t = 0; t < tries && !found; ++t) {
       const std::uint32_t i = order[t];
       int around = 0;
-      pg.forEachInBall(in.points[i], d, [&](int, double) { ++around; });
+      const int box = grid.boxOf(in.points[i]);
+      if (box < 0) continue;
+      for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
+        around += (in.points[*it] - in.points[i]).SquaredNorm() <= d * d ? 1 : 0;
       if (around < 4) continue;
       vcg::Point3d e1, e2;
       tangentFrame(in.normals[i], e1, e2);
@@ -384,7 +387,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
         const vcg::Point3d target = in.points[i] + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
         vcg::Point3d q;
         std::uint32_t sq = 0;
-        if (!projectOntoClosestSplat(target, in, radius, pg, maxRadius, q, sq)) continue;
+        if (!projectOntoClosestSplat(target, in, radius, grid, q, sq)) continue;
         const double dist = (q - in.points[i]).Norm();
         if (dist >= d && dist <= 2 * d) {
           s1 = in.points[i];
@@ -439,9 +442,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   {
     size_t unreached = 0;
     for (std::uint32_t i = 0; i < in.points.size(); ++i) {
-      bool any = false;
-      growth.lists().forEach(i, [&](std::uint32_t) { any = true; });
-      unreached += any ? 0 : 1;
+      unreached += growth.lists().empty(i) ? 1 : 0;
     }
     st.unreachedPoints = unreached;
   }

@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
       }
     }
 
+    const long rssBefore = peakRssKiB();
     CMeshO mesh;
     growth::spherepack::Stat st;
     double best = 1e300;
@@ -118,8 +119,10 @@ int main(int argc, char** argv) {
                 st.rejectedInconsistent, st.unreachedPoints, st.nonManifoldVertices);
     std::printf("seconds_box_grid: %.4f\nseconds_splats: %.4f\nseconds_growth: %.4f\nseconds_triangulation: %.4f\n",
                 st.secondsBoxGrid, st.secondsSplats, st.secondsGrowth, st.secondsTriangulation);
-    std::printf("seconds: %.4f\nvertices_per_second: %.0f\npeak_rss_kib: %ld\nbytes_per_point_rss: %.1f\n", best,
-                double(st.vertices) / best, peakRssKiB(), 1024.0 * double(peakRssKiB()) / double(st.inputPoints));
+    std::printf("seconds: %.4f\nvertices_per_second: %.0f\npeak_rss_kib: %ld\nbytes_per_point_rss: %.1f\n"
+                "peak_rss_before_build_kib: %ld\nbytes_per_point_engine: %.1f\n",
+                best, double(st.vertices) / best, peakRssKiB(), 1024.0 * double(peakRssKiB()) / double(st.inputPoints),
+                rssBefore, 1024.0 * double(peakRssKiB() - rssBefore) / double(st.inputPoints));
     for (const auto& w : st.warnings) std::printf("warning: %s\n", w.c_str());
     if (measure) {
       const growth::MeshMeasures m = growth::measure(mesh);

@@ -95,19 +95,58 @@ vcg::Point3d SphereSampling::maxMinDirectionBruteForce(const std::vector<vcg::Po
 
 vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
                                              size_t count, double* minDotOut) const {
+  // Active set: with f_A(n) = min over a subset A of the normals, f <= f_A everywhere; so when the
+  // argmax c of f_A over S_F has f(c) = f_A(c), c is the argmax of f as well. Start from the
+  // normal least aligned with the mean, add the normals that are worse at c, repeat. The search
+  // over S_F then runs on a handful of normals instead of all of the box's.
+  if (count == 0) {
+    if (minDotOut != nullptr) *minDotOut = 1;
+    return vcg::Point3d(0, 0, 1);
+  }
+  if (count <= 8) return branchAndBound(normals, idx, count, minDotOut, nullptr);
+  std::vector<std::uint32_t>& active = active_;
+  active.clear();
+  vcg::Point3d mean(0, 0, 0);
+  for (size_t k = 0; k < count; ++k) mean += normals[idx[k]];
+  size_t first = 0;
+  for (size_t k = 1; k < count; ++k)
+    if (normals[idx[k]] * mean < normals[idx[first]] * mean) first = k;
+  active.push_back(idx[first]);
+  vcg::Point3d c(0, 0, 0);
+  for (bool warm = false;; warm = true) {
+    double v = 0;
+    c = branchAndBound(normals, active.data(), active.size(), &v, warm ? &c : nullptr);
+    // The (at most 3) normals of the box that are worse than v at c.
+    std::uint32_t worst[3];
+    double worstDot[3];
+    int nWorst = 0;
+    for (size_t k = 0; k < count; ++k) {
+      const double dot = normals[idx[k]] * c;
+      if (!(dot < v)) continue;
+      int pos = nWorst < 3 ? nWorst++ : 3;
+      while (pos > 0 && worstDot[pos - 1] > dot) {
+        if (pos < 3) worst[pos] = worst[pos - 1], worstDot[pos] = worstDot[pos - 1];
+        --pos;
+      }
+      if (pos < 3) worst[pos] = idx[k], worstDot[pos] = dot;
+    }
+    if (nWorst == 0) {
+      if (minDotOut != nullptr) *minDotOut = v;
+      return c;
+    }
+    for (int k = 0; k < nWorst; ++k) active.push_back(worst[k]);
+  }
+}
+
+vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+                                            size_t count, double* minDotOut, const vcg::Point3d* warm) const {
   // Best-first branch and bound over the quadtree of each cube face. For a cell with centre
   // direction c, every direction n of the cell is within the angle α of c (the largest angle
   // from c to the cell's corners: the angle to c is quasi-convex over the square, so its maximum
   // is at a corner). With θ = angle(n_k, c) for the normal n_k worst at c (<n_k, c> = value(c)),
   // angle(n_k, n) >= θ − α, hence min_k <n_k, n> <= cos(max(0, θ − α)) for every n of the cell:
   // a bound that is tight near the optimum, so few cells per level survive. Exact over S_F.
-  struct Cell {
-    double bound;
-    int face, depth;
-    std::uint32_t x, y;
-    bool operator<(const Cell& o) const { return bound < o.bound; }
-  };
-  thread_local std::vector<Cell> heap;
+  std::vector<Cell>& heap = heap_;
   heap.clear();
   double best = -std::numeric_limits<double>::infinity();
   vcg::Point3d bestDir(0, 0, 1);
@@ -149,6 +188,11 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
       best = value(c, -std::numeric_limits<double>::infinity());
       bestDir = c;
     }
+  }
+  // The caller's guess (the previous answer of the active-set loop), when it is better.
+  if (warm != nullptr) {
+    const double v = value(*warm, best);
+    if (v > best) best = v, bestDir = *warm;
   }
 
   auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
@@ -230,26 +274,65 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   index_ = BoxIndexer(lo - vcg::Point3d(2 * side, 2 * side, 2 * side), side);
   const double d2 = side * side;
 
-  // Calls f(key) for every box within distance `side` of p (at most 27 boxes).
-  auto forBoxesNear = [&](const vcg::Point3d& p, auto&& f) {
-    const std::int64_t x0 = index_.coord(p[0] - side, 0), x1 = index_.coord(p[0] + side, 0);
-    const std::int64_t y0 = index_.coord(p[1] - side, 1), y1 = index_.coord(p[1] + side, 1);
-    const std::int64_t z0 = index_.coord(p[2] - side, 2), z1 = index_.coord(p[2] + side, 2);
-    for (std::int64_t x = x0; x <= x1; ++x)
-      for (std::int64_t y = y0; y <= y1; ++y)
-        for (std::int64_t z = z0; z <= z1; ++z)
-          if (squaredDistanceToBox(p, index_.corner(x, y, z), side) <= d2) f(BoxIndexer::pack(x, y, z));
+  // The boxes near a point are its own box and its 26 neighbours: their ids are looked up once per
+  // own box (shared by the ~(d/spacing)² points in it), not once per point.
+  KeyHash own(pts.size() / 16 + 16);
+  std::vector<std::uint32_t> ownOf(pts.size());
+  std::vector<std::int64_t> ownCoord; // 3 per own box
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const std::int64_t x = index_.coord(pts[i][0], 0), y = index_.coord(pts[i][1], 1), z = index_.coord(pts[i][2], 2);
+    const int id = own.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(ownCoord.size() / 3));
+    if (size_t(id) * 3 == ownCoord.size()) ownCoord.insert(ownCoord.end(), {x, y, z});
+    ownOf[i] = static_cast<std::uint32_t>(id);
+  }
+  std::vector<std::int32_t> near(ownCoord.size() / 3 * 27, -1); // box ids of the 27 neighbours, lazily
+
+  // Calls f(box id) for every box within distance `side` of point i (at most 27), creating the
+  // ids in order of first appearance when `create` (deterministic).
+  std::vector<std::uint32_t> count;
+  auto forBoxesNear = [&](size_t i, bool create, auto&& f) {
+    const vcg::Point3d& p = pts[i];
+    const std::uint32_t o = ownOf[i];
+    const std::int64_t* oc = &ownCoord[size_t(o) * 3];
+    // Per axis, the boxes within reach and the squared distance of p to each slab (the terms of
+    // squaredDistanceToBox, in the same order, so the test is the same to the last bit).
+    std::int64_t lo[3], hi[3];
+    double sq[3][8];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = index_.coord(p[a] - side, a);
+      hi[a] = std::min(index_.coord(p[a] + side, a), lo[a] + 7);
+      for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
+        const double l = index_.origin()[a] + double(c) * side;
+        const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
+        sq[a][c - lo[a]] = v * v;
+      }
+    }
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
+        if (sxy > d2) continue;
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          if (sxy + sq[2][z - lo[2]] > d2) continue;
+          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+          std::int32_t* slot = nullptr;
+          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
+            slot = &near[size_t(o) * 27 + size_t((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1))];
+          int id = slot != nullptr ? *slot : -1;
+          if (id < 0) {
+            const KeyHash::Key k = BoxIndexer::pack(x, y, z);
+            id = create ? hash_.findOrInsert(k, static_cast<int>(count.size())) : hash_.find(k);
+            if (create && size_t(id) == count.size()) count.push_back(0);
+            if (slot != nullptr) *slot = id;
+          }
+          f(size_t(id));
+        }
+      }
   };
 
   // Pass 1: box ids in order of first appearance (deterministic), reference counts.
-  hash_.reset(pts.size() * 4);
-  std::vector<std::uint32_t> count;
+  hash_.reset(pts.size() / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
   for (size_t i = 0; i < pts.size(); ++i) {
-    forBoxesNear(pts[i], [&](KeyHash::Key k) {
-      const int id = hash_.findOrInsert(k, static_cast<int>(count.size()));
-      if (size_t(id) == count.size()) count.push_back(0);
-      ++count[size_t(id)];
-    });
+    forBoxesNear(i, true, [&](size_t id) { ++count[id]; });
     if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 * double(i) / double(pts.size()));
   }
   const size_t boxes = count.size();
@@ -259,16 +342,15 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   points_.assign(start_[boxes], 0);
   for (size_t b = 0; b < boxes; ++b) count[b] = start_[b];
   for (size_t i = 0; i < pts.size(); ++i) {
-    forBoxesNear(pts[i], [&](KeyHash::Key k) {
-      const int id = hash_.find(k);
-      points_[count[size_t(id)]++] = static_cast<std::uint32_t>(i);
-    });
+    forBoxesNear(i, false, [&](size_t id) { points_[count[id]++] = static_cast<std::uint32_t>(i); });
     if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 + 0.3 * double(i) / double(pts.size()));
   }
+  std::vector<std::int32_t>().swap(near);
+  std::vector<std::uint32_t>().swap(ownOf);
   std::vector<std::uint32_t>().swap(count);
 
   // Normal filter, compacting the CSR arrays in place; then the box normals.
-  static const SphereSampling sampling(6);
+  const SphereSampling sampling(6);
   boxNormal_.resize(boxes);
   boxMinDot_.resize(boxes);
   size_t w = 0;

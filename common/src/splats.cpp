@@ -16,6 +16,12 @@ struct Q {
   int index;
 };
 inline double cross(const Q& a, const Q& b) { return a.x * b.y - a.y * b.x; }
+// A monotonic function of the polar angle of (x, y) over [0, 2π), in [0, 4): the same cyclic
+// order as atan2 without the trigonometry.
+inline double pseudoAngle(double x, double y) {
+  if (y >= 0) return x >= 0 ? y / (x + y) : 1 - x / (y - x);
+  return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
+}
 inline double orient(const Q& a, const Q& b, double cx, double cy) {
   return (b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x);
 }
@@ -26,11 +32,19 @@ inline double inCircleOrigin(const Q& b, const Q& c, const Q& d) {
 }
 } // namespace
 
-double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
-                        std::vector<int>* keptOut) {
-  thread_local std::vector<Q> fan;
-  thread_local std::vector<int> prev, next, work;
-  thread_local std::vector<char> alive;
+namespace {
+// Scratch buffers of the computation, reused from point to point.
+struct FanScratch {
+  std::vector<Q> fan;
+  std::vector<int> prev, next, work;
+  std::vector<char> alive;
+};
+
+double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                 std::vector<int>* keptOut, FanScratch& scratch) {
+  std::vector<Q>& fan = scratch.fan;
+  std::vector<int>&prev = scratch.prev, &next = scratch.next, &work = scratch.work;
+  std::vector<char>& alive = scratch.alive;
   fan.clear();
   if (keptOut != nullptr) keptOut->clear();
 
@@ -49,7 +63,7 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
     Q q;
     q.x = (t * e1) * scale;
     q.y = (t * e2) * scale;
-    q.angle = std::atan2(q.y, q.x);
+    q.angle = pseudoAngle(q.x, q.y);
     q.dist2 = len2;
     q.index = static_cast<int>(i);
     fan.push_back(q);
@@ -74,7 +88,7 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
       fan[w++] = fan[i];
     }
     fan.resize(w);
-    // The same check across the ±π seam of the sort.
+    // The same check across the seam of the sort.
     if (fan.size() > 1) {
       const Q &a = fan.back(), &b = fan.front();
       if (std::abs(cross(a, b)) <= 1e-12 * std::sqrt(a.dist2 * b.dist2) && a.x * b.x + a.y * b.y > 0) {
@@ -136,31 +150,74 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
   return radius;
 }
 
+} // namespace
+
+double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                        std::vector<int>* keptOut) {
+  FanScratch scratch;
+  return fanRadius(p, n, neighbours, keptOut, scratch);
+}
+
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local, SplatSizeStats* stats,
                                      Progress* progress) {
   std::vector<float> radius(points.size(), static_cast<float>(globalRadius));
   SplatSizeStats st;
   if (local) {
-    std::vector<vcg::Point3d> nb;
+    // Points grouped by the box containing them: they share that box's point list, gathered once
+    // into contiguous memory.
+    const size_t boxes = grid.boxCount();
+    std::vector<std::uint32_t> start(boxes + 2, 0), order(points.size());
+    std::vector<std::int32_t> own(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
-      const int box = grid.boxOf(points[i]);
-      double r = -1;
-      if (box >= 0) {
-        nb.clear();
-        const double reach2 = 4 * globalRadius * globalRadius;
+      own[i] = grid.boxOf(points[i]);
+      ++start[size_t(own[i] + 1) + 1]; // slot 1 holds the points without a box (none in practice)
+    }
+    for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
+    for (size_t i = 0; i < points.size(); ++i) order[start[size_t(own[i] + 1)]++] = static_cast<std::uint32_t>(i);
+    std::vector<std::int32_t>().swap(own);
+    // start[b + 1] is now the end of group b (group 0: no box); walk the groups in order.
+    FanScratch scratch;
+    struct Cand {
+      double x, y, z;
+      std::uint32_t idx;
+    };
+    std::vector<Cand> cand;
+    std::vector<vcg::Point3d> nb;
+    const double reach = 2 * globalRadius, reach2 = reach * reach;
+    size_t done = 0, k = 0;
+    for (size_t group = 0; group <= boxes; ++group) {
+      const size_t end = start[group];
+      const int box = static_cast<int>(group) - 1;
+      if (k == end) continue;
+      // The box's points sorted by x: each point of the group scans only the slice within reach.
+      cand.clear();
+      if (box >= 0)
         for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-          if (*it != i && (points[*it] - points[i]).SquaredNorm() <= reach2) nb.push_back(points[*it]);
-        r = localSplatRadius(points[i], normals[i], nb);
+          cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
+      std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.idx < b.idx; });
+      for (; k < end; ++k) {
+        const std::uint32_t i = order[k];
+        const vcg::Point3d& p = points[i];
+        double r = -1;
+        if (box >= 0) {
+          nb.clear();
+          auto j = std::lower_bound(cand.begin(), cand.end(), p[0] - reach, [](const Cand& c, double x) { return c.x < x; });
+          for (; j != cand.end() && j->x <= p[0] + reach; ++j) {
+            const double dx = j->x - p[0], dy = j->y - p[1], dz = j->z - p[2];
+            if (dx * dx + dy * dy + dz * dz <= reach2 && j->idx != i) nb.emplace_back(j->x, j->y, j->z);
+          }
+          r = fanRadius(p, normals[i], nb, nullptr, scratch);
+        }
+        if (r < 0) {
+          ++st.unbounded;
+        } else if (r > globalRadius) {
+          ++st.clamped;
+        } else {
+          radius[i] = static_cast<float>(r);
+        }
+        if (progress != nullptr && (++done & 16383) == 0) progress->update(double(done) / double(points.size()));
       }
-      if (r < 0) {
-        ++st.unbounded;
-      } else if (r > globalRadius) {
-        ++st.clamped;
-      } else {
-        radius[i] = static_cast<float>(r);
-      }
-      if (progress != nullptr && (i & 16383) == 0) progress->update(double(i) / double(points.size()));
     }
   }
   double sum = 0;

@@ -6,11 +6,6 @@ source "$(dirname "$0")/meshlab_prefix.sh"
 cp "$GROWTH_SOURCE_DIR/scripts/mlx/spherepack.mlx" "$work/spherepack.mlx"
 "$GROWTH_BUILD_DIR/make_cloud" --shape sphere --points 3000 --seed 4 -o "$work/cloud.ply" >/dev/null
 
-header() { # <vertex count> <with normals: 0|1>
-  printf 'ply\nformat ascii 1.0\nelement vertex %s\nproperty float x\nproperty float y\nproperty float z\n' "$1"
-  [ "$2" = 1 ] && printf 'property float nx\nproperty float ny\nproperty float nz\n'
-  printf 'end_header\n'
-}
 python3 - "$work" <<'PY'
 import math, random, sys
 w = sys.argv[1]

@@ -159,6 +159,9 @@ public:
                                          size_t count, double* minDot = nullptr) const;
 
 private:
+  // warm: a direction of S_F to start from (its value is a first lower bound), or null.
+  vcg::Point3d branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
+                              double* minDot, const vcg::Point3d* warm) const;
   vcg::Point3d faceDirection(int face, double u, double v) const;
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
     return offset_[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
@@ -169,6 +172,15 @@ private:
   std::vector<size_t> offset_;
   std::vector<vcg::Point3d> centre_;
   std::vector<double> cosAlpha_, sinAlpha_;
+  // Scratch of the searches (an instance is not meant to be shared between threads).
+  struct Cell {
+    double bound;
+    int face, depth;
+    std::uint32_t x, y;
+    bool operator<(const Cell& o) const { return bound < o.bound; }
+  };
+  mutable std::vector<Cell> heap_;
+  mutable std::vector<std::uint32_t> active_;
 };
 
 // Sec. 4.1 normal filter on one box: returns how many of idx[0..count) remain (kept in order at

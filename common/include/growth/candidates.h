@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace growth {
@@ -82,32 +83,45 @@ inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p
   return k;
 }
 
-// Sec. 4.4: for every splat, the vertices within distance d of it, in one pool of linked entries
-// (8 bytes per entry, 4 per splat; no per-splat vector). Iteration visits the newest first.
+// Sec. 4.4: for every splat, the vertices within distance d of it, as linked entries (8 bytes per
+// entry, 4 per splat; no per-splat vector) in fixed-size blocks, so growing never copies nor
+// doubles the pool. Iteration visits the newest first.
 class SplatVertexLists {
 public:
   void reset(size_t splats) {
     head_.assign(splats, -1);
-    entries_.clear();
+    blocks_.clear();
+    size_ = 0;
   }
   void add(std::uint32_t splat, std::uint32_t vertex) {
-    entries_.push_back(Entry{vertex, head_[splat]});
-    head_[splat] = static_cast<std::int32_t>(entries_.size() - 1);
+    if ((size_ & kBlockMask) == 0) blocks_.emplace_back(new Entry[kBlockSize]);
+    entry(size_) = Entry{vertex, head_[splat]};
+    head_[splat] = static_cast<std::int32_t>(size_);
+    ++size_;
   }
   template <class F>
   void forEach(std::uint32_t splat, F&& f) const {
-    for (std::int32_t e = head_[splat]; e >= 0; e = entries_[size_t(e)].next) f(entries_[size_t(e)].vertex);
+    for (std::int32_t e = head_[splat]; e >= 0;) {
+      const Entry& x = entry(size_t(e));
+      f(x.vertex);
+      e = x.next;
+    }
   }
-  size_t entries() const { return entries_.size(); }
-  size_t memoryBytes() const { return head_.capacity() * 4 + entries_.capacity() * sizeof(Entry); }
+  bool empty(std::uint32_t splat) const { return head_[splat] < 0; }
+  size_t entries() const { return size_; }
+  size_t memoryBytes() const { return head_.capacity() * 4 + blocks_.size() * kBlockSize * sizeof(Entry); }
 
 private:
   struct Entry {
     std::uint32_t vertex;
     std::int32_t next;
   };
+  static constexpr size_t kBlockBits = 16, kBlockSize = size_t(1) << kBlockBits, kBlockMask = kBlockSize - 1;
+  Entry& entry(size_t i) { return blocks_[i >> kBlockBits][i & kBlockMask]; }
+  const Entry& entry(size_t i) const { return blocks_[i >> kBlockBits][i & kBlockMask]; }
   std::vector<std::int32_t> head_;
-  std::vector<Entry> entries_;
+  std::vector<std::unique_ptr<Entry[]>> blocks_;
+  size_t size_ = 0;
 };
 
 // The splats: centres, unit normals, radii.
