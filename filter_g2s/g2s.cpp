@@ -3,6 +3,7 @@
 #include "g2s_mesher.h"
 
 #include <growth/error.h>
+#include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
 #include <growth/progress.h>
@@ -67,14 +68,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
                   " points, more than this filter can handle; subsample it first.");
     // The mesher sorts the points into its grid's cell order and measures their spacing.
-    std::vector<int> vertexIndex;
-    vertexIndex.swap(input.vertexIndex);
+    input.vertexIndex = std::vector<int>();
     progress.phase("Robust G2S: growing the mesh", 3, 92);
     Mesher mesher(std::move(input.points), p);
     stat.spacing = mesher.spacing();
-    std::vector<int> layerIndex(mesher.size());
-    for (size_t i = 0; i < layerIndex.size(); ++i) layerIndex[i] = vertexIndex[mesher.order()[i]];
-    vertexIndex = std::vector<int>();
     stat.secondsSetup = lap();
     mesher.meshAll(&progress);
     stat.secondsGrowth = lap();
@@ -93,7 +90,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.boundaryEdges = mesher.boundaryEdges();
     stat.holes = mesher.boundaryLoops();
     mesher.orientComponents();
-    stat.workingBytes = mesher.memoryBytes() + layerIndex.capacity() * sizeof(int);
+    stat.workingBytes = mesher.memoryBytes();
 
     stat.secondsCleanup = lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
@@ -101,32 +98,36 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     const std::vector<P3>& pt = mesher.points();
     const std::vector<char>& alive = mesher.alive();
     auto isAlive = [&](size_t f) { return alive.size() != tri.size() || alive[f] != 0; };
-    // Output vertices: the used input points, in the layer's order.
-    std::vector<int> outIndex(cloud.vert.size(), -1);
+    // Output vertices: the used points in the mesher's (spatially coherent) order. The points were
+    // read from the layer's floats into doubles, so converting back gives the input points bit
+    // for bit.
+    std::vector<std::uint32_t>& outIndex = mesher.scratch();
+    outIndex.assign(pt.size(), 0);
     size_t faces = 0;
     for (size_t f = 0; f < tri.size(); ++f) {
       if (!isAlive(f)) continue;
       ++faces;
-      for (std::uint32_t v : tri[f]) outIndex[static_cast<size_t>(layerIndex[v])] = 0;
+      for (std::uint32_t v : tri[f]) outIndex[v] = 1;
     }
-    int next = 0;
-    for (int& o : outIndex)
-      if (o == 0) o = next++;
-    stat.vertices = static_cast<size_t>(next);
-    stat.unusedPoints = mesher.points().size() - stat.vertices;
+    std::uint32_t next = 0;
+    for (std::uint32_t& o : outIndex) o = o != 0 ? next++ : ~0u;
+    stat.vertices = next;
+    stat.unusedPoints = pt.size() - stat.vertices;
     stat.faces = faces;
     if (faces > 0) {
+      // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
+      reserveHuge(out.vert, stat.vertices);
+      reserveHuge(out.face, faces);
       vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
-      for (size_t li = 0; li < outIndex.size(); ++li)
-        if (outIndex[li] >= 0) out.vert[static_cast<size_t>(outIndex[li])].P() = cloud.vert[li].cP();
+      for (size_t i = 0; i < pt.size(); ++i)
+        if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = CMeshO::CoordType::Construct(pt[i]);
       out.face.EnableQuality();
       vcg::tri::Allocator<CMeshO>::AddFaces(out, faces);
       size_t k = 0;
       for (size_t f = 0; f < tri.size(); ++f) {
         if (!isAlive(f)) continue;
         CFaceO& face = out.face[k++];
-        for (int j = 0; j < 3; ++j)
-          face.V(j) = &out.vert[static_cast<size_t>(outIndex[static_cast<size_t>(layerIndex[tri[f][j]])])];
+        for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
         face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(pt[tri[f][0]], pt[tri[f][1]], pt[tri[f][2]]));
         if ((k & 65535) == 0) progress.update(double(k) / double(faces));
       }

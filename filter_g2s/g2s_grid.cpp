@@ -1,5 +1,7 @@
 #include "g2s_grid.h"
 
+#include <growth/huge_pages.h>
+
 #include <algorithm>
 
 namespace growth {
@@ -24,41 +26,87 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   inv_ = 1.0 / cell_;
   for (int a = 0; a < 3; ++a) maxCell_[a] = std::min(coord(box_.max[a], a), kMaxCoord);
 
-  std::vector<std::uint64_t> key(n), keyTmp(n);
-  std::vector<std::uint32_t> idx(n), idxTmp(n);
+  // Cell keys, sorted with the point indices by a stable LSD radix sort on 16-bit digits (only
+  // over the digits the keys use): equal keys keep the input order, so the result is
+  // deterministic. Keys below 2^32 — every cloud whose box spans fewer than 2^10 cells per axis —
+  // are packed with the index into one 64-bit word (half the memory of separate arrays).
+  std::vector<std::uint64_t> key;
+  assignHuge(key, n, std::uint64_t(0));
   std::uint64_t maxKey = 0;
   for (size_t i = 0; i < n; ++i) {
     std::uint64_t c[3];
     for (int a = 0; a < 3; ++a)
       c[a] = std::uint64_t(std::min(std::max<std::int64_t>(coord(points[i][a], a), 0), maxCell_[a]));
     key[i] = morton(c[0], c[1], c[2]);
-    idx[i] = static_cast<std::uint32_t>(i);
     maxKey = std::max(maxKey, key[i]);
   }
-  // Stable LSD radix sort on 16-bit digits, only over the digits the keys use: equal keys keep
-  // the input order, so the result is deterministic.
+  assignHuge(order_, n, 0u);
   std::vector<std::uint32_t> count(65537);
-  for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += 16) {
-    std::fill(count.begin(), count.end(), 0u);
-    for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & 0xffff) + 1];
-    for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
-    for (size_t i = 0; i < n; ++i) {
-      const std::uint32_t to = count[(key[i] >> shift) & 0xffff]++;
-      keyTmp[to] = key[i];
-      idxTmp[to] = idx[i];
+  auto radix = [&](std::vector<std::uint64_t>& v, int firstShift, int endShift, auto&& digitOf) {
+    std::vector<std::uint64_t> tmp;
+    assignHuge(tmp, n, std::uint64_t(0));
+    for (int shift = firstShift; shift < endShift; shift += 16) {
+      std::fill(count.begin(), count.end(), 0u);
+      for (size_t i = 0; i < n; ++i) ++count[digitOf(v[i], shift) + 1];
+      if (count[digitOf(v[0], shift) + 1] == n) continue; // every key has this digit: no-op pass
+      for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
+      for (size_t i = 0; i < n; ++i) tmp[count[digitOf(v[i], shift)]++] = v[i];
+      v.swap(tmp);
     }
-    key.swap(keyTmp);
-    idx.swap(idxTmp);
+  };
+  if (maxKey < (std::uint64_t(1) << 32)) {
+    for (size_t i = 0; i < n; ++i) key[i] = key[i] << 32 | i;
+    int bits = 0;
+    while (bits < 32 && (maxKey >> bits) != 0) bits += 16;
+    radix(key, 32, 32 + bits, [](std::uint64_t k, int shift) { return size_t((k >> shift) & 0xffff); });
+    for (size_t i = 0; i < n; ++i) {
+      order_[i] = std::uint32_t(key[i]);
+      key[i] >>= 32;
+    }
+  } else {
+    // Wide keys: sort (key, index) pairs through an index permutation.
+    std::vector<std::uint32_t> idx(n), idxTmp(n);
+    for (size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
+    std::vector<std::uint64_t> keyTmp(n);
+    for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += 16) {
+      std::fill(count.begin(), count.end(), 0u);
+      for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & 0xffff) + 1];
+      for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
+      for (size_t i = 0; i < n; ++i) {
+        const std::uint32_t to = count[(key[i] >> shift) & 0xffff]++;
+        keyTmp[to] = key[i];
+        idxTmp[to] = idx[i];
+      }
+      key.swap(keyTmp);
+      idx.swap(idxTmp);
+    }
+    order_.swap(idx);
   }
-  keyTmp = std::vector<std::uint64_t>();
-  idxTmp = std::vector<std::uint32_t>();
 
-  pts_.resize(n);
-  fx_.assign(n + 4, std::numeric_limits<float>::max()); // padded for whole 4-lane loads
-  fy_.assign(n + 4, std::numeric_limits<float>::max());
-  fz_.assign(n + 4, std::numeric_limits<float>::max());
+  // Points into cell order in place (cycle by cycle), so no second copy of them is ever made.
+  pts_.swap(points);
+  {
+    std::vector<bool> done(n, false);
+    for (size_t start = 0; start < n; ++start) {
+      if (done[start]) continue;
+      const P3 first = pts_[start];
+      size_t j = start;
+      for (;;) {
+        done[j] = true;
+        const size_t from = order_[j];
+        if (from == start) {
+          pts_[j] = first;
+          break;
+        }
+        pts_[j] = pts_[from];
+        j = from;
+      }
+    }
+  }
+  assignHuge(fx_, n + 4, std::numeric_limits<float>::max()); // padded for whole 4-lane loads
+  assignHuge(fy_, n + 4, std::numeric_limits<float>::max());
+  assignHuge(fz_, n + 4, std::numeric_limits<float>::max());
   for (size_t i = 0; i < n; ++i) {
-    pts_[i] = points[idx[i]];
     fx_[i] = float(pts_[i][0] - box_.min[0]);
     fy_[i] = float(pts_[i][1] - box_.min[1]);
     fz_[i] = float(pts_[i][2] - box_.min[2]);
@@ -66,8 +114,6 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   // Float rounding of a relative coordinate is at most 2^-24 of the extent; the query centre's
   // as well: a distance computed in float errs by less than 4·√3·2^-24·extent (with margin).
   floatSlack_ = 8.0 * std::sqrt(3.0) * std::ldexp(extent, -24) + 1e-300;
-  points = std::vector<P3>();
-  order_.swap(idx);
 
   for (size_t i = 0; i < n; ++i) cells_ += (i == 0 || key[i] != key[i - 1]);
   size_t cap = 16;

@@ -1,6 +1,7 @@
 #include "g2s_mesher.h"
 
 #include <growth/cloud_generator.h> // growth::Random
+#include <growth/huge_pages.h>
 #include <growth/input_cloud.h>     // growth::roughSpacing
 
 #include <algorithm>
@@ -54,12 +55,12 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
   pts_ = grid_.points().data();
   pem_.reset(n);
-  edgeLengthSum_.assign(n, 0.f);
-  edgeCount_.assign(n, 0);
-  freeEdges_.assign(n, 0);
+  assignHuge(edgeLengthSum_, n, 0.f);
+  assignHuge(edgeCount_, n, std::uint16_t(0));
+  assignHuge(freeEdges_, n, std::uint8_t(0));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
-  tri_.reserve(2 * n + 16); // a closed surface has 2N − 4 + 4g triangles
+  reserveHuge(tri_, 2 * n + 16); // a closed surface has 2N − 4 + 4g triangles
   // A seed edge joins a point to its nearest neighbour; farther than this it is an isolated
   // point (an outlier), which starts no surface.
   seedMaxEdge_ = 2.0 * std::max(1.0, params_.maxSearchRadiusFactor) * spacing_;
@@ -465,7 +466,8 @@ void Mesher::meshAll(Progress* progress) {
 }
 
 ManifoldCleanupStat Mesher::removeNonManifoldVertices() {
-  alive_.assign(tri_.size(), 1);
+  assignHuge(alive_, tri_.size(), char(1));
+  if (joinedAtVertex_.empty()) return ManifoldCleanupStat(); // no vertex ever got a second fan
   std::sort(joinedAtVertex_.begin(), joinedAtVertex_.end());
   joinedAtVertex_.erase(std::unique(joinedAtVertex_.begin(), joinedAtVertex_.end()), joinedAtVertex_.end());
   const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, grid_.size(), alive_, &joinedAtVertex_);
@@ -477,7 +479,12 @@ ManifoldCleanupStat Mesher::removeNonManifoldVertices() {
 void Mesher::orientComponents() {
   const size_t n = grid_.size();
   if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
-  std::vector<std::uint32_t> parent(n);
+  // Union–find over the vertices of the live triangles, in the per-point scratch array. After
+  // full compression every vertex points at its root, and each root holds kRootFlag | its
+  // component's number.
+  constexpr std::uint32_t kRootFlag = 1u << 31;
+  std::vector<std::uint32_t>& parent = scratch_;
+  assignHuge(parent, n, 0u);
   for (size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
   auto root = [&](std::uint32_t i) {
     while (parent[i] != i) {
@@ -493,33 +500,41 @@ void Mesher::orientComponents() {
       if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);
     }
   }
-  // Number the components, then the centroid of each one's face corners and its signed volume
-  // about that centroid.
-  std::vector<std::uint32_t> component(n, ~0u);
+  // Roots are the smallest index of their set, so in increasing order a root is final before the
+  // vertices that point at it are compressed.
+  for (size_t i = 0; i < n; ++i) parent[i] = root(static_cast<std::uint32_t>(i));
   std::uint32_t components = 0;
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
-    const std::uint32_t r = root(tri_[f][0]);
-    if (component[r] == ~0u) component[r] = components++;
+    const std::uint32_t v = tri_[f][0];
+    if ((parent[v] & kRootFlag) != 0) continue;     // v is a numbered root
+    std::uint32_t& r = parent[parent[v]];           // v's root's entry (v itself when v is the root)
+    if ((r & kRootFlag) == 0) r = kRootFlag | components++;
   }
+  auto component = [&](std::uint32_t v) {
+    const std::uint32_t p = parent[v];
+    return (p & kRootFlag) != 0 ? p & ~kRootFlag : parent[p] & ~kRootFlag;
+  };
+  // Centroid of each component's face corners, then its signed volume about that centroid.
   std::vector<P3> centre(components, P3(0, 0, 0));
   std::vector<double> volume(components, 0.0), corners(components, 0.0);
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
-    const std::uint32_t k = component[root(tri_[f][0])];
+    const std::uint32_t k = component(tri_[f][0]);
     for (std::uint32_t v : tri_[f]) centre[k] += pts_[v];
     corners[k] += 3;
   }
-  for (std::uint32_t k = 0; k < components; ++k) centre[k] /= corners[k];
+  for (std::uint32_t k = 0; k < components; ++k)
+    if (corners[k] > 0) centre[k] /= corners[k];
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
-    const std::uint32_t k = component[root(tri_[f][0])];
+    const std::uint32_t k = component(tri_[f][0]);
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
   std::vector<size_t> flipped;
   for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f] || !(volume[component[root(tri_[f][0])]] < 0)) continue;
+    if (!alive_[f] || !(volume[component(tri_[f][0])] < 0)) continue;
     pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
     std::swap(tri_[f][1], tri_[f][2]);
     flipped.push_back(f);
@@ -569,7 +584,8 @@ size_t Mesher::boundaryLoops() {
 }
 
 size_t Mesher::memoryBytes() const {
-  return grid_.memoryBytes() + pem_.memoryBytes() + edgeLengthSum_.capacity() * sizeof(float) +
+  return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
+         edgeLengthSum_.capacity() * sizeof(float) +
          edgeCount_.capacity() * sizeof(std::uint16_t) + freeEdges_.capacity() +
          tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);

@@ -109,6 +109,8 @@ public:
   size_t boundaryLoops();         // holes: loops of boundary edges
   size_t memoryBytes() const;
   double spacing() const { return spacing_; }
+  // One word per point that callers may use once the mesh is final (saves an allocation).
+  std::vector<std::uint32_t>& scratch() { return scratch_; }
 
 private:
   struct Near {
@@ -148,6 +150,7 @@ private:
   std::vector<std::uint8_t> freeEdges_;
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
+  std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
   std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
   BucketQueue<FrontEdge> queue_;
   size_t usedPoints_ = 0;

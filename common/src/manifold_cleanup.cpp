@@ -1,3 +1,4 @@
+#include <growth/huge_pages.h>
 #include <growth/manifold_cleanup.h>
 
 #include <algorithm>
@@ -12,13 +13,13 @@ struct Incidence {
   std::vector<std::uint32_t> start; // vertexCount + 1
   std::vector<std::uint32_t> face;
 
-  Incidence(const std::vector<Triangle>& faces, size_t vertexCount, const std::vector<char>& alive)
-      : start(vertexCount + 1, 0) {
+  Incidence(const std::vector<Triangle>& faces, size_t vertexCount, const std::vector<char>& alive) {
+    assignHuge(start, vertexCount + 1, 0u);
     for (size_t f = 0; f < faces.size(); ++f)
       if (alive[f])
         for (std::uint32_t v : faces[f]) ++start[v + 1];
     for (size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
-    face.resize(start[vertexCount]);
+    assignHuge(face, size_t(start[vertexCount]), 0u);
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t f = 0; f < faces.size(); ++f)
       if (alive[f])

@@ -13,6 +13,8 @@
 // neighbour's index plus two direction bits and one marker bit); a point with more neighbours
 // chains further blocks from a shared pool. Valences of interpolating meshes are about 6, so
 // almost every lookup is a scan of one cache line. No std::map/std::set, no per-point allocation.
+#include <growth/huge_pages.h>
+
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -31,8 +33,8 @@ public:
 
   void reset(size_t points) {
     if (points > kMaxPoints) throw std::length_error("PointEdgeMap: too many points");
-    slot_.assign(points * kInline, 0);
-    count_.assign(points, 0);
+    assignHuge(slot_, points * kInline, 0u);
+    assignHuge(count_, points, std::uint8_t(0));
     pool_.clear();
   }
 

@@ -1,0 +1,28 @@
+#include <growth/huge_pages.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <numeric>
+#include <vector>
+
+// The advice is only a hint: whatever the kernel does, contents and sizes must be as asked.
+TEST(HugePages, AssignAndReserveKeepTheVectorContract) {
+  std::vector<std::uint32_t> v{1, 2, 3};
+  growth::assignHuge(v, size_t(3) << 20, 7u); // 12 MiB: large enough to be advised
+  ASSERT_EQ(v.size(), size_t(3) << 20);
+  EXPECT_EQ(v.front(), 7u);
+  EXPECT_EQ(v.back(), 7u);
+  EXPECT_EQ(std::accumulate(v.begin(), v.end(), std::uint64_t(0)), std::uint64_t(7) * (size_t(3) << 20));
+
+  std::vector<double> w{1.5, 2.5};
+  growth::reserveHuge(w, size_t(1) << 20);
+  EXPECT_GE(w.capacity(), size_t(1) << 20);
+  ASSERT_EQ(w.size(), 2u); // existing elements kept
+  EXPECT_EQ(w[1], 2.5);
+
+  std::vector<char> small;
+  growth::assignHuge(small, 10, 'x'); // below the threshold: plain assign
+  EXPECT_EQ(std::string(small.begin(), small.end()), "xxxxxxxxxx");
+  growth::adviseHugePages(nullptr, 1 << 30); // ignored
+}
