@@ -71,7 +71,9 @@ public:
         queue_(CandidatePriority::levels(p.windowSize)) {
     splats_ = SplatSet{&in.points, &in.normals, &radius};
     lists_.reset(in.points.size());
-    vgrid_.reset(grid.indexer().origin(), d, expected_);
+    // Cells of side 2d: the ball of radius d of the distance check (sec. 3.6), the most frequent
+    // query, then meets at most 2 × 2 × 2 cells.
+    vgrid_.reset(grid.indexer().origin(), 2 * d, expected_);
     graph_.reserve(expected_ + expected_ / 4);
   }
 

@@ -14,14 +14,14 @@ namespace growth {
 
 SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8))) {
   size_t total = 0;
-  for (int depth = 0; depth <= level_; ++depth) {
+  for (int depth = 0; depth < level_; ++depth) {
     offset_.push_back(total);
     total += size_t(6) << (2 * depth);
   }
   centre_.resize(total);
   cosAlpha_.resize(total);
   sinAlpha_.resize(total);
-  for (int depth = 0; depth <= level_; ++depth) {
+  for (int depth = 0; depth < level_; ++depth) {
     const std::uint32_t m = std::uint32_t(1) << depth;
     const double size = 2.0 / double(m);
     for (int face = 0; face < 6; ++face)
@@ -30,8 +30,7 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
           const double u0 = -1.0 + double(x) * size, v0 = -1.0 + double(y) * size;
           const vcg::Point3d c = faceDirection(face, u0 + 0.5 * size, v0 + 0.5 * size);
           double minCos = 1;
-          if (depth < level_)
-            for (int k = 0; k < 4; ++k)
+          for (int k = 0; k < 4; ++k)
               minCos = std::min(minCos, faceDirection(face, u0 + (k & 1) * size, v0 + (k >> 1) * size) * c);
           const size_t i = cellIndex(face, depth, x, y);
           centre_[i] = c;
@@ -49,6 +48,11 @@ vcg::Point3d SphereSampling::faceDirection(int face, double u, double v) const {
   d[(axis + 1) % 3] = u;
   d[(axis + 2) % 3] = v;
   return d / d.Norm();
+}
+
+vcg::Point3d SphereSampling::leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
+  const double m = double(std::uint32_t(1) << level_);
+  return faceDirection(face, -1.0 + (2.0 * double(col) + 1.0) / m, -1.0 + (2.0 * double(row) + 1.0) / m);
 }
 
 vcg::Point3d SphereSampling::direction(size_t i) const {
@@ -108,10 +112,24 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
   active.clear();
   vcg::Point3d mean(0, 0, 0);
   for (size_t k = 0; k < count; ++k) mean += normals[idx[k]];
-  size_t first = 0;
-  for (size_t k = 1; k < count; ++k)
-    if (normals[idx[k]] * mean < normals[idx[first]] * mean) first = k;
-  active.push_back(idx[first]);
+  // Seed the active set with three far-apart normals: the one least aligned with the mean, the
+  // one least aligned with it, and the one least aligned with those two (a guess at the normals
+  // that span the optimal cap; the loop below adds whatever else is needed).
+  auto leastAligned = [&](const vcg::Point3d& dir) {
+    size_t best = 0;
+    double bestDot = normals[idx[0]] * dir;
+    for (size_t k = 1; k < count; ++k) {
+      const double dot = normals[idx[k]] * dir;
+      if (dot < bestDot) bestDot = dot, best = k;
+    }
+    return idx[best];
+  };
+  const std::uint32_t a = leastAligned(mean);
+  const std::uint32_t b = leastAligned(normals[a]);
+  const std::uint32_t c3 = leastAligned(normals[a] + normals[b]);
+  active.push_back(a);
+  if (b != a) active.push_back(b);
+  if (c3 != a && c3 != b) active.push_back(c3);
   vcg::Point3d c(0, 0, 0);
   for (bool warm = false;; warm = true) {
     double v = 0;
@@ -184,7 +202,7 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
         const double f = (t * inv + 1.0) * 0.5 * double(cells);
         return static_cast<std::uint32_t>(std::min(double(cells - 1), std::max(0.0, std::floor(f))));
       };
-      const vcg::Point3d& c = centre_[cellIndex(face, level_, leaf(m[(axis + 1) % 3]), leaf(m[(axis + 2) % 3]))];
+      const vcg::Point3d c = leafCentre(face, leaf(m[(axis + 1) % 3]), leaf(m[(axis + 2) % 3]));
       best = value(c, -std::numeric_limits<double>::infinity());
       bestDir = c;
     }
@@ -195,15 +213,18 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
     if (v > best) best = v, bestDir = *warm;
   }
 
+  double sinBestOf = std::numeric_limits<double>::quiet_NaN(), sinBest = 0; // sqrt(1 − best²), cached
   auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
-    const size_t i = cellIndex(face, depth, x, y);
-    const vcg::Point3d& c = centre_[i];
-    const double ca = cosAlpha_[i], sa = sinAlpha_[i];
+    const bool leaf = depth == level_;
+    const size_t i = leaf ? 0 : cellIndex(face, depth, x, y);
+    const vcg::Point3d c = leaf ? leafCentre(face, x, y) : centre_[i];
+    const double ca = leaf ? 1.0 : cosAlpha_[i], sa = leaf ? 0.0 : sinAlpha_[i];
     // value(c) <= cutoff = cos(min(π, acos(best) + α)) means cos(max(0, θ − α)) <= best.
+    if (best != sinBestOf) sinBestOf = best, sinBest = std::sqrt(std::max(0.0, 1 - best * best));
     double cutoff;
     if (best >= 1) cutoff = 2.0;
     else if (best < -ca) cutoff = -1.0; // acos(best) + α > π
-    else cutoff = best * ca - std::sqrt(std::max(0.0, 1 - best * best)) * sa;
+    else cutoff = best * ca - sinBest * sa;
     const double v = value(c, cutoff);
     if (v <= cutoff) return;
     if (depth == level_) {

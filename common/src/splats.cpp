@@ -52,17 +52,17 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
   tangentFrame(n, e1, e2);
   // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
   // p_i - p, rescaled to the full distance |p_i - p|.
+  // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
   for (size_t i = 0; i < neighbours.size(); ++i) {
     const vcg::Point3d v = neighbours[i] - p;
     const double len2 = v.SquaredNorm();
     const double h = v * n;
-    const vcg::Point3d t = v - n * h;
-    const double tlen = t.Norm();
-    if (!(tlen > 1e-12 * std::sqrt(len2))) continue; // on the normal line: no direction in T_p
-    const double scale = std::sqrt(len2) / tlen;
+    const double tlen2 = len2 - h * h;
+    if (!(tlen2 > 1e-24 * len2)) continue; // on the normal line: no direction in T_p
+    const double scale = std::sqrt(len2 / tlen2);
     Q q;
-    q.x = (t * e1) * scale;
-    q.y = (t * e2) * scale;
+    q.x = (v * e1) * scale;
+    q.y = (v * e2) * scale;
     q.angle = pseudoAngle(q.x, q.y);
     q.dist2 = len2;
     q.index = static_cast<int>(i);
@@ -79,8 +79,8 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     for (size_t i = 0; i < fan.size(); ++i) {
       if (w > 0) {
         const Q& a = fan[w - 1];
-        const double scale = std::sqrt(a.dist2 * fan[i].dist2);
-        if (std::abs(cross(a, fan[i])) <= 1e-12 * scale && a.x * fan[i].x + a.y * fan[i].y > 0) {
+        const double c = cross(a, fan[i]);
+        if (c * c <= 1e-24 * a.dist2 * fan[i].dist2 && a.x * fan[i].x + a.y * fan[i].y > 0) {
           if (fan[i].dist2 < a.dist2) fan[w - 1] = fan[i];
           continue;
         }
@@ -91,7 +91,8 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     // The same check across the seam of the sort.
     if (fan.size() > 1) {
       const Q &a = fan.back(), &b = fan.front();
-      if (std::abs(cross(a, b)) <= 1e-12 * std::sqrt(a.dist2 * b.dist2) && a.x * b.x + a.y * b.y > 0) {
+      const double c = cross(a, b);
+      if (c * c <= 1e-24 * a.dist2 * b.dist2 && a.x * b.x + a.y * b.y > 0) {
         if (a.dist2 < b.dist2) fan.front() = a;
         fan.pop_back();
       }
@@ -103,7 +104,9 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
   prev.resize(size_t(m));
   next.resize(size_t(m));
   alive.assign(size_t(m), 1);
-  for (int i = 0; i < m; ++i) prev[size_t(i)] = (i + m - 1) % m, next[size_t(i)] = (i + 1) % m;
+  for (int i = 0; i < m; ++i) prev[size_t(i)] = i - 1, next[size_t(i)] = i + 1;
+  prev[0] = m - 1;
+  next[size_t(m - 1)] = 0;
   work.resize(size_t(m));
   std::iota(work.begin(), work.end(), 0);
   std::reverse(work.begin(), work.end()); // popped from the back: index 0 first
@@ -142,8 +145,8 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     const double c = cross(a, b);
     if (!(c > 0) || l == i) return -1;
     // Circumradius of (p, a, b) = distance from p to the Voronoi vertex of the three.
-    const double ab = std::hypot(a.x - b.x, a.y - b.y);
-    radius = std::max(radius, std::sqrt(a.dist2) * std::sqrt(b.dist2) * ab / (2.0 * c));
+    const double ab2 = (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
+    radius = std::max(radius, std::sqrt(a.dist2 * b.dist2 * ab2) / (2.0 * c));
     if (keptOut != nullptr) keptOut->push_back(a.index);
     i = l;
   } while (i != start);

@@ -163,12 +163,13 @@ private:
   vcg::Point3d branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
                               double* minDot, const vcg::Point3d* warm) const;
   vcg::Point3d faceDirection(int face, double u, double v) const;
+  vcg::Point3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const; // a direction of S_F
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
     return offset_[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
   }
   int level_;
-  // Per quadtree cell of every depth: centre direction and cos/sin of the largest angle from the
-  // centre to the cell's corners (precomputed once: the search then needs no trigonometry).
+  // Per quadtree cell above the leaves: centre direction and cos/sin of the largest angle from
+  // the centre to the cell's corners (precomputed once: the search then needs no trigonometry).
   std::vector<size_t> offset_;
   std::vector<vcg::Point3d> centre_;
   std::vector<double> cosAlpha_, sinAlpha_;

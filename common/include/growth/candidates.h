@@ -145,6 +145,21 @@ size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& ver
   if (box < 0) return 0;
   size_t near = 0;
   const double d2 = d * d;
+  // The circle of each partner, computed once (a partner is usually listed by many splats).
+  struct Partner {
+    std::uint32_t id;
+    ParentCircle circle;
+  };
+  Partner cache[32];
+  int cached = 0;
+  auto circleOf = [&](std::uint32_t u) -> const ParentCircle& {
+    for (int k = 0; k < cached; ++k)
+      if (cache[k].id == u) return cache[k].circle;
+    Partner& slot = cache[cached < 32 ? cached++ : 31];
+    slot.id = u;
+    slot.circle = parentCircle(x, vertexPos[u], d);
+    return slot.circle;
+  };
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) {
     const std::uint32_t s = *it;
     const vcg::Point3d& p = (*splats.centre)[s];
@@ -153,8 +168,15 @@ size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& ver
     if (squaredDistanceToDisk(x, p, n, r) > d2) continue;
     ++near;
     lists.forEach(s, [&](std::uint32_t u) {
-      const ParentCircle c = parentCircle(x, vertexPos[u], d);
+      const ParentCircle& c = circleOf(u);
       if (!c.valid) return;
+      // Quick rejections: a point of the disk on the circle is within r of p, so the disk must
+      // reach the circle's plane and come within r of the circle's centre ring.
+      const vcg::Point3d pm = p - c.centre;
+      const double along = pm * c.axis;
+      if (along > r || along < -r) return;
+      const double reach = c.radius + r;
+      if (pm.SquaredNorm() > reach * reach) return;
       vcg::Point3d pos[2];
       int root[2];
       const int k = circleSplatIntersections(c, p, n, r, pos, root);
