@@ -425,6 +425,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   const RegionStats rs = triangulateRegions(g.borders(), g.positions(), g.normals(), params.maxBorderLength, edges, faces);
   st.holes = rs.holes;
   st.longestBorder = rs.longestBorder;
+  st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
 
   // Output: referenced vertices only, box normals, Q_t per face.
   progress.phase("Sphere packing: writing the mesh", 97, 100);

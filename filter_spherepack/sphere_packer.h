@@ -67,6 +67,7 @@ struct Stat {
   size_t holes = 0;              // regions left open (border longer than maxBorderLength, or not
                                  // triangulable)
   size_t longestBorder = 0;      // border edges of the longest region
+  double meanBorderLength = 0;   // mean border length of the regions (about 4, sec. 3.7)
   size_t boxes = 0;
   size_t boxesDTooLarge = 0;     // boxes whose box normal has a negative product with a point normal
   size_t candidates = 0;         // candidates queued (including re-queued ones)

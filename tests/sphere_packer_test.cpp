@@ -110,6 +110,11 @@ void expectClosedManifoldMesh(const Run& r, int euler) {
 TEST(SpherePacker, UnitSphereOfSection52) {
   const auto r = build("sphere", sphereSpec(), paperParams());
   expectClosedManifoldMesh(*r, 2);
+  // Each new vertex brings two edges, so G has ~2V edges and its regions ~4 border edges on
+  // average (sec. 3.7); none is long.
+  EXPECT_GT(r->stat.meanBorderLength, 3.5);
+  EXPECT_LT(r->stat.meanBorderLength, 4.5);
+  EXPECT_LE(r->stat.longestBorder, 15u);
   // About area / (√3/2 · d²) vertices, a little less since edges are at least d.
   EXPECT_GT(r->m.vertices, 1000u);
   EXPECT_LT(r->m.vertices, size_t(4 * M_PI / (0.8660254 * 0.01)));
@@ -228,8 +233,10 @@ TEST(SpherePacker, WindowZeroIsBreadthFirstAndStillManifold) {
   EXPECT_EQ(r->m.nonManifoldVertices, 0u);
   EXPECT_EQ(r->m.boundaryEdges, 0u);
   EXPECT_GE(r->m.edgeMin, 0.1 * (1 - 1e-5));
-  // A different growth order (sec. 4.2: w = 0 is the breadth-first strategy): a different mesh.
+  // A different growth order (sec. 4.2: w = 0 is the breadth-first strategy): a different mesh,
+  // with the long borders of the seams of fig. 7.
   const auto ref = build("sphere", sphereSpec(), paperParams());
+  EXPECT_GT(r->stat.longestBorder, 2 * ref->stat.longestBorder);
   bool differs = r->mesh.vert.size() != ref->mesh.vert.size();
   for (size_t i = 0; !differs && i < r->mesh.vert.size(); ++i) differs = r->mesh.vert[i].cP() != ref->mesh.vert[i].cP();
   EXPECT_TRUE(differs);

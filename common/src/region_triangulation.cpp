@@ -152,6 +152,7 @@ RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& bo
   for (const auto& b : borders) {
     ++st.borders;
     st.longestBorder = std::max(st.longestBorder, b.size());
+    st.borderEdges += b.size();
     if (b.size() > size_t(std::max(0, maxBorderLength))) {
       ++st.holes;
       ++st.longBorders;
