@@ -57,6 +57,27 @@ public:
     });
   }
 
+  // Calls f(index) for every point whose float coordinates are within radius + floatSlack() of
+  // c: a superset of the ball, by at most the float rounding, without exact double checks (for
+  // callers that test the points again anyway, in float with the same slack, then exactly).
+  template <class F>
+  void forEachNearBall(const P3& c, double radius, F&& f) const {
+    visitBall<false>(c, radius, [&](std::uint32_t i, double) {
+      f(i);
+      return false;
+    });
+  }
+  // The point's coordinates relative to box().min, in float (|float − exact| <= floatSlack()/2
+  // per distance, see build()).
+  float fx(std::uint32_t i) const { return fx_[i]; }
+  float fy(std::uint32_t i) const { return fy_[i]; }
+  float fz(std::uint32_t i) const { return fz_[i]; }
+  // A bound on the error of a distance computed from the float coordinates.
+  double floatSlack() const { return floatSlack_; }
+  void toFloat(const P3& c, float out[3]) const {
+    for (int a = 0; a < 3; ++a) out[a] = float(c[a] - box_.min[a]);
+  }
+
   // Calls stop(index, squaredDistance) for the points with |p − c| <= radius until it returns
   // true; returns whether it did (early exit for emptiness tests).
   template <class F>
@@ -121,7 +142,7 @@ private:
     }
   }
 
-  template <class F>
+  template <bool Exact = true, class F>
   bool visitBall(const P3& c, double radius, F&& stop) const {
     if (pts_.empty() || !(radius >= 0)) return false;
     const double r2 = radius * radius;
@@ -138,7 +159,7 @@ private:
     }
     // Morton bits of each cell coordinate in the (small) ranges, computed once per query.
     std::uint64_t ky[kMaxSpan], kz[kMaxSpan];
-    if (hi[1] - lo[1] >= kMaxSpan || hi[2] - lo[2] >= kMaxSpan) return visitBallWide(c, radius, lo, hi, stop);
+    if (hi[1] - lo[1] >= kMaxSpan || hi[2] - lo[2] >= kMaxSpan) return visitBallWide<Exact>(c, radius, lo, hi, stop);
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ky[y - lo[1]] = spread(std::uint64_t(y)) << 1;
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) kz[z - lo[2]] = spread(std::uint64_t(z)) << 2;
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
@@ -148,7 +169,7 @@ private:
         for (std::int64_t z = 0; z <= hi[2] - lo[2]; ++z) {
           const Slot* s = find(kxy | kz[z]);
           if (s == nullptr) continue;
-          if (scanCell(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+          if (scanCell<Exact>(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
         }
       }
     }
@@ -156,7 +177,7 @@ private:
   }
 
   // Balls spanning many cells (seldom: large seed balls, the cylinder walk on coarse clouds).
-  template <class F>
+  template <bool Exact, class F>
   bool visitBallWide(const P3& c, double radius, const std::int64_t* lo, const std::int64_t* hi, F&& stop) const {
     const double r2 = radius * radius;
     const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
@@ -165,7 +186,7 @@ private:
       // More cells in the box than occupied ones: walk the occupied cells instead.
       for (const Slot& s : table_) {
         if (s.key == kEmpty) continue;
-        if (scanCell(s.begin, s.end, c, fc, r2, r2f, stop)) return true;
+        if (scanCell<Exact>(s.begin, s.end, c, fc, r2, r2f, stop)) return true;
       }
       return false;
     }
@@ -173,18 +194,19 @@ private:
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
           const Slot* s = find(morton(std::uint64_t(x), std::uint64_t(y), std::uint64_t(z)));
-          if (s != nullptr && scanCell(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+          if (s != nullptr && scanCell<Exact>(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
         }
     return false;
   }
 
   // Scans the points [begin, end) of one cell: a float test four at a time (SSE2) on the SoA
   // copy, then the exact double test on the hits.
-  template <class F>
+  template <bool Exact, class F>
   bool scanCell(std::uint32_t begin, std::uint32_t end, const P3& c, const float* fc, double r2, float r2f,
                 F&& stop) const {
     std::uint32_t i = begin;
     auto exact = [&](std::uint32_t k) {
+      if (!Exact) return stop(k, 0.0);
       const P3& p = pts_[k];
       const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
       const double d2 = dx * dx + dy * dy + dz * dz;

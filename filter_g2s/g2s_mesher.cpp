@@ -8,6 +8,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace growth {
 namespace g2s {
 
@@ -98,17 +102,50 @@ double Mesher::localSpacing(std::uint32_t v) const {
   return edgeCount_[v] > 0 ? double(edgeLengthSum_[v]) / double(edgeCount_[v]) : 0.0;
 }
 
+size_t Mesher::NearList::nextWithin(const float* c, float r2, size_t from) const {
+  size_t k = from;
+#if defined(__SSE2__)
+  const __m128 cx = _mm_set1_ps(c[0]), cy = _mm_set1_ps(c[1]), cz = _mm_set1_ps(c[2]), rr = _mm_set1_ps(r2);
+  for (; k < size; k += 4) {
+    const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&x[k]), cx);
+    const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&y[k]), cy);
+    const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&z[k]), cz);
+    const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+    int mask = _mm_movemask_ps(_mm_cmple_ps(d2, rr));
+    if (size - k < 4) mask &= (1 << (size - k)) - 1;
+    if (mask != 0) return k + size_t(__builtin_ctz(static_cast<unsigned>(mask)));
+  }
+  return size;
+#else
+  for (; k < size; ++k) {
+    const float dx = x[k] - c[0], dy = y[k] - c[1], dz = z[k] - c[2];
+    if (dx * dx + dy * dy + dz * dz <= r2) return k;
+  }
+  return size;
+#endif
+}
+
 void Mesher::gather(const P3& centre, double radius) {
   near_.clear();
-  grid_.forEachInBall(centre, radius, [&](std::uint32_t i, double) { near_.push_back(Near{i, pts_[i]}); });
+  grid_.forEachNearBall(centre, radius, [&](std::uint32_t i) { near_.push(i, grid_.fx(i), grid_.fy(i), grid_.fz(i)); });
 }
 
 bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
                        std::uint32_t b, std::uint32_t c) const {
-  for (const Near& q : near_)
-    if (q.id != a && q.id != b && q.id != c && strictlyInside((q.p - ball.centre).SquaredNorm(), ball.radius2))
-      return false;
-  const double radius = std::sqrt(ball.radius2);
+  // Gathered points: decided in float where they are farther than the float error from the
+  // sphere, exactly otherwise (the three points on the sphere always go the exact way).
+  const double radius = std::sqrt(ball.radius2), slack = 2.0 * grid_.floatSlack();
+  const float inner = slack < 1e-9 * radius ? 0.f : float((radius - slack) * (radius - slack) * (1.0 - 1e-6));
+  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
+  float cf[3];
+  grid_.toFloat(ball.centre, cf);
+  for (size_t k = near_.nextWithin(cf, outer, 0); k < near_.size; k = near_.nextWithin(cf, outer, k + 1)) {
+    const std::uint32_t id = near_.id[k];
+    if (id == a || id == b || id == c) continue;
+    const float dx = near_.x[k] - cf[0], dy = near_.y[k] - cf[1], dz = near_.z[k] - cf[2];
+    if (dx * dx + dy * dy + dz * dz < inner) return false;
+    if (strictlyInside((pts_[id] - ball.centre).SquaredNorm(), ball.radius2)) return false;
+  }
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
@@ -241,14 +278,20 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
     size_t found = 0;
     scored_.clear();
-    for (size_t k = 0; k < near_.size(); ++k) {
-      const Near q = near_[k];
-      if ((q.p - centre).SquaredNorm() > r2 || q.id == a || q.id == b || q.id == c) continue;
-      std::swap(near_[k], near_[found++]);
-      const double n2 = ((A - B) ^ (q.p - B)).SquaredNorm();
-      const double aq2 = (q.p - A).SquaredNorm(), bq2 = (q.p - B).SquaredNorm();
+    float cf[3];
+    grid_.toFloat(centre, cf);
+    const double slack = 2.0 * grid_.floatSlack();
+    const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
+    for (size_t k = near_.nextWithin(cf, outer, 0); k < near_.size; k = near_.nextWithin(cf, outer, k + 1)) {
+      const std::uint32_t id = near_.id[k];
+      const P3& q = pts_[id];
+      if ((q - centre).SquaredNorm() > r2 || id == a || id == b || id == c) continue;
+      near_.swap(k, found++); // what comes to k was examined already
+      if (interior(id)) continue; // counts as found and for G2S balls, never a candidate
+      const double n2 = ((A - B) ^ (q - B)).SquaredNorm();
+      const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
       if (!(n2 > 1e-20 * edge2 * aq2)) continue; // collinear with the edge: no triangle
-      scored_.push_back(Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), q.id, 0});
+      scored_.push_back(Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0});
     }
     if (scored_.empty()) continue;
     auto accept = [&](std::uint32_t id, bool single) {
@@ -273,16 +316,12 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // meets first, as in the planar Delaunay case. (Measured against "flattest class first" on
     // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
     // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
-    // tested in that order (a repeated minimum: there are only a few), skipping the points the
-    // topological tests reject.
-    for (size_t tested = 0; tested < scored_.size(); ++tested) {
-      size_t best = tested;
-      for (size_t k = tested + 1; k < scored_.size(); ++k) {
-        const Scored &x = scored_[k], &y = scored_[best];
-        if (x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id) best = k;
-      }
-      std::swap(scored_[tested], scored_[best]);
-      const std::uint32_t id = scored_[tested].id;
+    // tested in that order, skipping the points the topological tests reject.
+    std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
+      return x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id;
+    });
+    for (const Scored& s : scored_) {
+      const std::uint32_t id = s.id;
       if (!topologyAllows(a, b, c, id)) continue;
       Ball ball;
       if (!circumBall(B, A, pts_[id], ball)) continue;
@@ -380,11 +419,12 @@ void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
   double best = std::numeric_limits<double>::infinity();
   std::array<std::uint32_t, 3> ref{};
   bool haveRef = false;
-  for (const Near& q : near_) {
-    const double d2 = (q.p - centroid).SquaredNorm();
-    if (d2 >= best || isolated(q.id)) continue;
+  for (size_t k = 0; k < near_.size; ++k) {
+    const std::uint32_t id = near_.id[k];
+    const double d2 = (pts_[id] - centroid).SquaredNorm();
+    if (d2 >= best || isolated(id)) continue;
     std::array<std::uint32_t, 3> t;
-    if (triangleAt(q.id, t)) {
+    if (triangleAt(id, t)) {
       best = d2;
       ref = t;
       haveRef = true;
@@ -413,11 +453,12 @@ bool Mesher::findSeedTriangle(std::uint32_t p, std::array<std::uint32_t, 3>& tri
   const double radius = params_.seedSearchFactor * edge;
   gather(mid, radius);
   scored_.clear();
-  for (const Near& x : near_) {
-    if (x.id == p || x.id == q || !isolated(x.id)) continue;
+  for (size_t k = 0; k < near_.size; ++k) {
+    const std::uint32_t id = near_.id[k];
+    if (id == p || id == q || !isolated(id) || (pts_[id] - mid).SquaredNorm() > radius * radius) continue;
     Ball ball;
-    if (!circumBall(P, Q, x.p, ball)) continue;
-    scored_.push_back(Scored{0, ball.radius2, x.id, 1});
+    if (!circumBall(P, Q, pts_[id], ball)) continue;
+    scored_.push_back(Scored{0, ball.radius2, id, 1});
   }
   std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
     return x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id;

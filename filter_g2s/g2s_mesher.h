@@ -19,6 +19,7 @@
 #include <growth/point_edge_map.h>
 #include <growth/progress.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -113,9 +114,38 @@ public:
   std::vector<std::uint32_t>& scratch() { return scratch_; }
 
 private:
-  struct Near {
-    std::uint32_t id;
-    P3 p;
+  // The points of the last gathered ball: ids and float coordinates relative to the grid's box
+  // (structure of arrays, padded by 4, for 4-lane scans); every distance computed from them is
+  // within the grid's floatSlack() of the exact one, so a scan decides most points in float and
+  // re-checks in double only those within the slack of a sphere.
+  struct NearList {
+    std::vector<std::uint32_t> id;
+    std::vector<float> x, y, z;
+    size_t size = 0;
+    void clear() { size = 0; }
+    void push(std::uint32_t i, float px, float py, float pz) {
+      if (size + 4 >= id.size()) grow();
+      id[size] = i;
+      x[size] = px;
+      y[size] = py;
+      z[size] = pz;
+      ++size;
+    }
+    void swap(size_t i, size_t j) {
+      std::swap(id[i], id[j]);
+      std::swap(x[i], x[j]);
+      std::swap(y[i], y[j]);
+      std::swap(z[i], z[j]);
+    }
+    void grow() {
+      const size_t n = std::max<size_t>(64, 2 * id.size());
+      id.resize(n);
+      x.resize(n, 0.f);
+      y.resize(n, 0.f);
+      z.resize(n, 0.f);
+    }
+    // The first index >= from whose float squared distance to c is <= r2, or size.
+    size_t nextWithin(const float* c, float r2, size_t from) const;
   };
   struct Scored {
     int flatLevel;     // pl_f
@@ -156,7 +186,7 @@ private:
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
-  std::vector<Near> near_;             // scratch: points of the last gathered ball
+  NearList near_;                      // scratch: points of the last gathered ball
   std::vector<Scored> scored_;         // scratch: candidates being ranked
 };
 
