@@ -73,8 +73,10 @@ public:
     lists_.reset(in.points.size());
     // Cells of side 2d: the ball of radius d of the distance check (sec. 3.6), the most frequent
     // query, then meets at most 2 × 2 × 2 cells.
-    vgrid_.reset(grid.indexer().origin(), 2 * d, expected_);
-    graph_.reserve(expected_ + expected_ / 4);
+    // Reserve for the estimate, within reason (the estimate can be high on noisy clouds).
+    const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, size_t(1) << 21);
+    vgrid_.reset(grid.indexer().origin(), 2 * d, reserve);
+    graph_.reserve(reserve);
   }
 
   const BorderGraph& graph() const { return graph_; }

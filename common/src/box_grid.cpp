@@ -388,8 +388,8 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     if (progress != nullptr && (b & 4095) == 0) progress->update(0.6 + 0.4 * double(b) / double(boxes));
   }
   start_[boxes] = static_cast<std::uint32_t>(w);
-  points_.resize(w);
-  points_.shrink_to_fit();
+  points_.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
+                     // references the filter dropped)
 }
 
 } // namespace growth

@@ -11,7 +11,9 @@
 // the box containing v (sec. 4.1), and every splat keeps the list of the vertices within distance
 // d of it; the partners of v are read from those lists. enumerateCandidates() does both: it visits
 // the splats of v's box within d of v, reports the candidates of v with every vertex already in
-// the splat's list, and adds v to the list.
+// the splat's list, and adds v to the list. (The paper calls the splats near v "a subset of the
+// splats associated to the box containing v"; we take it literally: a splat counts for v when its
+// point is in v's box and its disk comes within d of v.)
 #include <growth/box_grid.h>
 #include <growth/splats.h>
 

@@ -1,9 +1,10 @@
 #pragma once
 // Dynamic hash grid of the mesh vertices of the sphere packer, for the insertion checks of
 // sec. 3.6 (no vertex closer than d to a candidate; existing edges near a candidate) and the
-// neighbourhoods of sec. 4.4. Cells of side d; only occupied cells are stored (KeyHash), each a
-// linked list through one `next` index per vertex. Vertices are at least d apart, so a cell holds
-// a bounded number of them and a query costs a constant.
+// neighbourhoods of sec. 4.4. Cells of a given side (the sphere packer uses 2d); only occupied
+// cells are stored (KeyHash), each a linked list through one `next` index per vertex. Vertices are
+// at least d apart, so a cell holds a bounded number of them and a query costs a constant. (The
+// paper keeps the vertices in its boxes, sec. 4.4; a separate grid keeps the box lists compact.)
 #include <growth/box_grid.h>
 
 #include <vcg/space/point3.h>
