@@ -5,6 +5,8 @@
 #include <common/ml_mesh_type.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -79,30 +81,43 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     throw Error(s.str());
   }
 
-  // Exact duplicates: keep the first occurrence (in vertex order) of every position.
+  // Exact duplicates: keep the first occurrence (in vertex order) of every position. One pass
+  // with an open-addressing hash of the coordinates (linear time; −0.0 counts as 0.0, as ==
+  // does); the table holds indices of kept points, so no order of anything depends on hashing.
   {
-    std::vector<size_t> order(c.points.size());
-    std::iota(order.begin(), order.end(), size_t(0));
-    auto less = [&](size_t a, size_t b) {
-      const auto &p = c.points[a], &q = c.points[b];
-      if (p[0] != q[0]) return p[0] < q[0];
-      if (p[1] != q[1]) return p[1] < q[1];
-      if (p[2] != q[2]) return p[2] < q[2];
-      return a < b;
+    const size_t n = c.points.size();
+    size_t cap = 16;
+    while (cap < 2 * n) cap *= 2;
+    std::vector<std::uint32_t> table(cap, 0); // kept index + 1; 0 = free
+    auto bits = [](double v) {
+      v += 0.0; // −0.0 → +0.0
+      std::uint64_t b;
+      std::memcpy(&b, &v, sizeof b);
+      return b;
     };
-    std::sort(order.begin(), order.end(), less);
-    std::vector<char> drop(c.points.size(), 0);
-    for (size_t k = 1; k < order.size(); ++k)
-      if (c.points[order[k]] == c.points[order[k - 1]]) drop[order[k]] = 1;
     size_t w = 0;
-    for (size_t i = 0; i < c.points.size(); ++i) {
-      if (drop[i]) continue;
-      c.points[w] = c.points[i];
+    for (size_t i = 0; i < n; ++i) {
+      const vcg::Point3d p = c.points[i];
+      std::uint64_t h = bits(p[0]) * 0x9E3779B97F4A7C15ull;
+      h = (h ^ (h >> 29) ^ bits(p[1])) * 0xBF58476D1CE4E5B9ull;
+      h = (h ^ (h >> 31) ^ bits(p[2])) * 0x94D049BB133111EBull;
+      size_t slot = static_cast<size_t>(h >> 17) & (cap - 1);
+      bool duplicate = false;
+      while (table[slot] != 0) {
+        if (c.points[table[slot] - 1] == p) {
+          duplicate = true;
+          break;
+        }
+        slot = (slot + 1) & (cap - 1);
+      }
+      if (duplicate) continue;
+      c.points[w] = p;
       if (check.needNormals) c.normals[w] = c.normals[i];
       c.vertexIndex[w] = c.vertexIndex[i];
+      table[slot] = static_cast<std::uint32_t>(w + 1);
       ++w;
     }
-    c.duplicatesDropped = c.points.size() - w;
+    c.duplicatesDropped = n - w;
     c.points.resize(w);
     if (check.needNormals) c.normals.resize(w);
     c.vertexIndex.resize(w);
