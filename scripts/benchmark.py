@@ -313,8 +313,10 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
            "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
            "base_rss_kb": base["rss_kb"], "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
-    if method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["points"] > ctx.bpa_max_points:
-        row["status"] = "skipped: more than %s points (--bpa-max-points)" % "{:,}".format(ctx.bpa_max_points)
+    if (method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["kind"] == "generated"
+            and cloud["points"] > ctx.bpa_max_points):
+        row["status"] = "skipped: generated cloud of more than %s points (--bpa-max-points)" % "{:,}".format(
+            ctx.bpa_max_points)
         return row
     bpa_mesh = os.path.join(ctx.out, "runs", cloud["name"], "bpa", "mesh.ply")
     reuse = (method == "bpa_re" and bpa_row is not None and bpa_row.get("status") == "ok"
@@ -724,8 +726,8 @@ def main():
     ap.add_argument("--param", action="append", default=[], metavar="METHOD:NAME=VALUE",
                     help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4")
     ap.add_argument("--bpa-max-points", type=int, default=0,
-                    help="skip Ball Pivoting with auto radius (and its remeshing) on clouds larger than this "
-                         "(it grows about quadratically on random samples); 0: no limit")
+                    help="skip Ball Pivoting with auto radius (and its remeshing) on generated clouds larger "
+                         "than this (it grows about quadratically on random samples); 0: no limit")
     ap.add_argument("--repeat", type=int, default=0,
                     help="run each meshlabserver call N times and keep the fastest; 0 (default): 3 times on "
                          "clouds up to 100k points, once above")
