@@ -54,8 +54,9 @@ struct Stat {
 Params suggestParams(const CMeshO& cloud);
 
 // Triangulates the live vertices of `cloud` into `out` (cleared first): out's vertices are copies
-// of the input points that the faces use (in the layer's order; unused points are left out), faces
-// consistently oriented, with per-face quality Q_t. A cloud where no seed triangle exists gives an
+// of the input points that the faces use, bit for bit (unused points are left out), in a
+// spatially coherent (Morton) order; faces consistently oriented (closed components outwards),
+// with per-face quality Q_t. A cloud where no seed triangle exists gives an
 // empty `out` and a warning. Throws growth::Error on bad input or parameters and
 // growth::Cancelled on cancel (out is then empty).
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
