@@ -18,6 +18,9 @@ for filter in spherepack g2s; do
   ( cd "$out" && run_meshlabserver "$out/meshlab-prefix" -i torus.ply -o "torus_$filter.ply" -m fq \
       -s "$root/scripts/mlx/$filter.mlx" > "$filter.log" 2>&1 ) || {
     cat "$out/$filter.log"; echo "demo: $filter failed (log above)" >&2; exit 1; }
-  grep -E "^(Sphere Packing|Robust G2S)" "$out/$filter.log" | sed 's/^/  /' || true
+  # meshlabserver prints the progress phases ("Robust G2S: growing the mesh") without a newline:
+  # drop them, keep the filter's log lines.
+  sed -E 's/(Sphere packing|Robust G2S): (reading|growing|removing|writing|box|splat|starting|triangulating) [a-z -]*(points|mesh|vertices|cloud|grid|sizes|regions)//g' "$out/$filter.log" |
+    grep -E "^(Sphere Packing|Robust G2S)" | sed 's/^/  /' || true
   echo "demo: $filter mesh written to $out/torus_$filter.ply ($(ply_faces "$out/torus_$filter.ply") faces)"
 done
