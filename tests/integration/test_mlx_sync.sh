@@ -5,7 +5,7 @@ source "$(dirname "$0")/meshlab_prefix.sh"
 
 "$GROWTH_BUILD_DIR/make_cloud" --shape sphere --points 2000 --seed 1 -o "$work/cloud.ply" >/dev/null
 for plugin in spherepack g2s; do
-  "$GROWTH_BUILD_DIR/tests/plugin_params" --mlx "$GROWTH_BUILD_DIR/plugins/libfilter_$plugin.so" \
+  "$GROWTH_BUILD_DIR/plugin_params" --mlx "$GROWTH_BUILD_DIR/plugins/libfilter_$plugin.so" \
     "$work/cloud.ply" > "$work/$plugin.expected.mlx"
   python3 - "$GROWTH_SOURCE_DIR/scripts/mlx/$plugin.mlx" "$work/$plugin.expected.mlx" <<'PY'
 import sys, xml.etree.ElementTree as ET

@@ -7,7 +7,7 @@ mlserver -d "$work/dump.txt" > "$work/server.log" 2>&1 || { cat "$work/server.lo
 
 for plugin in spherepack g2s; do
   so="$GROWTH_BUILD_DIR/plugins/libfilter_$plugin.so"
-  "$GROWTH_BUILD_DIR/tests/plugin_params" "$so" "$work/cloud.ply" > "$work/$plugin.params" \
+  "$GROWTH_BUILD_DIR/plugin_params" "$so" "$work/cloud.ply" > "$work/$plugin.params" \
     || fail "plugin_params cannot load $so"
   [ -s "$work/$plugin.params" ] || fail "$so declares no parameters"
   filter=$(cut -f1 "$work/$plugin.params" | head -1)
