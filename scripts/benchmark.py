@@ -599,6 +599,39 @@ def header_lines(rows, command):
             EXPLANATION, ""]
 
 
+def headline_section(clouds, rows, level):
+    """One line per cloud: our filters' speed-ups against Ball Pivoting measured in the same run
+    (time of Ball Pivoting / time of ours) and Robust G2S's triangle rate against Ball Pivoting's
+    with r = 3 × spacing (both interpolate the points, so their face counts are comparable)."""
+    def row_of(c, method):
+        return next((r for r in rows if r["cloud"] == c and r["method"] == method and r.get("status") == "ok"), None)
+
+    def ratio(num, den):
+        return ("×%.1f" % (num / den)) if num and den and num > 0 and den > 0 else "—"
+
+    def rate(r):
+        return r["measures"]["faces"] / r["time"] if r and r["time"] > 0 else None
+
+    md = ["%s Headline: ratios against Ball Pivoting" % ("#" * level), "",
+          "Speed-up = Ball Pivoting's time / our filter's time on the same cloud in the same run (above 1: "
+          "ours is faster). Triangle rate = faces per second of filter time.", "",
+          "| cloud | points | Sphere Packing vs BPA auto | vs BPA 3s | Robust G2S vs BPA auto | vs BPA 3s "
+          "| G2S triangle rate / BPA 3s rate | G2S triangles/s |",
+          "|---|" + "---|" * 7]
+    for c in clouds:
+        b, b3 = row_of(c, "bpa"), row_of(c, "bpa3")
+        sp, g = row_of(c, "spherepack"), row_of(c, "g2s")
+        if not (b or b3):
+            continue
+        pts = next(r for r in rows if r["cloud"] == c)["points"]
+        t = lambda r: r["time"] if r else None
+        md.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            c, "{:,}".format(pts), ratio(t(b), t(sp)), ratio(t(b3), t(sp)), ratio(t(b), t(g)),
+            ratio(t(b3), t(g)), ratio(rate(g), rate(b3)), fmt(rate(g), ",.0f")))
+    md.append("")
+    return md
+
+
 def cloud_section(c, rows, level, image):
     """Markdown of one cloud: heading, table and (when `image` is not None) its histogram plot."""
     cr = [r for r in rows if r["cloud"] == c]
@@ -628,7 +661,7 @@ def scaling_section(slopes, level, image):
 def report(rows, ctx, command):
     made, slopes = plots(rows, ctx.out)
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
-    md = ["# Benchmark results", ""] + header_lines(rows, command)
+    md = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
     for c in clouds:
         hp = os.path.join("plots", "%s_histograms.png" % c)
         md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
@@ -672,7 +705,7 @@ def publish(rows, ctx, command, slopes):
     def image(name, relative_to):
         return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
 
-    full = ["# Benchmark results", ""] + header_lines(rows, command)
+    full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
     for c in clouds:
         full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
     full += scaling_section(slopes, 2, image("scaling.png", docs))
@@ -688,6 +721,7 @@ def publish(rows, ctx, command, slopes):
                "Our filters against MeshLab's Ball Pivoting, measured in the same run on the same clouds "
                "(`scripts/benchmark.sh`). The ratios against Ball Pivoting are the headline; absolute "
                "seconds depend on the machine and its load.", ""] + header_lines(rows, command)
+    summary += headline_section(clouds, rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
     summary += scaling_section(slopes, 3, image("scaling.png", where))
