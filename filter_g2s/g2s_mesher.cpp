@@ -102,27 +102,30 @@ double Mesher::localSpacing(std::uint32_t v) const {
   return edgeCount_[v] > 0 ? double(edgeLengthSum_[v]) / double(edgeCount_[v]) : 0.0;
 }
 
-size_t Mesher::NearList::nextWithin(const float* c, float r2, size_t from) const {
-  size_t k = from;
+size_t Mesher::NearList::collectWithin(const float* c, float r2, std::uint32_t* out) const {
+  size_t count = 0;
 #if defined(__SSE2__)
+  // The arrays are padded by 4 (see push), so whole blocks are loaded; lanes past size masked off.
   const __m128 cx = _mm_set1_ps(c[0]), cy = _mm_set1_ps(c[1]), cz = _mm_set1_ps(c[2]), rr = _mm_set1_ps(r2);
-  for (; k < size; k += 4) {
+  for (size_t k = 0; k < size; k += 4) {
     const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&x[k]), cx);
     const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&y[k]), cy);
     const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&z[k]), cz);
     const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-    int mask = _mm_movemask_ps(_mm_cmple_ps(d2, rr));
-    if (size - k < 4) mask &= (1 << (size - k)) - 1;
-    if (mask != 0) return k + size_t(__builtin_ctz(static_cast<unsigned>(mask)));
+    unsigned mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(d2, rr)));
+    if (size - k < 4) mask &= (1u << (size - k)) - 1;
+    while (mask != 0) {
+      out[count++] = static_cast<std::uint32_t>(k + size_t(__builtin_ctz(mask)));
+      mask &= mask - 1;
+    }
   }
-  return size;
 #else
-  for (; k < size; ++k) {
+  for (size_t k = 0; k < size; ++k) {
     const float dx = x[k] - c[0], dy = y[k] - c[1], dz = z[k] - c[2];
-    if (dx * dx + dy * dy + dz * dz <= r2) return k;
+    if (dx * dx + dy * dy + dz * dz <= r2) out[count++] = static_cast<std::uint32_t>(k);
   }
-  return size;
 #endif
+  return count;
 }
 
 void Mesher::gather(const P3& centre, double radius) {
@@ -139,13 +142,41 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
   const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
   float cf[3];
   grid_.toFloat(ball.centre, cf);
-  for (size_t k = near_.nextWithin(cf, outer, 0); k < near_.size; k = near_.nextWithin(cf, outer, k + 1)) {
+  // Each point within the float error of the sphere (or inside) is decided: inside by more than
+  // that error in float, otherwise exactly in double. Stops at the first point strictly inside.
+  auto inside = [&](size_t k, float d2) {
     const std::uint32_t id = near_.id[k];
-    if (id == a || id == b || id == c) continue;
-    const float dx = near_.x[k] - cf[0], dy = near_.y[k] - cf[1], dz = near_.z[k] - cf[2];
-    if (dx * dx + dy * dy + dz * dz < inner) return false;
-    if (strictlyInside((pts_[id] - ball.centre).SquaredNorm(), ball.radius2)) return false;
+    if (id == a || id == b || id == c) return false;
+    return d2 < inner || strictlyInside((pts_[id] - ball.centre).SquaredNorm(), ball.radius2);
+  };
+#if defined(__SSE2__)
+  {
+    const __m128 cx = _mm_set1_ps(cf[0]), cy = _mm_set1_ps(cf[1]), cz = _mm_set1_ps(cf[2]), rr = _mm_set1_ps(outer);
+    const size_t size = near_.size;
+    for (size_t k = 0; k < size; k += 4) {
+      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&near_.x[k]), cx);
+      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&near_.y[k]), cy);
+      const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&near_.z[k]), cz);
+      const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+      unsigned mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(d2, rr)));
+      if (mask == 0) continue;
+      if (size - k < 4) mask &= (1u << (size - k)) - 1;
+      alignas(16) float lane[4];
+      _mm_store_ps(lane, d2);
+      while (mask != 0) {
+        const unsigned j = static_cast<unsigned>(__builtin_ctz(mask));
+        mask &= mask - 1;
+        if (inside(k + j, lane[j])) return false;
+      }
+    }
   }
+#else
+  for (size_t k = 0; k < near_.size; ++k) {
+    const float dx = near_.x[k] - cf[0], dy = near_.y[k] - cf[1], dz = near_.z[k] - cf[2];
+    const float d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 <= outer && inside(k, d2)) return false;
+  }
+#endif
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
@@ -282,7 +313,11 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     grid_.toFloat(centre, cf);
     const double slack = 2.0 * grid_.floatSlack();
     const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
-    for (size_t k = near_.nextWithin(cf, outer, 0); k < near_.size; k = near_.nextWithin(cf, outer, k + 1)) {
+    // Swapping a found point to the front moves to position k a point examined already (found
+    // <= k), and leaves the later positions alone, so the collected indices stay valid.
+    const size_t hits = near_.collectWithin(cf, outer, near_.hit.data());
+    for (size_t h = 0; h < hits; ++h) {
+      const size_t k = near_.hit[h];
       const std::uint32_t id = near_.id[k];
       const P3& q = pts_[id];
       if ((q - centre).SquaredNorm() > r2 || id == a || id == b || id == c) continue;
@@ -317,11 +352,19 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
     // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
     // tested in that order, skipping the points the topological tests reject.
-    std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
-      return x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id;
-    });
-    for (const Scored& s : scored_) {
-      const std::uint32_t id = s.id;
+    // The order is built lazily, by selecting the next smallest (R², id) among the untested
+    // candidates: the first one or two are usually taken, so most of a full sort would be wasted.
+    // The order (and so the choice) is exactly that of the sorted list; (R², id) is a strict
+    // order, the ids being distinct.
+    const size_t count = scored_.size();
+    for (size_t done = 0; done < count; ++done) {
+      size_t best = done;
+      for (size_t j = done + 1; j < count; ++j) {
+        const Scored &x = scored_[j], &y = scored_[best];
+        if (x.radius2 < y.radius2 || (x.radius2 == y.radius2 && x.id < y.id)) best = j;
+      }
+      std::swap(scored_[done], scored_[best]);
+      const std::uint32_t id = scored_[done].id;
       if (!topologyAllows(a, b, c, id)) continue;
       Ball ball;
       if (!circumBall(B, A, pts_[id], ball)) continue;

@@ -121,6 +121,7 @@ private:
   struct NearList {
     std::vector<std::uint32_t> id;
     std::vector<float> x, y, z;
+    std::vector<std::uint32_t> hit; // scratch for collectWithin, as long as id
     size_t size = 0;
     void clear() { size = 0; }
     void push(std::uint32_t i, float px, float py, float pz) {
@@ -140,12 +141,14 @@ private:
     void grow() {
       const size_t n = std::max<size_t>(64, 2 * id.size());
       id.resize(n);
+      hit.resize(n);
       x.resize(n, 0.f);
       y.resize(n, 0.f);
       z.resize(n, 0.f);
     }
-    // The first index >= from whose float squared distance to c is <= r2, or size.
-    size_t nextWithin(const float* c, float r2, size_t from) const;
+    // Writes to out, in increasing order, the indices whose float squared distance to c is
+    // <= r2 (out must hold size + 4 entries); returns how many.
+    size_t collectWithin(const float* c, float r2, std::uint32_t* out) const;
   };
   struct Scored {
     int flatLevel;     // pl_f
