@@ -30,7 +30,7 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   // over the digits the keys use): equal keys keep the input order, so the result is
   // deterministic. Keys below 2^32 — every cloud whose box spans fewer than 2^10 cells per axis —
   // are packed with the index into one 64-bit word (half the memory of separate arrays).
-  std::vector<std::uint64_t> key;
+  HugeVector<std::uint64_t> key;
   assignHuge(key, n, std::uint64_t(0));
   std::uint64_t maxKey = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -42,8 +42,8 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   }
   assignHuge(order_, n, 0u);
   std::vector<std::uint32_t> count(65537);
-  auto radix = [&](std::vector<std::uint64_t>& v, int firstShift, int endShift, auto&& digitOf) {
-    std::vector<std::uint64_t> tmp;
+  auto radix = [&](HugeVector<std::uint64_t>& v, int firstShift, int endShift, auto&& digitOf) {
+    HugeVector<std::uint64_t> tmp;
     assignHuge(tmp, n, std::uint64_t(0));
     for (int shift = firstShift; shift < endShift; shift += 16) {
       std::fill(count.begin(), count.end(), 0u);
@@ -67,7 +67,7 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
     // Wide keys: sort (key, index) pairs through an index permutation.
     std::vector<std::uint32_t> idx(n), idxTmp(n);
     for (size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
-    std::vector<std::uint64_t> keyTmp(n);
+    HugeVector<std::uint64_t> keyTmp(n);
     for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += 16) {
       std::fill(count.begin(), count.end(), 0u);
       for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & 0xffff) + 1];

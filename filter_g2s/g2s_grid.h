@@ -14,6 +14,8 @@
 // caller's point order, a second sort for a spatial order) this removes a build and two memory
 // indirections per cell; tools/g2s_grid_bench.cpp measures both and vcglib's GridStaticPtr on the
 // mesher's query pattern.
+#include <growth/huge_pages.h>
+
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
@@ -240,7 +242,7 @@ private:
   }
 
   std::vector<P3> pts_;
-  std::vector<float> fx_, fy_, fz_;   // the points relative to box_.min, in float, same order
+  HugeVector<float> fx_, fy_, fz_;    // the points relative to box_.min, in float, same order
   double floatSlack_ = 0;
   std::vector<std::uint32_t> order_;
   std::vector<Slot> table_;

@@ -352,18 +352,23 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
     // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
     // tested in that order, skipping the points the topological tests reject.
-    // The order is built lazily, by selecting the next smallest (R², id) among the untested
-    // candidates: the first one or two are usually taken, so most of a full sort would be wasted.
-    // The order (and so the choice) is exactly that of the sorted list; (R², id) is a strict
-    // order, the ids being distinct.
+    // Short lists are ordered lazily, by selecting the next smallest (R², id) among the untested
+    // candidates (the first one or two are usually taken, so most of a sort would be wasted),
+    // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
+    // list: (R², id) is a strict order, the ids being distinct.
+    auto before = [](const Scored& x, const Scored& y) {
+      return x.radius2 < y.radius2 || (x.radius2 == y.radius2 && x.id < y.id);
+    };
     const size_t count = scored_.size();
+    const bool sorted = count > 8;
+    if (sorted) std::sort(scored_.begin(), scored_.end(), before);
     for (size_t done = 0; done < count; ++done) {
-      size_t best = done;
-      for (size_t j = done + 1; j < count; ++j) {
-        const Scored &x = scored_[j], &y = scored_[best];
-        if (x.radius2 < y.radius2 || (x.radius2 == y.radius2 && x.id < y.id)) best = j;
+      if (!sorted) {
+        size_t best = done;
+        for (size_t j = done + 1; j < count; ++j)
+          if (before(scored_[j], scored_[best])) best = j;
+        std::swap(scored_[done], scored_[best]);
       }
-      std::swap(scored_[done], scored_[best]);
       const std::uint32_t id = scored_[done].id;
       if (!topologyAllows(a, b, c, id)) continue;
       Ball ball;

@@ -178,9 +178,9 @@ private:
   PointEdgeMap pem_;
   // Per point, during growth: the sum of the lengths of its edges, their number, and how many of
   // them have one triangle only (free edges; an interior vertex has none).
-  std::vector<float> edgeLengthSum_;
-  std::vector<std::uint16_t> edgeCount_;
-  std::vector<std::uint8_t> freeEdges_;
+  HugeVector<float> edgeLengthSum_;
+  HugeVector<std::uint16_t> edgeCount_;
+  HugeVector<std::uint8_t> freeEdges_;
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents

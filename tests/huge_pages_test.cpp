@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <numeric>
+#include <string>
 #include <vector>
 
 // The advice is only a hint: whatever the kernel does, contents and sizes must be as asked.
@@ -25,4 +26,22 @@ TEST(HugePages, AssignAndReserveKeepTheVectorContract) {
   growth::assignHuge(small, 10, 'x'); // below the threshold: plain assign
   EXPECT_EQ(std::string(small.begin(), small.end()), "xxxxxxxxxx");
   growth::adviseHugePages(nullptr, 1 << 30); // ignored
+}
+
+TEST(HugePages, HugeVectorBehavesLikeAVectorAndAlignsLargeBlocks) {
+  growth::HugeVector<std::uint32_t> v(size_t(1) << 18, 5u); // 1 MiB: above kHugeAllocMin
+#if defined(__linux__)
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % growth::kHugePageBytes, 0u);
+#endif
+  EXPECT_EQ(std::accumulate(v.begin(), v.end(), std::uint64_t(0)), std::uint64_t(5) << 18);
+  v.resize(v.size() * 3, 1u); // reallocation keeps the contents
+  EXPECT_EQ(v[0], 5u);
+  EXPECT_EQ(v.back(), 1u);
+  growth::HugeVector<std::uint32_t> copy(v);
+  EXPECT_TRUE(copy == v);
+  growth::HugeVector<char> small(3, 'y'); // below the threshold: plain malloc
+  EXPECT_EQ(std::string(small.begin(), small.end()), "yyy");
+  growth::HugeVector<double> empty;
+  empty.reserve(0);
+  EXPECT_TRUE(empty.empty());
 }

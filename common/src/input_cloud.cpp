@@ -1,4 +1,5 @@
 #include <growth/error.h>
+#include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/point_grid.h>
 
@@ -36,7 +37,8 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   }
 
   size_t nonFinite = 0, badNormals = 0;
-  c.points.reserve(static_cast<size_t>(mesh.vn));
+  reserveHuge(c.points, static_cast<size_t>(mesh.vn));
+  reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn));
   if (check.needNormals) c.normals.reserve(static_cast<size_t>(mesh.vn));
   for (size_t i = 0; i < mesh.vert.size(); ++i) {
     const auto& v = mesh.vert[i];
@@ -88,7 +90,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     const size_t n = c.points.size();
     size_t cap = 16;
     while (cap < 2 * n) cap *= 2;
-    std::vector<std::uint32_t> table(cap, 0); // kept index + 1; 0 = free
+    HugeVector<std::uint32_t> table(cap, 0); // kept index + 1; 0 = free
     auto bits = [](double v) {
       v += 0.0; // −0.0 → +0.0
       std::uint64_t b;

@@ -10,8 +10,8 @@ namespace {
 
 // Vertex → incident triangles (compressed rows), built once; dead triangles are skipped on use.
 struct Incidence {
-  std::vector<std::uint32_t> start; // vertexCount + 1
-  std::vector<std::uint32_t> face;
+  HugeVector<std::uint32_t> start; // vertexCount + 1
+  HugeVector<std::uint32_t> face;
 
   Incidence(const std::vector<Triangle>& faces, size_t vertexCount, const std::vector<char>& alive) {
     assignHuge(start, vertexCount + 1, 0u);
@@ -20,7 +20,7 @@ struct Incidence {
         for (std::uint32_t v : faces[f]) ++start[v + 1];
     for (size_t v = 0; v < vertexCount; ++v) start[v + 1] += start[v];
     assignHuge(face, size_t(start[vertexCount]), 0u);
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    HugeVector<std::uint32_t> fill(start.begin(), start.end() - 1);
     for (size_t f = 0; f < faces.size(); ++f)
       if (alive[f])
         for (std::uint32_t v : faces[f]) face[fill[v]++] = static_cast<std::uint32_t>(f);
@@ -137,7 +137,7 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
 
   // Work list: every vertex (or suspect) once, then every vertex of a removed triangle again.
   std::vector<std::uint32_t> work;
-  std::vector<char> queued(vertexCount, 0), counted(vertexCount, 0);
+  HugeVector<char> queued(vertexCount, 0), counted(vertexCount, 0);
   if (suspects != nullptr) {
     for (std::uint32_t v : *suspects)
       if (v < vertexCount && !queued[v]) {

@@ -217,9 +217,9 @@ private:
     if (ew != nullptr) *ew &= ~kIn;
   }
 
-  std::vector<std::uint32_t> slot_;   // kInline per point
-  std::vector<std::uint8_t> count_;   // entries per point
-  std::vector<std::uint32_t> pool_;   // overflow blocks of kInline
+  HugeVector<std::uint32_t> slot_;    // kInline per point
+  HugeVector<std::uint8_t> count_;    // entries per point
+  HugeVector<std::uint32_t> pool_;    // overflow blocks of kInline
 };
 
 } // namespace growth
