@@ -245,7 +245,7 @@ private:
   HugeVector<float> fx_, fy_, fz_;    // the points relative to box_.min, in float, same order
   double floatSlack_ = 0;
   std::vector<std::uint32_t> order_;
-  std::vector<Slot> table_;
+  HugeVector<Slot> table_;
   vcg::Box3d box_;
   double cell_ = 1, inv_ = 1;
   std::int64_t maxCell_[3] = {-1, -1, -1};

@@ -15,6 +15,7 @@
 #include "g2s_grid.h"
 
 #include <growth/bucket_queue.h>
+#include <growth/huge_pages.h>
 #include <growth/manifold_cleanup.h>
 #include <growth/point_edge_map.h>
 #include <growth/progress.h>
@@ -185,7 +186,7 @@ private:
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
   std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
-  BucketQueue<FrontEdge> queue_;
+  BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)

@@ -8,11 +8,13 @@
 // breadth-first tie-breaking both papers ask for.
 #include <cassert>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace growth {
 
-template <class T>
+// Alloc: the allocator of each level's storage (e.g. growth::HugeAllocator for large queues).
+template <class T, class Alloc = std::allocator<T>>
 class BucketQueue {
 public:
   explicit BucketQueue(int levels = 1) : fifos_(static_cast<size_t>(levels)) { assert(levels > 0); }
@@ -52,7 +54,7 @@ public:
 private:
   // A FIFO on a vector with a moving head; the consumed prefix is dropped once it dominates.
   struct Fifo {
-    std::vector<T> items;
+    std::vector<T, Alloc> items;
     size_t head = 0;
     bool empty() const { return head == items.size(); }
     void push(const T& t) { items.push_back(t); }
