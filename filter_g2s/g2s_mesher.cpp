@@ -289,6 +289,9 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   double gatherRadius = 0;
   bool gatheredFirst = false, gatheredLast = false;
   double previous = -1;
+  // The search sphere of the previous level, whose candidates were all tested and rejected.
+  P3 previousCentre;
+  double previousR2 = -1;
   for (int level = 1; level <= n; ++level) {
     const double radius = searchRadius(level, n, edge, maxRadius);
     if (radius <= previous) continue;
@@ -308,6 +311,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // near_ (so that G2S tests, which most often fail on one of them, stop early), each with the
     // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
     size_t found = 0;
+    std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
     scored_.clear();
     float cf[3];
     grid_.toFloat(centre, cf);
@@ -323,10 +327,33 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       if ((q - centre).SquaredNorm() > r2 || id == a || id == b || id == c) continue;
       near_.swap(k, found++); // what comes to k was examined already
       if (interior(id)) continue; // counts as found and for G2S balls, never a candidate
+      // A point of the previous level's sphere was a candidate there and was rejected by the
+      // topological or the G2S test; both depend on the point, the edge and the mesh only, which
+      // have not changed since, so the G2S ranking below would reject it again. Only the points
+      // new at this level are ranked: among them the order is that of the whole list, so the
+      // choice is the same. (The same exact test as at that level decides membership.) It still
+      // counts as found, and when it is the only point found it is taken directly below, as the
+      // single point of the region (the spheres are nested on the growing side only, so a level
+      // can hold fewer points than the one before).
+      if (previousR2 >= 0 && (q - previousCentre).SquaredNorm() <= previousR2) {
+        seenBefore = id;
+        continue;
+      }
       const double n2 = ((A - B) ^ (q - B)).SquaredNorm();
       const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
       if (!(n2 > 1e-20 * edge2 * aq2)) continue; // collinear with the edge: no triangle
       scored_.push_back(Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0});
+    }
+    previousCentre = centre;
+    previousR2 = r2;
+    if (found == 1 && seenBefore >= 0) {
+      // The single point of the region is one ranked at the previous level: as in the original
+      // order, it is taken directly when it spans a triangle with the edge and the topological
+      // tests allow it.
+      const std::uint32_t id = static_cast<std::uint32_t>(seenBefore);
+      const P3& q = pts_[id];
+      const double n2 = ((A - B) ^ (q - B)).SquaredNorm();
+      if (n2 > 1e-20 * edge2 * (q - A).SquaredNorm()) scored_.push_back(Scored{0, 0.0, id, 0});
     }
     if (scored_.empty()) continue;
     auto accept = [&](std::uint32_t id, bool single) {
