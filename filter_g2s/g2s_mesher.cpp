@@ -325,7 +325,8 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       const std::uint32_t id = near_.id[k];
       const P3& q = pts_[id];
       if ((q - centre).SquaredNorm() > r2 || id == a || id == b || id == c) continue;
-      near_.swap(k, found++); // what comes to k was examined already
+      if (k != found) near_.swap(k, found); // what comes to k was examined already
+      ++found;
       if (interior(id)) continue; // counts as found and for G2S balls, never a candidate
       // A point of the previous level's sphere was a candidate there and was rejected by the
       // topological or the G2S test; both depend on the point, the edge and the mesh only, which
