@@ -10,9 +10,8 @@ namespace g2s {
 void MortonGrid::build(std::vector<P3> points, double cellSize) {
   const size_t n = points.size();
   pts_.clear();
-  fx_.clear();
-  fy_.clear();
-  fz_.clear();
+  coords_.clear();
+  stride_ = 0;
   order_.clear();
   table_.clear();
   cells_ = 0;
@@ -103,13 +102,15 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
       }
     }
   }
-  assignHuge(fx_, n + 4, std::numeric_limits<float>::max()); // padded for whole 4-lane loads
-  assignHuge(fy_, n + 4, std::numeric_limits<float>::max());
-  assignHuge(fz_, n + 4, std::numeric_limits<float>::max());
+  stride_ = n + 4; // padded for whole 4-lane loads
+  assignHuge(coords_, 3 * stride_, std::numeric_limits<float>::max());
+  float* fx = coords_.data();
+  float* fy = fx + stride_;
+  float* fz = fy + stride_;
   for (size_t i = 0; i < n; ++i) {
-    fx_[i] = float(pts_[i][0] - box_.min[0]);
-    fy_[i] = float(pts_[i][1] - box_.min[1]);
-    fz_[i] = float(pts_[i][2] - box_.min[2]);
+    fx[i] = float(pts_[i][0] - box_.min[0]);
+    fy[i] = float(pts_[i][1] - box_.min[1]);
+    fz[i] = float(pts_[i][2] - box_.min[2]);
   }
   // Float rounding of a relative coordinate is at most 2^-24 of the extent; the query centre's
   // as well: a distance computed in float errs by less than 4·√3·2^-24·extent (with margin).

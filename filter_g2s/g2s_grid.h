@@ -71,9 +71,9 @@ public:
   }
   // The point's coordinates relative to box().min, in float (|float − exact| <= floatSlack()/2
   // per distance, see build()).
-  float fx(std::uint32_t i) const { return fx_[i]; }
-  float fy(std::uint32_t i) const { return fy_[i]; }
-  float fz(std::uint32_t i) const { return fz_[i]; }
+  float fx(std::uint32_t i) const { return coords_[i]; }
+  float fy(std::uint32_t i) const { return coords_[stride_ + i]; }
+  float fz(std::uint32_t i) const { return coords_[2 * stride_ + i]; }
   // A bound on the error of a distance computed from the float coordinates.
   double floatSlack() const { return floatSlack_; }
   void toFloat(const P3& c, float out[3]) const {
@@ -93,7 +93,7 @@ public:
                        double* squaredDistance = nullptr) const;
 
   size_t memoryBytes() const {
-    return pts_.capacity() * sizeof(P3) + 3 * fx_.capacity() * sizeof(float) +
+    return pts_.capacity() * sizeof(P3) + coords_.capacity() * sizeof(float) +
            order_.capacity() * sizeof(std::uint32_t) +
            table_.capacity() * sizeof(Slot);
   }
@@ -207,6 +207,9 @@ private:
   bool scanCell(std::uint32_t begin, std::uint32_t end, const P3& c, const float* fc, double r2, float r2f,
                 F&& stop) const {
     std::uint32_t i = begin;
+    const float* fx = coords_.data();
+    const float* fy = fx + stride_;
+    const float* fz = fy + stride_;
     auto exact = [&](std::uint32_t k) {
       if (!Exact) return stop(k, 0.0);
       const P3& p = pts_[k];
@@ -220,9 +223,9 @@ private:
     const __m128 cx = _mm_set1_ps(fc[0]), cy = _mm_set1_ps(fc[1]), cz = _mm_set1_ps(fc[2]);
     const __m128 rr = _mm_set1_ps(r2f);
     for (; i < end; i += 4) {
-      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&fx_[i]), cx);
-      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&fy_[i]), cy);
-      const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&fz_[i]), cz);
+      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(fx + i), cx);
+      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(fy + i), cy);
+      const __m128 dz = _mm_sub_ps(_mm_loadu_ps(fz + i), cz);
       const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
       int mask = _mm_movemask_ps(_mm_cmple_ps(d2, rr));
       if (end - i < 4) mask &= (1 << (end - i)) - 1;
@@ -234,7 +237,7 @@ private:
     }
 #else
     for (; i < end; ++i) {
-      const float dx = fx_[i] - fc[0], dy = fy_[i] - fc[1], dz = fz_[i] - fc[2];
+      const float dx = fx[i] - fc[0], dy = fy[i] - fc[1], dz = fz[i] - fc[2];
       if (dx * dx + dy * dy + dz * dz <= r2f && exact(i)) return true;
     }
 #endif
@@ -242,7 +245,10 @@ private:
   }
 
   std::vector<P3> pts_;
-  HugeVector<float> fx_, fy_, fz_;    // the points relative to box_.min, in float, same order
+  // The points relative to box_.min, in float, same order: x, y, z arrays of stride_ = n + 4
+  // (padded for whole 4-lane loads) in one block (one mapping, see HugeAllocator).
+  HugeVector<float> coords_;
+  size_t stride_ = 0;
   double floatSlack_ = 0;
   std::vector<std::uint32_t> order_;
   HugeVector<Slot> table_;

@@ -29,11 +29,11 @@ TEST(HugePages, AssignAndReserveKeepTheVectorContract) {
 }
 
 TEST(HugePages, HugeVectorBehavesLikeAVectorAndAlignsLargeBlocks) {
-  growth::HugeVector<std::uint32_t> v(size_t(1) << 18, 5u); // 1 MiB: above kHugeAllocMin
+  growth::HugeVector<std::uint32_t> v(size_t(1) << 20, 5u); // 4 MiB: mapped on its own
 #if defined(__linux__)
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(v.data()) % growth::kHugePageBytes, 0u);
 #endif
-  EXPECT_EQ(std::accumulate(v.begin(), v.end(), std::uint64_t(0)), std::uint64_t(5) << 18);
+  EXPECT_EQ(std::accumulate(v.begin(), v.end(), std::uint64_t(0)), std::uint64_t(5) << 20);
   v.resize(v.size() * 3, 1u); // reallocation keeps the contents
   EXPECT_EQ(v[0], 5u);
   EXPECT_EQ(v.back(), 1u);

@@ -50,14 +50,13 @@ void assignHuge(std::vector<T, A>& v, size_t n, const T& x) {
   v.assign(n, x);
 }
 
-// An allocator for working arrays that are filled once: blocks of kHugeAllocMin bytes or more
-// are 2 MiB-aligned, rounded up to whole 2 MiB pages and advised for huge pages as a whole. A
-// plain std::vector block starts 16 bytes into a 4 KiB page, so advising it leaves its unaligned
-// head and tail — up to 2 MiB at each end — to 4 KiB pages, and arrays under 4 MiB get no huge
-// page at all; with this allocator a 1 MiB array costs one fault instead of 256. The rounding
-// costs address space, not memory: pages never touched are never backed.
-constexpr size_t kHugeAllocMin = size_t(256) << 10;
-
+// An allocator for large working arrays that are filled once: a block of kHugePageBytes or more
+// is mapped on its own, starting on a 2 MiB boundary, and advised for huge pages as a whole; it
+// is unmapped when freed, so nothing stays with the process. (A plain std::vector block starts
+// 16 bytes into a page, so advising it leaves up to 2 MiB of its head to 4 KiB pages; here only
+// the tail after the last whole 2 MiB page is.) The alignment costs address space only; the
+// mapping is rounded up to a whole huge page only when that adds at most an eighth to the
+// block. Smaller blocks come from malloc.
 template <class T>
 struct HugeAllocator {
   using value_type = T;
@@ -65,25 +64,43 @@ struct HugeAllocator {
   template <class U>
   HugeAllocator(const HugeAllocator<U>&) noexcept {}
 
-  T* allocate(size_t n) {
-    if (n > size_t(-1) / sizeof(T)) throw std::bad_alloc();
+  // The mapping: whole 4 KiB pages, or whole 2 MiB pages when that adds at most an eighth (the
+  // tail then gets a huge page too, for little memory).
+  static size_t mappedBytes(size_t n) {
     const size_t bytes = n * sizeof(T);
-    void* p = nullptr;
-    if (bytes >= kHugeAllocMin) {
-      const size_t rounded = (bytes + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
-#if defined(__linux__)
-      if (posix_memalign(&p, kHugePageBytes, rounded) != 0) p = nullptr;
-      if (p != nullptr) adviseHugePages(p, rounded);
-#else
-      p = std::malloc(bytes);
-#endif
-    } else {
-      p = std::malloc(bytes == 0 ? 1 : bytes);
+    const size_t huge = (bytes + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+    return huge - bytes <= bytes / 8 ? huge : (bytes + 4095) & ~size_t(4095);
+  }
+
+  T* allocate(size_t n) {
+    if (n > (size_t(-1) - kHugePageBytes) / sizeof(T)) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (n * sizeof(T) >= kHugePageBytes) {
+      const size_t len = mappedBytes(n);
+      void* raw = mmap(nullptr, len + kHugePageBytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (raw == MAP_FAILED) throw std::bad_alloc();
+      const std::uintptr_t r = reinterpret_cast<std::uintptr_t>(raw);
+      const std::uintptr_t a = (r + kHugePageBytes - 1) & ~(kHugePageBytes - 1);
+      if (a > r) munmap(raw, a - r);
+      const std::uintptr_t end = r + len + kHugePageBytes;
+      if (end > a + len) munmap(reinterpret_cast<void*>(a + len), end - (a + len));
+      adviseHugePages(reinterpret_cast<void*>(a), len);
+      return reinterpret_cast<T*>(a);
     }
+#endif
+    void* p = std::malloc(n == 0 ? 1 : n * sizeof(T));
     if (p == nullptr) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
-  void deallocate(T* p, size_t) noexcept { std::free(p); }
+  void deallocate(T* p, size_t n) noexcept {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    if (n * sizeof(T) >= kHugePageBytes) {
+      munmap(p, mappedBytes(n));
+      return;
+    }
+#endif
+    std::free(p);
+  }
 
   template <class U>
   bool operator==(const HugeAllocator<U>&) const noexcept { return true; }
