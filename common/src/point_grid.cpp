@@ -1,6 +1,7 @@
 #include <growth/point_grid.h>
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 namespace growth {
@@ -91,13 +92,26 @@ int PointGrid::nearest(const Point& c, double* squaredDistance, int exclude, dou
       }
     }
   };
+  // Distance from c to the outside of the block of cells within Chebyshev distance r of its cell:
+  // every point not in that block is at least this far (at least r cells, more when c is not at
+  // its cell's border), so the search stops as soon as the best point found is closer.
+  double slack = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t ca = a == 0 ? cx : (a == 1 ? cy : cz);
+    const double lo = origin_[a] + double(ca) * cell_;
+    slack = std::min({slack, c[a] - lo, lo + cell_ - c[a]});
+  }
+  slack = std::max(slack, 0.0);
   for (std::int64_t ring = 0; ring <= maxRing; ++ring) {
-    // Every point outside the cells within Chebyshev distance `ring` is at least ring*cell away.
-    if (ring > 0 && best >= 0 && bestD2 <= double(ring - 1) * cell_ * double(ring - 1) * cell_) break;
+    if (ring > 0 && best >= 0) {
+      const double reach = double(ring - 1) * cell_ + slack;
+      if (bestD2 <= reach * reach) break;
+    }
     if (ring > 0 && double(ring - 1) * cell_ > maxRadius) break;
     // Far from the points with small cells, a shell has more cells than the grid has occupied
     // ones: then visit the remaining occupied cells directly, pruned by their box distance.
-    const double shellCells = std::pow(2.0 * double(ring) + 1, 3) - std::pow(2.0 * double(ring) - 1, 3);
+    const double outer = 2.0 * double(ring) + 1, inner = 2.0 * double(ring) - 1;
+    const double shellCells = outer * outer * outer - inner * inner * inner;
     if (ring > 1 && shellCells > double(cellKey_.size())) {
       for (size_t slot = 0; slot < cellKey_.size(); ++slot) {
         const Key k = cellKey_[slot];
