@@ -50,7 +50,25 @@ DATA = {
 }
 FULL_SIZES = [10000, 30000, 100000, 300000, 1000000]
 QUICK_SIZES = [10000, 30000]
-EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, 6 × mean spacing], same for all methods
+EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, max(6 × mean spacing, 1.5 × d)], same for all
+EDGE_HISTOGRAM_D = 1.5           # methods of a cloud (d: the sphere packer's, whose edges are >= d)
+
+
+def edge_histogram_max(spacing, d):
+    return max(EDGE_HISTOGRAM_SPACINGS * spacing, EDGE_HISTOGRAM_D * (d or 0.0))
+
+
+def measure_mesh(ctx, mesh, cloud_path, work, edge_max):
+    """Runs build/mesh_measures on a saved mesh (measures.json and the hist_*.csv histograms into
+    `work`); returns the measures, or None when the tool failed."""
+    mm = subprocess.run([ctx.tool("mesh_measures"), mesh, "--cloud", cloud_path, "--histograms",
+                         os.path.join(work, "hist"), "--edge-max", "%.9g" % edge_max],
+                        stdout=subprocess.PIPE, universal_newlines=True)
+    if mm.returncode != 0:
+        return None
+    with open(os.path.join(work, "measures.json"), "w") as f:
+        f.write(mm.stdout)
+    return json.loads(mm.stdout)
 
 
 def parse_size(text):
@@ -378,16 +396,39 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
             extra = max(extra, bpa_row["extra_peak_bytes_per_point"])
         row["extra_peak_bytes_per_point"] = extra
 
-    mm = subprocess.run([ctx.tool("mesh_measures"), mesh, "--cloud", cloud["path"], "--histograms",
-                         os.path.join(work, "hist"), "--edge-max", "%.9g" % (EDGE_HISTOGRAM_SPACINGS * cloud["spacing"])],
-                        stdout=subprocess.PIPE, universal_newlines=True)
-    if mm.returncode != 0:
+    edge_max = edge_histogram_max(cloud["spacing"], d_info["d"] if "sphere packer" in d_info["source"] else 0)
+    measures = measure_mesh(ctx, mesh, cloud["path"], work, edge_max)
+    if measures is None:
         row["status"] = "mesh_measures failed on the mesh"
         return row
-    with open(os.path.join(work, "measures.json"), "w") as f:
-        f.write(mm.stdout)
-    row["measures"] = json.loads(mm.stdout)
+    row["measures"] = measures
+    row["edge_histogram_max"] = edge_max
     return row
+
+
+def remeasure(rows, ctx):
+    """Measures every saved mesh again with the current build/mesh_measures (and the current
+    histogram ranges), keeping the timings: for when the measures or histograms change."""
+    clouds = {}
+    for r in rows:
+        if r.get("status") != "ok":
+            continue
+        if r["cloud"] not in clouds:
+            clouds[r["cloud"]] = prepare_cloud(r["cloud"], ctx)
+        cloud = clouds[r["cloud"]]
+        if cloud is None:
+            continue
+        sp = next((x for x in rows if x["cloud"] == r["cloud"] and x["method"] == "spherepack"
+                   and "d" in x.get("info", {})), None)
+        edge_max = edge_histogram_max(cloud["spacing"], sp["info"]["d"] if sp else 0)
+        work = os.path.join(ctx.out, "runs", r["cloud"], r["method"])
+        measures = measure_mesh(ctx, os.path.join(work, "mesh.ply"), cloud["path"], work, edge_max)
+        if measures is None:
+            log("%s %s: mesh_measures failed, row kept as it was" % (r["cloud"], r["method"]))
+            continue
+        r["measures"], r["edge_histogram_max"] = measures, edge_max
+        log("%s %s: measured again" % (r["cloud"], r["method"]))
+    return rows
 
 
 # --- Results --------------------------------------------------------------------------------
@@ -591,7 +632,7 @@ EXPLANATION = (
 def header_lines(rows, command):
     mach = machine()
     runs = sorted({r["run"] for r in rows})
-    return ["Command: `%s`  " % command,
+    return ["Command%s: `%s`  " % ("s" if "`; `" in command else "", command),
             "Machine: %s, `nproc` = %s, %s memory.  " % (mach["cpu"], mach["nproc"], mach["memory"]),
             "Run%s: %s. Load average (1 min) seen around the runs: %s.  " % (
                 "s" if len(runs) > 1 else "", ", ".join(runs), load_range(rows)),
@@ -720,9 +761,11 @@ def publish(rows, ctx, command, slopes):
     into_readme = begin in text and end in text
     where = ROOT if into_readme else os.path.join(ROOT, "docs")
     summary = ["## Results", "",
-               "Our filters against MeshLab's Ball Pivoting, measured in the same run on the same clouds "
-               "(`scripts/benchmark.sh`). The ratios against Ball Pivoting are the headline; absolute "
-               "seconds depend on the machine and its load.", ""] + header_lines(rows, command)
+               "Our filters against MeshLab's Ball Pivoting on the same clouds and the same machine "
+               "(`scripts/benchmark.sh`; when the rows come from several invocations, each row's run is "
+               "recorded in `out/benchmark/results.jsonl` and the runs are listed below). The ratios "
+               "against Ball Pivoting are the headline; absolute seconds depend on the machine and its "
+               "load.", ""] + header_lines(rows, command)
     summary += headline_section(clouds, rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
@@ -769,6 +812,8 @@ def main():
                          "clouds up to 100k points, once above")
     ap.add_argument("--timeout", type=int, default=3 * 3600, help="seconds before a run is stopped")
     ap.add_argument("--report-only", action="store_true", help="only rebuild results.md and the plots")
+    ap.add_argument("--remeasure", action="store_true",
+                    help="measure every saved mesh again (measures and histograms), keeping the timings")
     ap.add_argument("--publish", action="store_true",
                     help="copy the plots (< 200 KB) and tables to docs/benchmark/ and the summary into "
                          "README.md between its results markers")
@@ -843,6 +888,9 @@ def main():
 
     if not rows:
         raise SystemExit("no results yet")
+    if a.remeasure:
+        rows = remeasure(rows, ctx)
+        save_rows(results, rows)
     path, made, slopes = report(rows, ctx, a.command)
     log("tables: %s" % path)
     for p in made:

@@ -8,6 +8,8 @@
 #   scripts/benchmark.sh --quick         10k and 30k points and hand.ply: minutes
 #   scripts/benchmark.sh --methods spherepack,bpa --clouds torus-60k      one method/cloud
 #   scripts/benchmark.sh --report-only   rebuild the tables and plots from results.jsonl
+#   scripts/benchmark.sh --report-only --remeasure   measure the saved meshes again (new measures or
+#                                        histogram ranges), keeping the timings
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
