@@ -654,7 +654,7 @@ def headline_section(clouds, rows, level):
         return r["measures"]["faces"] / r["time"] if r and r["time"] > 0 else None
 
     md = ["%s Headline: ratios against Ball Pivoting" % ("#" * level), "",
-          "Speed-up = Ball Pivoting's time / our filter's time on the same cloud in the same run (above 1: "
+          "Speed-up = Ball Pivoting's time / our filter's time on the same cloud (above 1: "
           "ours is faster). Rates are per second of filter time: output vertices for the sphere packer, faces for "
           "Robust G2S.", "",
           "| cloud | points | Sphere Packing vs BPA auto | vs BPA 3s | Sphere Packing vertices/s "
