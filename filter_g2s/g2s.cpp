@@ -91,6 +91,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.holes = mesher.boundaryLoops();
     mesher.orientComponents();
     stat.workingBytes = mesher.memoryBytes();
+    mesher.releaseWorkingState();
 
     stat.secondsCleanup = lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);

@@ -46,6 +46,12 @@ public:
   const std::vector<std::uint32_t>& order() const { return order_; }
   // Replaces order() (after rebuilding the grid from its own points, to keep the caller's indices).
   void setOrder(std::vector<std::uint32_t> order) { order_.swap(order); }
+  // Frees the search structure (float copies and cell table), keeping points() and order(): no
+  // query may follow. For the output step, so that its memory peak does not add up with the search's.
+  void releaseSearch() {
+    HugeVector<float>().swap(coords_);
+    HugeVector<Slot>().swap(table_);
+  }
   double cellSize() const { return cell_; }
   size_t cellCount() const { return cells_; }
   const vcg::Box3d& box() const { return box_; }

@@ -659,6 +659,18 @@ void Mesher::orientComponents() {
   for (size_t f : flipped) pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
 }
 
+void Mesher::releaseWorkingState() {
+  pem_.release();
+  grid_.releaseSearch();
+  HugeVector<float>().swap(edgeLengthSum_);
+  HugeVector<std::uint16_t>().swap(edgeCount_);
+  HugeVector<std::uint8_t>().swap(freeEdges_);
+  std::vector<std::uint32_t>().swap(joinedAtVertex_);
+  queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
+  near_ = NearList();
+  std::vector<Scored>().swap(scored_);
+}
+
 size_t Mesher::liveTriangles() const {
   if (alive_.size() != tri_.size()) return tri_.size();
   return static_cast<size_t>(std::count(alive_.begin(), alive_.end(), char(1)));

@@ -97,6 +97,12 @@ public:
   // from its seed; flipping whole components keeps every edge consistent.
   void orientComponents();
 
+  // Frees everything but the points, their order, the triangles and alive(): the point–edge map,
+  // the grid's search structure, the per-point edge counters and the queue. Only the results
+  // below that read those (points, order, triangles, alive, scratch, size) may follow; build()
+  // calls it before writing the output layer so that the two peaks do not add up.
+  void releaseWorkingState();
+
   // --- Results ---
   size_t size() const { return grid_.size(); }
   const std::vector<P3>& points() const { return grid_.points(); }

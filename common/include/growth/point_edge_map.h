@@ -40,6 +40,13 @@ public:
 
   size_t pointCount() const { return count_.size(); }
 
+  // Frees all storage (the map is then empty, for no points); reset() makes it usable again.
+  void release() {
+    HugeVector<std::uint32_t>().swap(slot_);
+    HugeVector<std::uint8_t>().swap(count_);
+    HugeVector<std::uint32_t>().swap(pool_);
+  }
+
   // Half-edge a→b is traversed by a triangle.
   bool used(std::uint32_t a, std::uint32_t b) const {
     const std::uint32_t* e = find(a, b);
