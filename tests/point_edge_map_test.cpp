@@ -128,3 +128,17 @@ TEST(PointEdgeMap, TooManyEdgesAtOnePointThrowsInsteadOfCorrupting) {
       },
       std::length_error);
 }
+
+TEST(PointEdgeMap, ReleaseFreesEverythingAndResetMakesItUsableAgain) {
+  PointEdgeMap m(1000);
+  for (std::uint32_t v = 1; v + 1 < 40; ++v) m.addTriangle(0, v, v + 1); // overflow blocks at 0
+  EXPECT_GT(m.memoryBytes(), 1000u * 4);
+  m.release();
+  EXPECT_EQ(m.memoryBytes(), 0u);
+  EXPECT_EQ(m.pointCount(), 0u);
+  m.reset(3);
+  EXPECT_EQ(m.pointCount(), 3u);
+  EXPECT_TRUE(m.isolated(0));
+  EXPECT_EQ(m.addTriangle(0, 1, 2), 7u);
+  EXPECT_TRUE(m.used(0, 1));
+}
