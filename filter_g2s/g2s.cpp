@@ -68,7 +68,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
                   " points, more than this filter can handle; subsample it first.");
     // The mesher sorts the points into its grid's cell order and measures their spacing.
-    input.vertexIndex = std::vector<int>();
+    // input.vertexIndex (layer vertex of each distinct point) is kept for the output.
     progress.phase("Robust G2S: growing the mesh", 3, 92);
     Mesher mesher(std::move(input.points), p);
     stat.spacing = mesher.spacing();
@@ -96,14 +96,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.secondsCleanup = lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
     const std::vector<Triangle>& tri = mesher.triangles();
-    const std::vector<P3>& pt = mesher.points();
+    const std::vector<std::uint32_t>& order = mesher.order();
     const std::vector<char>& alive = mesher.alive();
     auto isAlive = [&](size_t f) { return alive.size() != tri.size() || alive[f] != 0; };
-    // Output vertices: the used points in the mesher's (spatially coherent) order. The points were
-    // read from the layer's floats into doubles, so converting back gives the input points bit
-    // for bit.
+    // Output vertices: the used points in the mesher's (spatially coherent) order, copied from the
+    // layer's own vertices (mesher point i is distinct point order[i], layer vertex
+    // vertexIndex[order[i]]): the input points bit for bit. The mesher's working state is freed
+    // first, so that its memory and the output layer's do not add up.
+    const size_t points = order.size();
     std::vector<std::uint32_t>& outIndex = mesher.scratch();
-    outIndex.assign(pt.size(), 0);
+    outIndex.assign(points, 0);
     size_t faces = 0;
     for (size_t f = 0; f < tri.size(); ++f) {
       if (!isAlive(f)) continue;
@@ -113,15 +115,15 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     std::uint32_t next = 0;
     for (std::uint32_t& o : outIndex) o = o != 0 ? next++ : ~0u;
     stat.vertices = next;
-    stat.unusedPoints = pt.size() - stat.vertices;
+    stat.unusedPoints = points - stat.vertices;
     stat.faces = faces;
     if (faces > 0) {
       // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
       reserveHuge(out.vert, stat.vertices);
       reserveHuge(out.face, faces);
       vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
-      for (size_t i = 0; i < pt.size(); ++i)
-        if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = CMeshO::CoordType::Construct(pt[i]);
+      for (size_t i = 0; i < points; ++i)
+        if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
       out.face.EnableQuality();
       vcg::tri::Allocator<CMeshO>::AddFaces(out, faces);
       size_t k = 0;
@@ -129,7 +131,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
         if (!isAlive(f)) continue;
         CFaceO& face = out.face[k++];
         for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
-        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(pt[tri[f][0]], pt[tri[f][1]], pt[tri[f][2]]));
+        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(P3::Construct(face.cP(0)), P3::Construct(face.cP(1)),
+                                                                    P3::Construct(face.cP(2))));
         if ((k & 65535) == 0) progress.update(double(k) / double(faces));
       }
       progress.update(1.0);

@@ -52,6 +52,8 @@ public:
     HugeVector<float>().swap(coords_);
     HugeVector<Slot>().swap(table_);
   }
+  // Frees the points too: only order() is left (size() is then 0).
+  void releasePoints() { std::vector<P3>().swap(pts_); }
   double cellSize() const { return cell_; }
   size_t cellCount() const { return cells_; }
   const vcg::Box3d& box() const { return box_; }

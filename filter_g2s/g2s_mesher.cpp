@@ -662,6 +662,8 @@ void Mesher::orientComponents() {
 void Mesher::releaseWorkingState() {
   pem_.release();
   grid_.releaseSearch();
+  grid_.releasePoints();
+  pts_ = nullptr;
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
   HugeVector<std::uint8_t>().swap(freeEdges_);

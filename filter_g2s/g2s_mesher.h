@@ -97,10 +97,11 @@ public:
   // from its seed; flipping whole components keeps every edge consistent.
   void orientComponents();
 
-  // Frees everything but the points, their order, the triangles and alive(): the point–edge map,
-  // the grid's search structure, the per-point edge counters and the queue. Only the results
-  // below that read those (points, order, triangles, alive, scratch, size) may follow; build()
-  // calls it before writing the output layer so that the two peaks do not add up.
+  // Frees everything but order(), the triangles, alive() and scratch(): the points (size() and
+  // points() are then empty), the point–edge map, the grid's search structure, the per-point
+  // edge counters and the queue. Only those four results may be read afterwards; build() calls
+  // it before writing the output layer (from the layer's own coordinates) so that the two
+  // memory peaks do not add up.
   void releaseWorkingState();
 
   // --- Results ---
