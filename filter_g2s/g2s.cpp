@@ -7,11 +7,11 @@
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
 #include <growth/progress.h>
+#include <growth/stopwatch.h>
 
 #include <common/ml_mesh_type.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -42,13 +42,7 @@ Params suggestParams(const CMeshO&) {
 }
 
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, vcg::CallBackPos* cb) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto lap = [last = t0]() mutable {
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last).count();
-    last = now;
-    return s;
-  };
+  Stopwatch watch;
   out.Clear();
   stat = Stat();
   try {
@@ -72,9 +66,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     progress.phase("Robust G2S: growing the mesh", 3, 92);
     Mesher mesher(std::move(input.points), p);
     stat.spacing = mesher.spacing();
-    stat.secondsSetup = lap();
+    stat.secondsSetup = watch.lap();
     mesher.meshAll(&progress);
-    stat.secondsGrowth = lap();
+    stat.secondsGrowth = watch.lap();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
 
@@ -93,7 +87,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.workingBytes = mesher.memoryBytes();
     mesher.releaseWorkingState();
 
-    stat.secondsCleanup = lap();
+    stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
     const std::vector<Triangle>& tri = mesher.triangles();
     const std::vector<std::uint32_t>& order = mesher.order();
@@ -145,8 +139,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     out.Clear();
     throw;
   }
-  stat.secondsOutput = lap();
-  stat.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  stat.secondsOutput = watch.lap();
+  stat.seconds = watch.total();
 }
 
 } // namespace g2s

@@ -290,7 +290,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   bool gatheredFirst = false, gatheredLast = false;
   double previous = -1;
   // The search sphere of the previous level, whose candidates were all tested and rejected.
-  P3 previousCentre;
+  P3 previousCentre(0, 0, 0);
   double previousR2 = -1;
   for (int level = 1; level <= n; ++level) {
     const double radius = searchRadius(level, n, edge, maxRadius);

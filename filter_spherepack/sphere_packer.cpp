@@ -11,13 +11,13 @@
 #include <growth/progress.h>
 #include <growth/region_triangulation.h>
 #include <growth/splats.h>
+#include <growth/stopwatch.h>
 #include <growth/vertex_grid.h>
 
 #include <common/ml_mesh_type.h>
 #include <vcg/complex/allocate.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -279,13 +279,7 @@ Params suggestParams(const CMeshO& cloud) {
 }
 
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto lap = [last = t0]() mutable {
-    const auto now = std::chrono::steady_clock::now();
-    const double s = std::chrono::duration<double>(now - last).count();
-    last = now;
-    return s;
-  };
+  Stopwatch watch;
   out.Clear();
   st = Stat();
   Progress progress(cb);
@@ -332,12 +326,12 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
 
   // Sec. 4.1: box grid, normal filter, box normals.
   progress.phase("Sphere packing: box grid", 2, 12);
-  lap();
+  watch.lap();
   BoxGrid grid;
   grid.build(in.points, in.normals, d, &progress);
   st.boxes = grid.boxCount();
   st.boxesDTooLarge = grid.dTooLargeCount();
-  st.secondsBoxGrid = lap();
+  st.secondsBoxGrid = watch.lap();
 
   // Sec. 4.3: splat radii.
   progress.phase("Sphere packing: splat sizes", 12, 20);
@@ -347,7 +341,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
-  st.secondsSplats = lap();
+  st.secondsSplats = watch.lap();
 
   // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
   progress.phase("Sphere packing: starting vertices", 20, 21);
@@ -414,7 +408,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   growth.start(s1, splat1, s2, splat2);
   growth.run();
   const BorderGraph& g = growth.graph();
-  st.secondsGrowth = lap();
+  st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: triangulate the regions.
   progress.phase("Sphere packing: triangulating the regions", 92, 97);
@@ -503,8 +497,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
                 "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
 
-  st.secondsTriangulation = lap();
-  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  st.secondsTriangulation = watch.lap();
+  st.seconds = watch.total();
 }
 
 } // namespace spherepack
