@@ -15,6 +15,7 @@
 // indirections per cell; tools/g2s_grid_bench.cpp measures both and vcglib's GridStaticPtr on the
 // mesher's query pattern.
 #include <growth/huge_pages.h>
+#include <growth/morton.h>
 
 #include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
@@ -107,17 +108,9 @@ public:
   }
 
   // Morton code helpers (public for the tests).
-  static std::uint64_t spread(std::uint64_t x) {
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-  }
+  static std::uint64_t spread(std::uint64_t x) { return mortonSpread(x); }
   static std::uint64_t morton(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
-    return spread(x) | spread(y) << 1 | spread(z) << 2;
+    return mortonCode(x, y, z);
   }
 
 private:

@@ -1,5 +1,6 @@
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/morton.h>
 #include <growth/point_grid.h>
 
 #include <common/ml_mesh_type.h>
@@ -469,19 +470,6 @@ double MeshDistance::distance(const vcg::Point3d& p, int* hint) const {
   return std::sqrt(best);
 }
 
-namespace {
-// Interleaves the low 21 bits of x, y, z (Morton order), to visit points in spatial order.
-std::uint64_t spread(std::uint64_t v) {
-  v &= 0x1fffff;
-  v = (v | v << 32) & 0x1f00000000ffffull;
-  v = (v | v << 16) & 0x1f0000ff0000ffull;
-  v = (v | v << 8) & 0x100f00f00f00f00full;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-  v = (v | v << 2) & 0x1249249249249249ull;
-  return v;
-}
-} // namespace
-
 void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out) {
   out.hasCloud = true;
   out.cloudPoints = cloud.size();
@@ -502,7 +490,7 @@ void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& c
   for (size_t i = 0; i < cloud.size(); ++i) {
     const vcg::Point3d q = (cloud[i] - box.min) * scale;
     auto cell = [](double v) { return std::uint64_t(std::isfinite(v) ? std::min(std::max(v, 0.0), double((1 << 21) - 1)) : 0.0); };
-    order[i] = {spread(cell(q[0])) | spread(cell(q[1])) << 1 | spread(cell(q[2])) << 2, std::uint32_t(i)};
+    order[i] = {mortonCode(cell(q[0]), cell(q[1]), cell(q[2])), std::uint32_t(i)};
   }
   std::sort(order.begin(), order.end());
   std::vector<double> dist(cloud.size());
