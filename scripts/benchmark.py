@@ -12,8 +12,11 @@ run of the cloud, the baseline), measures the mesh with build/mesh_measures, and
   OUT/runs/<cloud>/<method>/        the .mlx, meshlabserver's log, /usr/bin/time's report,
                                     the mesh, its measures (JSON) and histograms (CSV)
 
-Time: our filters report their own time in the log ("... time X s"); for MeshLab's filters the
-time is the wall clock of the run minus the wall clock of the load+save-only run of the same cloud.
+Time: on clouds up to --inproc-max-points (100k by default), every filter, ours and MeshLab's, is
+timed in process by build/plugin_time: the plugin loaded and applied as meshlabserver does, one steady
+clock around applyFilter, the fastest of up to 5 repeats. Above that, our filters report their own
+time in the log ("... time X s"), and MeshLab's are timed as the wall clock of the run minus the wall
+clock of the load+save-only run of the same cloud (0.01 s resolution: small beside their times there).
 Memory: peak resident set size of meshlabserver (/usr/bin/time -v) minus that of the
 load+save-only run, per input point: the filter's extra peak.
 Needs numpy and matplotlib from Debian (/usr/bin/python3), installed by scripts/setup.sh.
@@ -295,6 +298,55 @@ def failure_reason(log_text):
     return lines[-1] if lines else "no output"
 
 
+# Filter → the MeshLab plugin that holds it (for in-process timing with build/plugin_time).
+PLUGIN_OF_FILTER = {
+    "Surface Reconstruction: Ball Pivoting": "libfilter_clean.so",
+    "Remeshing: Isotropic Explicit Remeshing": "libfilter_meshing.so",
+    "Surface Reconstruction: Sphere Packing": "libfilter_spherepack.so",
+    "Surface Reconstruction: Robust G2S": "libfilter_g2s.so",
+}
+INPROC_REPEAT = 5          # in-process timing: at most this many repeats (fastest kept) ...
+INPROC_MIN_SECONDS = 3.0   # ... stopping once this much filter time was spent
+
+
+def inproc_time(ctx, script_path, input_path, work):
+    """Times the one filter of `script_path` on `input_path` in process with build/plugin_time (the
+    plugin loaded from the scratch prefix, as meshlabserver loads it; one steady clock around
+    applyFilter; fastest of up to INPROC_REPEAT repeats). Returns (seconds, repeats) or None."""
+    filters = mlx_filters(script_path)
+    if len(filters) != 1:
+        return None
+    name = re.search(r'name="([^"]*)"', filters[0]).group(1)
+    so = PLUGIN_OF_FILTER.get(name)
+    tool = ctx.tool("plugin_time")
+    if so is None or not os.path.exists(tool):
+        return None
+    plugin = os.path.join(ctx.prefix, "lib", "x86_64-linux-gnu", "meshlab", "plugins", so)
+    proc = subprocess.run([tool, plugin, script_path, input_path, "--repeat", str(INPROC_REPEAT),
+                           "--min-seconds", str(INPROC_MIN_SECONDS)], stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, universal_newlines=True, timeout=ctx.timeout)
+    with open(os.path.join(work, "plugin_time.txt"), "w") as f:
+        f.write(proc.stdout + proc.stderr[-4000:])
+    if proc.returncode != 0:
+        log("  plugin_time failed (%d): %s" % (proc.returncode, proc.stderr.strip()[-300:]))
+        return None
+    m = re.search(r"^seconds: ([0-9.eE+-]+)$", proc.stdout, flags=re.M)
+    reps = re.search(r"^repeats:(.*)$", proc.stdout, flags=re.M)
+    return (float(m.group(1)), [float(x) for x in reps.group(1).split()]) if m and reps else None
+
+
+def apply_inproc_time(row, ctx, script_path, input_path, work, add=0.0):
+    """For clouds up to --inproc-max-points: the row's time becomes the in-process time (plus `add`,
+    the Ball Pivoting time a remeshing row builds on)."""
+    if row["points"] > ctx.inproc_max_points:
+        return
+    t = inproc_time(ctx, script_path, input_path, work)
+    if t is None:
+        return
+    row["time_in_process"], row["time_in_process_repeats"] = t[0], t[1]
+    row["time"], row["time_source"] = t[0] + add, "in process"
+
+
 def ply_face_count(path):
     with open(path, "rb") as f:
         head = f.read(4096).split(b"end_header")[0].decode("ascii", "replace")
@@ -386,6 +438,12 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     else:
         row["time"], row["time_source"] = step, "wall - load/save"
     row["time_wall_minus_base"] = step
+    if m and method in ("spherepack", "g2s"):
+        row["time_filter_log"] = float(m[-1])
+    if not reuse:
+        apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work)
+    elif bpa_row.get("time_source") == "in process" or row["points"] <= ctx.inproc_max_points:
+        apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work, add=bpa_row["time"])
     if method == "spherepack":
         dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", r["log"])
         if dm:
@@ -428,6 +486,31 @@ def remeasure(rows, ctx):
             continue
         r["measures"], r["edge_histogram_max"] = measures, edge_max
         log("%s %s: measured again" % (r["cloud"], r["method"]))
+    return rows
+
+
+def retime(rows, ctx, clouds=None, methods=None):
+    """Times again, in process, the rows of clouds up to --inproc-max-points (their meshes and
+    memory kept): for rows measured before in-process timing existed."""
+    for r in rows:
+        if r.get("status") != "ok" or r["points"] > ctx.inproc_max_points:
+            continue
+        if (clouds and r["cloud"] not in clouds) or (methods and r["method"] not in methods):
+            continue
+        work = os.path.join(ctx.out, "runs", r["cloud"], r["method"])
+        cloud = prepare_cloud(r["cloud"], ctx)
+        if cloud is None:
+            continue
+        add, input_path = 0.0, cloud["path"]
+        if r["method"] == "bpa_re" and "remeshed" in r.get("info", {}):
+            bpa = next((x for x in rows if x["cloud"] == r["cloud"] and x["method"] == "bpa"), None)
+            if bpa is None or bpa.get("time_source") != "in process":
+                continue
+            add, input_path = bpa["time"], os.path.join(work, "bpa.ply")
+        before = r.get("time")
+        apply_inproc_time(r, ctx, os.path.join(work, "filter.mlx"), input_path, work, add=add)
+        log("%s %s: %.4g s -> %.4g s (%s)" % (r["cloud"], r["method"], before or float("nan"), r["time"],
+                                              r.get("time_source")))
     return rows
 
 
@@ -498,7 +581,7 @@ def table(cloud_rows):
             return ("×%.2f" % (reference["time"] / t)) if reference and t > 0 and reference["time"] > 0 else "—"
         tps = m["faces"] / t if t > 0 else None
         lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
-            label, fmt(t, "#.3g"), "" if r["time_source"] == "filter log" else "*", speed(ref), speed(ref3),
+            label, fmt(t, "#.3g"), TIME_MARK.get(r["time_source"], "?"), speed(ref), speed(ref3),
             "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
             fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
             fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
@@ -617,10 +700,14 @@ def repeat_text(rows):
     return " or ".join("%d×" % k for k in reps) + " (3× up to 100k points by default)"
 
 
+TIME_MARK = {"in process": "", "filter log": "†", "wall - load/save": "*"}
 EXPLANATION = (
-    "Time: our filters' own log line (`... time X s`); rows marked * are MeshLab's filters, timed as the "
-    "wall clock of the meshlabserver run minus that of a load+save-only run of the same cloud (for "
-    "\"(Re)\": Ball Pivoting's time plus that of the remeshing run on its mesh, remeshing with 3 "
+    "Time, unmarked: measured in process by `build/plugin_time` (every filter, ours and MeshLab's, on "
+    "clouds up to 100k points): the plugin loaded and applied as meshlabserver does, one steady clock "
+    "around applyFilter, the fastest of up to 5 repeats. Marked †: our filter's own log line (`... time "
+    "X s`, larger clouds). Marked *: MeshLab's filters on larger clouds, the wall clock of the "
+    "meshlabserver run minus that of a load+save-only run of the same cloud (resolution 0.01 s). "
+    "\"(Re)\": Ball Pivoting's time plus that of the remeshing on its mesh (3 "
     "iterations of Isotropic Explicit Remeshing at target length d, MeshLab's defaults otherwise). "
     "Speed-up = time of Ball Pivoting (auto radius, or r = 3 × mean spacing) / time of the row. Extra "
     "peak = peak resident memory (/usr/bin/time -v) of the run minus that of the load+save-only run, "
@@ -814,6 +901,13 @@ def main():
     ap.add_argument("--report-only", action="store_true", help="only rebuild results.md and the plots")
     ap.add_argument("--remeasure", action="store_true",
                     help="measure every saved mesh again (measures and histograms), keeping the timings")
+    ap.add_argument("--inproc-max-points", type=int, default=100000,
+                    help="on clouds up to this many points, time every filter in process with build/plugin_time "
+                         "(one clock around applyFilter, fastest of up to %d repeats) instead of the wall-clock "
+                         "difference of meshlabserver runs (resolution 0.01 s); 0: never" % INPROC_REPEAT)
+    ap.add_argument("--retime", action="store_true",
+                    help="time the saved rows again in process (see --inproc-max-points), keeping meshes and "
+                         "memory; restricted by --clouds and --methods when given")
     ap.add_argument("--publish", action="store_true",
                     help="copy the plots (< 200 KB) and tables to docs/benchmark/ and the summary into "
                          "README.md between its results markers")
@@ -830,6 +924,7 @@ def main():
                                                     os.path.abspath(a.prefix), os.path.abspath(a.data_dir))
     ctx.repeat_option, ctx.timeout = a.repeat, a.timeout
     ctx.bpa_max_points = a.bpa_max_points
+    ctx.inproc_max_points = a.inproc_max_points
     ctx.tool = lambda name: os.path.join(ctx.build, name)
     ctx.run_stamp = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     ctx.params = {}
@@ -842,7 +937,7 @@ def main():
     results = os.path.join(ctx.out, "results.jsonl")
     rows = [] if a.fresh else load_rows(results)
 
-    if not a.report_only:
+    if not a.report_only and not a.retime:
         methods = [m.strip() for m in a.methods.split(",") if m.strip()]
         for m in methods:
             if m not in METHODS:
@@ -890,6 +985,11 @@ def main():
         raise SystemExit("no results yet")
     if a.remeasure:
         rows = remeasure(rows, ctx)
+        save_rows(results, rows)
+    if a.retime:
+        only_clouds = [c.strip() for c in a.clouds.split(",")] if a.clouds else None
+        only_methods = [m.strip() for m in a.methods.split(",")] if a.methods != ",".join(RUN_ORDER) else None
+        rows = retime(rows, ctx, only_clouds, only_methods)
         save_rows(results, rows)
     path, made, slopes = report(rows, ctx, a.command)
     log("tables: %s" % path)

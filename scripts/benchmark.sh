@@ -10,6 +10,8 @@
 #   scripts/benchmark.sh --report-only   rebuild the tables and plots from results.jsonl
 #   scripts/benchmark.sh --report-only --remeasure   measure the saved meshes again (new measures or
 #                                        histogram ranges), keeping the timings
+#   scripts/benchmark.sh --retime [--clouds ..] [--methods ..]   time the saved rows of clouds up to
+#                                        100k points again, in process (build/plugin_time)
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
