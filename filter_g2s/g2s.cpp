@@ -86,6 +86,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     mesher.orientComponents();
     stat.workingBytes = mesher.memoryBytes();
     mesher.releaseWorkingState();
+    releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
 
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
