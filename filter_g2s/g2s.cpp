@@ -69,6 +69,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.secondsSetup = watch.lap();
     mesher.meshAll(&progress);
     stat.secondsGrowth = watch.lap();
+    // The search structures go before the cleanup allocates its own.
+    stat.workingBytes = mesher.memoryBytes();
+    mesher.releaseGrowthState();
+    releaseFreeHeap();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
 
@@ -84,16 +88,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.boundaryEdges = mesher.boundaryEdges();
     stat.holes = mesher.boundaryLoops();
     mesher.orientComponents();
-    stat.workingBytes = mesher.memoryBytes();
+    stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
     mesher.releaseWorkingState();
     releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
 
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
-    const std::vector<Triangle>& tri = mesher.triangles();
+    // The live triangles, in order, taken out of the mesher (with alive() freed): they are
+    // consumed below while the output faces are written.
+    std::vector<Triangle> tri = mesher.takeLiveTriangles();
     const std::vector<std::uint32_t>& order = mesher.order();
-    const std::vector<char>& alive = mesher.alive();
-    auto isAlive = [&](size_t f) { return alive.size() != tri.size() || alive[f] != 0; };
     // Output vertices: the used points in the mesher's (spatially coherent) order, copied from the
     // layer's own vertices (mesher point i is distinct point order[i], layer vertex
     // vertexIndex[order[i]]): the input points bit for bit. The mesher's working state is freed
@@ -101,35 +105,43 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     const size_t points = order.size();
     std::vector<std::uint32_t>& outIndex = mesher.scratch();
     outIndex.assign(points, 0);
-    size_t faces = 0;
-    for (size_t f = 0; f < tri.size(); ++f) {
-      if (!isAlive(f)) continue;
-      ++faces;
-      for (std::uint32_t v : tri[f]) outIndex[v] = 1;
-    }
+    for (const Triangle& t : tri)
+      for (std::uint32_t v : t) outIndex[v] = 1;
     std::uint32_t next = 0;
     for (std::uint32_t& o : outIndex) o = o != 0 ? next++ : ~0u;
     stat.vertices = next;
     stat.unusedPoints = points - stat.vertices;
+    const size_t faces = tri.size();
     stat.faces = faces;
     if (faces > 0) {
       // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
       reserveHuge(out.vert, stat.vertices);
-      reserveHuge(out.face, faces);
       vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
       for (size_t i = 0; i < points; ++i)
         if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
+      // Only outIndex is needed from here on.
+      mesher.releaseOrder();
+      decltype(input.vertexIndex)().swap(input.vertexIndex);
+      reserveHuge(out.face, faces);
       out.face.EnableQuality();
-      vcg::tri::Allocator<CMeshO>::AddFaces(out, faces);
-      size_t k = 0;
-      for (size_t f = 0; f < tri.size(); ++f) {
-        if (!isAlive(f)) continue;
-        CFaceO& face = out.face[k++];
-        for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
-        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(P3::Construct(face.cP(0)), P3::Construct(face.cP(1)),
-                                                                    P3::Construct(face.cP(2))));
-        if ((k & 65535) == 0) progress.update(double(k) / double(faces));
+      // The faces are added a block at a time, and the block's triangles are given back (whole
+      // pages, growth::discardPages) once it is written: the faces take four times the
+      // triangles' memory, so the two would otherwise add up at the peak. Within the reserved
+      // room no face moves.
+      constexpr size_t kBlock = size_t(1) << 16;
+      for (size_t first = 0; first < faces; first += kBlock) {
+        const size_t last = std::min(faces, first + kBlock);
+        vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
+        for (size_t f = first; f < last; ++f) {
+          CFaceO& face = out.face[f];
+          for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
+          face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(
+              P3::Construct(face.cP(0)), P3::Construct(face.cP(1)), P3::Construct(face.cP(2))));
+        }
+        discardPages(tri.data(), last * sizeof(Triangle));
+        progress.update(double(last) / double(faces));
       }
+      std::vector<Triangle>().swap(tri);
       progress.update(1.0);
     } else {
       stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "

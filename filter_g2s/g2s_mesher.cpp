@@ -649,28 +649,48 @@ void Mesher::orientComponents() {
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
-  std::vector<size_t> flipped;
+  // All flipped triangles leave the map before any comes back (an edge shared by two of them
+  // keeps its direction only once both are flipped). Two passes instead of a list of the flipped
+  // faces, which on an inward closed surface would be a word per face at the memory peak.
+  auto flips = [&](size_t f) { return alive_[f] && volume[component(tri_[f][0])] < 0; };
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (flips(f)) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
   for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f] || !(volume[component(tri_[f][0])] < 0)) continue;
-    pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+    if (!flips(f)) continue; // tri_[f][0] is kept by the flip, so is its component
     std::swap(tri_[f][1], tri_[f][2]);
-    flipped.push_back(f);
+    pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
   }
-  for (size_t f : flipped) pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
 }
 
-void Mesher::releaseWorkingState() {
-  pem_.release();
+void Mesher::releaseGrowthState() {
   grid_.releaseSearch();
-  grid_.releasePoints();
-  pts_ = nullptr;
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
   HugeVector<std::uint8_t>().swap(freeEdges_);
-  std::vector<std::uint32_t>().swap(joinedAtVertex_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
+}
+
+void Mesher::releaseWorkingState() {
+  releaseGrowthState();
+  pem_.release();
+  grid_.releasePoints();
+  pts_ = nullptr;
+  std::vector<std::uint32_t>().swap(joinedAtVertex_);
+}
+
+std::vector<Triangle> Mesher::takeLiveTriangles() {
+  if (alive_.size() == tri_.size()) {
+    size_t live = 0;
+    for (size_t f = 0; f < tri_.size(); ++f)
+      if (alive_[f]) tri_[live++] = tri_[f];
+    tri_.resize(live);
+  }
+  std::vector<char>().swap(alive_);
+  std::vector<Triangle> live;
+  live.swap(tri_);
+  return live;
 }
 
 size_t Mesher::liveTriangles() const {

@@ -97,12 +97,22 @@ public:
   // from its seed; flipping whole components keeps every edge consistent.
   void orientComponents();
 
-  // Frees everything but order(), the triangles, alive() and scratch(): the points (size() and
-  // points() are then empty), the point–edge map, the grid's search structure, the per-point
-  // edge counters and the queue. Only those four results may be read afterwards; build() calls
-  // it before writing the output layer (from the layer's own coordinates) so that the two
-  // memory peaks do not add up.
+  // Frees what only the growth uses: the grid's search structure, the per-point edge counters,
+  // the queue and the search scratch. No search (seeds, growth, candidates) may follow; the
+  // cleanup, orientation and results may. build() calls it after meshAll so that the cleanup's
+  // memory does not add up with the growth's.
+  void releaseGrowthState();
+  // Frees everything but order(), the triangles, alive() and scratch(): releaseGrowthState, the
+  // points (size() and points() are then empty) and the point–edge map. Only those four results
+  // may be read afterwards; build() calls it before writing the output layer (from the layer's
+  // own coordinates) so that the two memory peaks do not add up.
   void releaseWorkingState();
+
+  // Moves the live triangles out, in order (alive() and triangles() are then empty): for the
+  // output step, which consumes them.
+  std::vector<Triangle> takeLiveTriangles();
+  // Frees order() (once the output vertices are written).
+  void releaseOrder() { grid_.setOrder(std::vector<std::uint32_t>()); }
 
   // --- Results ---
   size_t size() const { return grid_.size(); }

@@ -1,6 +1,7 @@
 // Robust G2S end to end through the engine entry point g2s::build on MeshLab meshes: the
 // experiments of sec. 5 on generated clouds, output properties, bad input, cancel, determinism.
 #include "g2s.h"
+#include "g2s_mesher.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -223,6 +224,37 @@ TEST(G2SBuild, SameInputSameOutput) {
   for (size_t f = 0; f < a->mesh.face.size(); ++f)
     for (int k = 0; k < 3; ++k)
       ASSERT_EQ(vcg::tri::Index(a->mesh, a->mesh.face[f].cV(k)), vcg::tri::Index(b->mesh, b->mesh.face[f].cV(k)));
+}
+
+// The output layer holds exactly the mesher's live triangles, in order, after the cleanup and
+// the orientation: build() takes them out of the mesher and writes the faces in blocks of 65536,
+// giving each block's triangles back as it goes. A noisy cloud has removed (dead) triangles, and
+// more than one block of faces.
+TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
+  const Mesh cloud = cloudMesh(noisy(Shape::Torus, 40000, 0.25));
+  const auto r = run(cloud);
+  growth::CloudCheck check;
+  check.minPoints = 3;
+  g2s::Mesher m(growth::readCloud(*cloud, check).points, defaults());
+  m.meshAll();
+  ASSERT_GT(m.removeNonManifoldVertices().facesRemoved, 0u);
+  m.orientComponents();
+  const std::vector<growth::Triangle> all = m.triangles();
+  const std::vector<char> alive = m.alive();
+  std::vector<vcg::Point3f> corners; // of the live triangles, as the layer stores them
+  for (size_t f = 0; f < all.size(); ++f)
+    if (alive[f])
+      for (std::uint32_t v : all[f]) corners.push_back(vcg::Point3f::Construct(m.points()[v]));
+  ASSERT_GT(corners.size() / 3, size_t(65536));
+  ASSERT_EQ(size_t(r->mesh.fn), corners.size() / 3);
+  for (size_t f = 0; f < r->mesh.face.size(); ++f)
+    for (int k = 0; k < 3; ++k) ASSERT_TRUE(r->mesh.face[f].cP(k) == corners[3 * f + size_t(k)]) << f;
+  // takeLiveTriangles: the same triangles in mesher indices; alive() and triangles() then empty.
+  const std::vector<growth::Triangle> live = m.takeLiveTriangles();
+  ASSERT_EQ(live.size(), corners.size() / 3);
+  for (size_t f = 0; f < live.size(); ++f) ASSERT_TRUE(vcg::Point3f::Construct(m.points()[live[f][1]]) == corners[3 * f + 1]);
+  EXPECT_TRUE(m.triangles().empty());
+  EXPECT_TRUE(m.alive().empty());
 }
 
 TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {

@@ -45,3 +45,28 @@ TEST(HugePages, HugeVectorBehavesLikeAVectorAndAlignsLargeBlocks) {
   empty.reserve(0);
   EXPECT_TRUE(empty.empty());
 }
+
+// discardPages frees the whole pages inside the range and nothing outside it.
+TEST(HugePages, DiscardPagesFreesOnlyWholePagesInsideTheRange) {
+  std::vector<std::uint32_t> v(size_t(1) << 20); // 4 MiB
+  std::iota(v.begin(), v.end(), 1u);
+  const size_t half = v.size() / 2 + 123;          // not on a page boundary
+  growth::discardPages(v.data(), half * sizeof(std::uint32_t));
+  // Everything after the range is kept.
+  for (size_t i = half; i < v.size(); ++i) ASSERT_EQ(v[i], std::uint32_t(i + 1)) << i;
+#if defined(__linux__)
+  // Inside, the whole pages now read as zeros (private anonymous memory given back); the partial
+  // page at the start is kept.
+  const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(v.data());
+  const size_t firstWhole = ((base + page - 1) / page * page - base) / sizeof(std::uint32_t);
+  const size_t endWhole = ((base + half * sizeof(std::uint32_t)) / page * page - base) / sizeof(std::uint32_t);
+  ASSERT_LT(firstWhole, endWhole);
+  for (size_t i = firstWhole; i < endWhole; ++i) ASSERT_EQ(v[i], 0u) << i;
+  for (size_t i = 0; i < firstWhole; ++i) ASSERT_EQ(v[i], std::uint32_t(i + 1)) << i;
+  for (size_t i = endWhole; i < half; ++i) ASSERT_EQ(v[i], std::uint32_t(i + 1)) << i;
+#endif
+  growth::discardPages(nullptr, 1 << 20); // ignored
+  growth::discardPages(v.data(), 100);    // no whole page: nothing happens
+  EXPECT_EQ(v.back(), std::uint32_t(v.size()));
+}

@@ -15,6 +15,7 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
+#include <unistd.h>
 #endif
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -44,6 +45,23 @@ inline void adviseHugePages(const void* data, size_t bytes) {
 inline void releaseFreeHeap() {
 #if defined(__GLIBC__)
   malloc_trim(0);
+#endif
+}
+
+// Gives the whole pages inside [data, data + bytes) back to the system (madvise MADV_DONTNEED),
+// for an array read once from front to back while what replaces it is built: the part already
+// read stops taking memory. Those pages read as zeros afterwards: the caller must not read them
+// again, only free the array. The partial pages at both ends are kept. Elsewhere it does nothing.
+inline void discardPages(const void* data, size_t bytes) {
+#if defined(__linux__) && defined(MADV_DONTNEED)
+  static const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  if (data == nullptr || page == 0) return;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + page - 1) & ~(page - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(page - 1);
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+#else
+  (void)data;
+  (void)bytes;
 #endif
 }
 
