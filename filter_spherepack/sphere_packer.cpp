@@ -326,9 +326,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
 
   // Sec. 4.1: box grid, normal filter, box normals.
   progress.phase("Sphere packing: box grid", 2, 12);
-  watch.lap();
+  st.secondsInput = watch.lap();
   BoxGrid grid;
-  grid.build(in.points, in.normals, d, &progress);
+  grid.build(in.points, in.normals, d, &progress, params.threads);
   st.boxes = grid.boxCount();
   st.boxesDTooLarge = grid.dTooLargeCount();
   st.secondsBoxGrid = watch.lap();
@@ -337,7 +337,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   progress.phase("Sphere packing: splat sizes", 12, 20);
   SplatSizeStats splatStats;
   const std::vector<float> radius =
-      computeSplatRadii(in.points, in.normals, grid, s, params.localSplatSizes, &splatStats, &progress);
+      computeSplatRadii(in.points, in.normals, grid, s, params.localSplatSizes, &splatStats, &progress,
+                        params.threads);
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;

@@ -31,6 +31,8 @@ struct Params {
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
   vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  int threads = 0;                // threads for the per-box and per-point phases (0 = automatic, at
+                                 // most the hardware's); the output is the same for any number
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };
@@ -82,7 +84,8 @@ struct Stat {
   double smallestEdge = 0;
   double qualityAvg = 0;         // Q_avg of the output
   double seconds = 0;
-  double secondsBoxGrid = 0;     // of which: box grid and box normals (sec. 4.1)
+  double secondsInput = 0;       // of which: reading the cloud, mean spacing and area (defaults)
+  double secondsBoxGrid = 0;     //           box grid and box normals (sec. 4.1)
   double secondsSplats = 0;      //           splat radii (sec. 4.3)
   double secondsGrowth = 0;      //           initialization and disk growing (sec. 3.3–3.6)
   double secondsTriangulation = 0; //         regions and output (sec. 3.7)

@@ -209,3 +209,56 @@ TEST(BoxGrid, EmptyInputGivesNoBoxes) {
   EXPECT_EQ(g.boxCount(), 0u);
   EXPECT_EQ(g.boxOf(Point3d(0, 0, 0)), -1);
 }
+
+// The filter and the box normals run on several threads: the grid is the same, bit for bit, for
+// any number of them (noisy normals so that the filter drops points and some boxes are flagged).
+TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 20000;
+  spec.seed = 4;
+  auto c = growth::generateCloud(spec);
+  growth::Random rnd(5);
+  for (size_t i = 0; i < c.normals.size(); i += 13) c.normals[i] = rnd.unitVector();
+  // A thin two-sided plate above the torus: its boxes are flagged as "d too large".
+  for (int k = 0; k < 1000; ++k) {
+    const double x = rnd.uniform(-1, 1), y = rnd.uniform(-1, 1);
+    for (double side : {1.0, -1.0}) {
+      c.points.emplace_back(x, y, 3 + 0.01 * side);
+      c.normals.emplace_back(0, 0, side);
+    }
+  }
+  const double d = 0.45;
+  BoxGrid one;
+  one.build(c.points, c.normals, d, nullptr, 1);
+  ASSERT_GT(one.boxCount(), 3 * 256u); // enough for 3 parts (parallelParts: 256 boxes at least per part)
+  EXPECT_GT(one.droppedByFilter(), 0u);
+  EXPECT_GT(one.dTooLargeCount(), 0u);
+  for (int threads : {2, 3}) {
+    BoxGrid g;
+    g.build(c.points, c.normals, d, nullptr, threads);
+    ASSERT_EQ(g.boxCount(), one.boxCount());
+    EXPECT_EQ(g.references(), one.references());
+    EXPECT_EQ(g.droppedByFilter(), one.droppedByFilter());
+    EXPECT_EQ(g.dTooLargeCount(), one.dTooLargeCount());
+    for (int b = 0; b < int(g.boxCount()); ++b) {
+      ASSERT_EQ(std::vector<std::uint32_t>(g.pointsBegin(b), g.pointsEnd(b)),
+                std::vector<std::uint32_t>(one.pointsBegin(b), one.pointsEnd(b)));
+      ASSERT_EQ(g.boxNormal(b), one.boxNormal(b));
+      ASSERT_EQ(g.boxMinDot(b), one.boxMinDot(b));
+    }
+  }
+}
+
+// Copies of a sampling share its tables and answer like it.
+TEST(SphereSampling, ACopyAnswersLikeTheOriginal) {
+  const SphereSampling s(5);
+  const SphereSampling copy(s);
+  growth::Random rnd(8);
+  std::vector<Point3d> normals;
+  for (int k = 0; k < 40; ++k) normals.push_back((Point3d(0, 0, 1) + rnd.unitVector() * 0.5).Normalize());
+  const auto idx = iota(normals.size());
+  double a = 0, b = 0;
+  EXPECT_EQ(s.maxMinDirection(normals, idx.data(), idx.size(), &a), copy.maxMinDirection(normals, idx.data(), idx.size(), &b));
+  EXPECT_EQ(a, b);
+}

@@ -104,3 +104,41 @@ TEST(PointGrid, NearestRespectsMaxRadius) {
   EXPECT_EQ(g.nearest(Point3d(0.5, 0.6, 0), nullptr, -1, 0.5), -1);
   EXPECT_GE(g.nearest(Point3d(0.5, 0.6, 0), nullptr, -1, 0.8), 0);
 }
+
+// The cell-batched nearest distances give exactly nearest()'s values, whatever the cell size
+// (small cells: most answers beyond the 27 cells, large ones: many points per cell), the stride,
+// the number of threads, and with duplicate points.
+TEST(PointGrid, BatchedNearestDistancesAreThoseOfNearest) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 5000;
+  spec.seed = 3;
+  spec.nonUniform = true;
+  auto pts = growth::generateCloud(spec).points;
+  pts.push_back(pts[17]); // a duplicate: distance 0
+  pts.push_back(Point3d(40, 0, 0)); // far away: found by the full search only
+  for (double cell : {0.003, 0.05, 0.3, 4.0})
+    for (size_t stride : {1u, 7u}) {
+      PointGrid g;
+      g.build(pts, cell);
+      std::vector<double> expect((pts.size() - 1) / stride + 1, -1.0);
+      for (size_t i = 0; i < pts.size(); i += stride) {
+        double d2 = -1;
+        if (g.nearest(pts[i], &d2, int(i)) >= 0) expect[i / stride] = d2;
+      }
+      for (int threads : {1, 2, 3}) {
+        std::vector<double> got;
+        g.nearestOtherSquaredDistances(stride, got, threads);
+        ASSERT_EQ(got.size(), expect.size());
+        for (size_t k = 0; k < got.size(); ++k)
+          ASSERT_EQ(got[k], expect[k]) << "cell " << cell << " stride " << stride << " threads " << threads
+                                       << " sample " << k;
+      }
+    }
+  PointGrid one;
+  one.build({Point3d(1, 1, 1)}, 0.5);
+  std::vector<double> got;
+  one.nearestOtherSquaredDistances(1, got);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_EQ(got[0], -1.0); // no other point
+}

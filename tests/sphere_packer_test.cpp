@@ -155,6 +155,45 @@ TEST(SpherePacker, SameInputSameOutput) {
       EXPECT_EQ(vcg::tri::Index(again, again.face[i].cV(k)), vcg::tri::Index(r->mesh, r->mesh.face[i].cV(k)));
 }
 
+// The per-box and per-point phases run on several threads: the mesh is the same, bit for bit,
+// for any number of them (default parameters: d from the mean spacing, local splat sizes).
+TEST(SpherePacker, SameOutputForAnyNumberOfThreads) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 20000;
+  spec.seed = 2;
+  spec.noiseBound = 0.01;
+  CMeshO cloud;
+  growth::toMesh(growth::generateCloud(spec), cloud);
+  sp::Params p;
+  p.threads = 1;
+  CMeshO one;
+  sp::Stat st1;
+  sp::build(cloud, one, p, st1);
+  ASSERT_GT(one.face.size(), 1000u);
+  for (int threads : {2, 3}) {
+    p.threads = threads;
+    CMeshO mesh;
+    sp::Stat st;
+    sp::build(cloud, mesh, p, st);
+    EXPECT_EQ(st.sphereDiameter, st1.sphereDiameter);
+    EXPECT_EQ(st.splatSize, st1.splatSize);
+    EXPECT_EQ(st.meanSplatRadius, st1.meanSplatRadius);
+    EXPECT_EQ(st.boxes, st1.boxes);
+    ASSERT_EQ(mesh.vert.size(), one.vert.size());
+    ASSERT_EQ(mesh.face.size(), one.face.size());
+    for (size_t i = 0; i < mesh.vert.size(); ++i) {
+      ASSERT_EQ(mesh.vert[i].cP(), one.vert[i].cP());
+      ASSERT_EQ(mesh.vert[i].cN(), one.vert[i].cN());
+    }
+    for (size_t i = 0; i < mesh.face.size(); ++i) {
+      ASSERT_EQ(mesh.face[i].cQ(), one.face[i].cQ());
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(vcg::tri::Index(mesh, mesh.face[i].cV(k)), vcg::tri::Index(one, one.face[i].cV(k)));
+    }
+  }
+}
+
 TEST(SpherePacker, ManifoldWithNoiseUpToAThirdOfD) {
   growth::CloudSpec spec = sphereSpec();
   spec.noiseBound = 0.3 * 0.1; // sec. 5.3: each point moved by a random vector of length <= ν

@@ -162,3 +162,29 @@ TEST(SplatRadii, LocalSizesAreSmallerAndStillCoverTheSphere) {
   }
   EXPECT_EQ(uncovered, 0u);
 }
+
+// The radii are computed on several threads: the same radii, bit for bit, and the same counts for
+// any number of them (an open patch: boundary points with unbounded cells, and clamped ones).
+TEST(SplatRadii, SameRadiiForAnyNumberOfThreads) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Patch;
+  spec.count = 12000;
+  spec.seed = 6;
+  spec.nonUniform = true;
+  const auto c = growth::generateCloud(spec);
+  growth::BoxGrid g;
+  g.build(c.points, c.normals, 0.1, nullptr, 1);
+  const double s = 0.03;
+  growth::SplatSizeStats one;
+  const auto r1 = growth::computeSplatRadii(c.points, c.normals, g, s, true, &one, nullptr, 1);
+  EXPECT_GT(one.unbounded, 0u);
+  EXPECT_GT(one.clamped, 0u);
+  for (int threads : {2, 3, 7}) {
+    growth::SplatSizeStats st;
+    const auto r = growth::computeSplatRadii(c.points, c.normals, g, s, true, &st, nullptr, threads);
+    ASSERT_EQ(r, r1) << threads << " threads";
+    EXPECT_EQ(st.unbounded, one.unbounded);
+    EXPECT_EQ(st.clamped, one.clamped);
+    EXPECT_EQ(st.meanRadius, one.meanRadius);
+  }
+}

@@ -1,5 +1,6 @@
 #include <growth/box_grid.h>
 #include <growth/error.h>
+#include <growth/parallel.h>
 #include <growth/progress.h>
 
 #include <algorithm>
@@ -13,14 +14,14 @@ namespace growth {
 // Sphere sampling
 
 SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8))) {
+  auto tables = std::make_shared<Tables>();
   size_t total = 0;
   for (int depth = 0; depth < level_; ++depth) {
-    offset_.push_back(total);
+    tables->offset.push_back(total);
     total += size_t(6) << (2 * depth);
   }
-  centre_.resize(total);
-  cosAlpha_.resize(total);
-  sinAlpha_.resize(total);
+  tables->cell.resize(total);
+  tables_ = tables; // cellIndex() reads the offsets
   for (int depth = 0; depth < level_; ++depth) {
     const std::uint32_t m = std::uint32_t(1) << depth;
     const double size = 2.0 / double(m);
@@ -32,10 +33,10 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
           double minCos = 1;
           for (int k = 0; k < 4; ++k)
               minCos = std::min(minCos, faceDirection(face, u0 + (k & 1) * size, v0 + (k >> 1) * size) * c);
-          const size_t i = cellIndex(face, depth, x, y);
-          centre_[i] = c;
-          cosAlpha_[i] = minCos;
-          sinAlpha_[i] = std::sqrt(std::max(0.0, 1.0 - minCos * minCos));
+          CellInfo& info = tables->cell[cellIndex(face, depth, x, y)];
+          info.centre = c;
+          info.cosAlpha = minCos;
+          info.sinAlpha = std::sqrt(std::max(0.0, 1.0 - minCos * minCos));
         }
   }
 }
@@ -216,9 +217,9 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
   double sinBestOf = std::numeric_limits<double>::quiet_NaN(), sinBest = 0; // sqrt(1 − best²), cached
   auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
     const bool leaf = depth == level_;
-    const size_t i = leaf ? 0 : cellIndex(face, depth, x, y);
-    const vcg::Point3d c = leaf ? leafCentre(face, x, y) : centre_[i];
-    const double ca = leaf ? 1.0 : cosAlpha_[i], sa = leaf ? 0.0 : sinAlpha_[i];
+    const CellInfo* info = leaf ? nullptr : &tables_->cell[cellIndex(face, depth, x, y)];
+    const vcg::Point3d c = leaf ? leafCentre(face, x, y) : info->centre;
+    const double ca = leaf ? 1.0 : info->cosAlpha, sa = leaf ? 0.0 : info->sinAlpha;
     // value(c) <= cutoff = cos(min(π, acos(best) + α)) means cos(max(0, θ − α)) <= best.
     if (best != sinBestOf) sinBestOf = best, sinBest = std::sqrt(std::max(0.0, 1 - best * best));
     double cutoff;
@@ -266,6 +267,15 @@ size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t*
 // ---------------------------------------------------------------------------------------------
 // Box grid
 
+namespace {
+// The S_F of the box normals, built once per process (its tables take about a millisecond);
+// every build copies it (sharing the tables) for its own scratch.
+const SphereSampling& boxNormalSampling() {
+  static const SphereSampling sampling(6);
+  return sampling;
+}
+} // namespace
+
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
          points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
@@ -273,7 +283,7 @@ size_t BoxGrid::memoryBytes() const {
 }
 
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
-                    Progress* progress) {
+                    Progress* progress, int threads) {
   start_.assign(1, 0);
   points_.clear();
   boxNormal_.clear();
@@ -370,22 +380,42 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   std::vector<std::uint32_t>().swap(ownOf);
   std::vector<std::uint32_t>().swap(count);
 
-  // Normal filter, compacting the CSR arrays in place; then the box normals.
-  const SphereSampling sampling(6);
+  // Normal filter and box normals, independent per box: the boxes are cut into one contiguous
+  // part per thread, each box filtered in place inside its own CSR range, its kept count, normal
+  // and minimum written to its own slots (so the result does not depend on the threads). Then the
+  // CSR arrays are compacted in box order.
   boxNormal_.resize(boxes);
   boxMinDot_.resize(boxes);
+  std::vector<std::uint32_t> kept(boxes);
+  // A box costs a few microseconds: below a few hundred boxes one thread is faster.
+  const int parts = parallelParts(boxes, threads, 256);
+  std::vector<size_t> partDropped(size_t(parts), 0), partTooLarge(size_t(parts), 0);
+  const SphereSampling& shared = boxNormalSampling();
+  parallelFor(boxes, parts, [&](size_t b0, size_t b1, int part) {
+    const SphereSampling sampling(shared); // shares the tables, own scratch
+    size_t dropped = 0, tooLarge = 0;
+    for (size_t b = b0; b < b1; ++b) {
+      const size_t begin = start_[b], n = start_[b + 1] - begin;
+      std::uint32_t* idx = &points_[begin];
+      const size_t k = filterBoxNormals(normals, idx, n);
+      kept[b] = static_cast<std::uint32_t>(k);
+      dropped += n - k;
+      boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
+      if (boxMinDot_[b] < 0) ++tooLarge;
+      if (part == 0 && progress != nullptr && ((b - b0) & 4095) == 0)
+        progress->update(0.6 + 0.4 * double(b - b0) / double(b1 - b0));
+    }
+    partDropped[size_t(part)] = dropped;
+    partTooLarge[size_t(part)] = tooLarge;
+  });
+  for (int k = 0; k < parts; ++k) dropped_ += partDropped[size_t(k)], dTooLargeCount_ += partTooLarge[size_t(k)];
   size_t w = 0;
   for (size_t b = 0; b < boxes; ++b) {
-    const size_t begin = start_[b], n = start_[b + 1] - begin;
-    std::uint32_t* idx = &points_[begin];
-    const size_t kept = filterBoxNormals(normals, idx, n);
-    dropped_ += n - kept;
-    boxNormal_[b] = sampling.maxMinDirection(normals, idx, kept, &boxMinDot_[b]);
-    if (boxMinDot_[b] < 0) ++dTooLargeCount_;
+    const size_t begin = start_[b];
     start_[b] = static_cast<std::uint32_t>(w);
-    for (size_t k = 0; k < kept; ++k) points_[w + k] = idx[k]; // w <= begin: forward copy is safe
-    w += kept;
-    if (progress != nullptr && (b & 4095) == 0) progress->update(0.6 + 0.4 * double(b) / double(boxes));
+    if (w != begin) std::copy(points_.begin() + std::ptrdiff_t(begin), points_.begin() + std::ptrdiff_t(begin + kept[b]),
+                              points_.begin() + std::ptrdiff_t(w)); // w <= begin: a forward copy is safe
+    w += kept[b];
   }
   start_[boxes] = static_cast<std::uint32_t>(w);
   points_.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few

@@ -169,12 +169,15 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
   PointGrid grid;
   grid.build(points, std::max(roughSpacing(box, points.size()), 1e-12 * (1.0 + box.Diag())));
   const size_t stride = std::max<size_t>(1, points.size() / std::max<size_t>(1, maxSamples));
+  // The samples' nearest distances, batched by grid cell (the same values as one nearest() query
+  // per sample), then summed in sample order.
+  std::vector<double> d2;
+  grid.nearestOtherSquaredDistances(stride, d2);
   double sum = 0;
   size_t n = 0;
-  for (size_t i = 0; i < points.size(); i += stride) {
-    double d2 = 0;
-    if (grid.nearest(points[i], &d2, static_cast<int>(i)) >= 0) {
-      sum += std::sqrt(d2);
+  for (const double v : d2) {
+    if (v >= 0) {
+      sum += std::sqrt(v);
       ++n;
     }
   }

@@ -1,3 +1,4 @@
+#include <growth/parallel.h>
 #include <growth/point_grid.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   sortedPoint_.clear();
   pointIndex_.clear();
   maxCell_[0] = maxCell_[1] = maxCell_[2] = -1;
+  builtSize_ = points.size();
   if (!(cellSize > 0) || !std::isfinite(cellSize)) return;
 
   Point lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
@@ -141,6 +143,75 @@ int PointGrid::nearest(const Point& c, double* squaredDistance, int exclude, dou
   }
   if (squaredDistance != nullptr && best >= 0) *squaredDistance = bestD2;
   return best;
+}
+
+void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>& squared, int threads) const {
+  stride = std::max<size_t>(stride, 1);
+  squared.assign(builtSize_ == 0 ? 0 : (builtSize_ - 1) / stride + 1, -1.0);
+  const size_t cells = cellKey_.size();
+  if (cells == 0) return;
+  // A cell costs about as much as a few nearest() calls: parts of at least a few hundred cells.
+  const int parts = parallelParts(cells, threads, 512);
+  parallelFor(cells, parts, [&](size_t s0, size_t s1, int) {
+    std::vector<std::uint32_t> ring1; // [begin, end) of the occupied cells around, own cell excluded
+    for (size_t slot = s0; slot < s1; ++slot) {
+      const size_t b = cellStart_[slot], e = cellStart_[slot + 1];
+      bool any = false;
+      for (size_t i = b; i < e && !any; ++i) any = pointIndex_[i] % stride == 0;
+      if (!any) continue;
+      const Key k = cellKey_[slot];
+      const std::int64_t cx = std::int64_t(k >> (2 * kBits)), cy = std::int64_t((k >> kBits) & Key(kMaxCoord)),
+                         cz = std::int64_t(k & Key(kMaxCoord));
+      ring1.clear();
+      for (std::int64_t x = cx - 1; x <= cx + 1; ++x)
+        for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
+          for (std::int64_t z = cz - 1; z <= cz + 1; ++z) {
+            if (x == cx && y == cy && z == cz) continue;
+            const std::int64_t other = findCell(x, y, z);
+            if (other < 0) continue;
+            ring1.push_back(cellStart_[size_t(other)]);
+            ring1.push_back(cellStart_[size_t(other) + 1]);
+          }
+      for (size_t q = b; q < e; ++q) {
+        const std::uint32_t idx = pointIndex_[q];
+        if (idx % stride != 0) continue;
+        const Point& c = sortedPoint_[q];
+        // nearest(c, .., idx), rings 0 and 1, with its stopping rule: after ring 0 when the best
+        // is within `slack` (c's distance to the outside of its cell), after ring 1 when within
+        // cell + slack; otherwise the full search.
+        double slack = std::numeric_limits<double>::infinity();
+        const std::int64_t cc[3] = {cx, cy, cz};
+        for (int a = 0; a < 3; ++a) {
+          const double lo = origin_[a] + double(cc[a]) * cell_;
+          slack = std::min({slack, c[a] - lo, lo + cell_ - c[a]});
+        }
+        slack = std::max(slack, 0.0);
+        double best = std::numeric_limits<double>::infinity();
+        bool found = false;
+        for (size_t i = b; i < e; ++i) {
+          if (i == q) continue;
+          const double d2 = (sortedPoint_[i] - c).SquaredNorm();
+          if (d2 < best) best = d2;
+          found = true;
+        }
+        if (!(found && best <= slack * slack)) {
+          for (size_t r = 0; r < ring1.size(); r += 2)
+            for (size_t i = ring1[r], ie = ring1[r + 1]; i < ie; ++i) {
+              const double d2 = (sortedPoint_[i] - c).SquaredNorm();
+              if (d2 < best) best = d2;
+              found = true;
+            }
+          const double reach = cell_ + slack;
+          if (!(found && best <= reach * reach)) {
+            double d2 = -1;
+            found = nearest(c, &d2, static_cast<int>(idx)) >= 0;
+            best = d2;
+          }
+        }
+        if (found) squared[idx / stride] = best;
+      }
+    }
+  });
 }
 
 size_t PointGrid::memoryBytes() const {

@@ -1,4 +1,5 @@
 #include <growth/box_grid.h>
+#include <growth/parallel.h>
 #include <growth/progress.h>
 #include <growth/splats.h>
 
@@ -163,7 +164,7 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
 
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local, SplatSizeStats* stats,
-                                     Progress* progress) {
+                                     Progress* progress, int threads) {
   std::vector<float> radius(points.size(), static_cast<float>(globalRadius));
   SplatSizeStats st;
   if (local) {
@@ -179,49 +180,64 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
     for (size_t i = 0; i < points.size(); ++i) order[start[size_t(own[i] + 1)]++] = static_cast<std::uint32_t>(i);
     std::vector<std::int32_t>().swap(own);
-    // start[b + 1] is now the end of group b (group 0: no box); walk the groups in order.
-    FanScratch scratch;
-    struct Cand {
-      double x, y, z;
-      std::uint32_t idx;
-    };
-    std::vector<Cand> cand;
-    std::vector<vcg::Point3d> nb;
-    const double reach = 2 * globalRadius, reach2 = reach * reach;
-    size_t done = 0, k = 0;
-    for (size_t group = 0; group <= boxes; ++group) {
-      const size_t end = start[group];
-      const int box = static_cast<int>(group) - 1;
-      if (k == end) continue;
-      // The box's points sorted by x: each point of the group scans only the slice within reach.
-      cand.clear();
-      if (box >= 0)
-        for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-          cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
-      std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.idx < b.idx; });
-      for (; k < end; ++k) {
-        const std::uint32_t i = order[k];
-        const vcg::Point3d& p = points[i];
-        double r = -1;
-        if (box >= 0) {
-          nb.clear();
-          auto j = std::lower_bound(cand.begin(), cand.end(), p[0] - reach, [](const Cand& c, double x) { return c.x < x; });
-          for (; j != cand.end() && j->x <= p[0] + reach; ++j) {
-            const double dx = j->x - p[0], dy = j->y - p[1], dz = j->z - p[2];
-            if (dx * dx + dy * dy + dz * dz <= reach2 && j->idx != i) nb.emplace_back(j->x, j->y, j->z);
+    // start[g] is now the end of group g (group 0: no box; group b + 1: box b), and the groups
+    // lie in order in `order`. The positions of `order` are cut into one contiguous part per
+    // thread; a part walks the groups it overlaps (a group cut in two is gathered by both parts,
+    // in the same order, so every point gets the same neighbour list). Each point's radius goes
+    // to its own slot, the counters are summed per part: the result is the same for any number
+    // of threads.
+    const size_t n = points.size();
+    const int parts = parallelParts(n, threads, 2048);
+    std::vector<SplatSizeStats> partStats(static_cast<size_t>(parts));
+    parallelFor(n, parts, [&](size_t k0, size_t k1, int part) {
+      FanScratch scratch;
+      struct Cand {
+        double x, y, z;
+        std::uint32_t idx;
+      };
+      std::vector<Cand> cand;
+      std::vector<vcg::Point3d> nb;
+      SplatSizeStats& pst = partStats[size_t(part)];
+      const double reach = 2 * globalRadius, reach2 = reach * reach;
+      size_t k = k0;
+      size_t group = size_t(std::upper_bound(start.begin(), start.begin() + std::ptrdiff_t(boxes + 1),
+                                             static_cast<std::uint32_t>(k0)) - start.begin());
+      for (; k < k1; ++group) {
+        const size_t end = std::min<size_t>(start[group], k1);
+        const int box = static_cast<int>(group) - 1;
+        if (k >= end) continue;
+        // The box's points sorted by x: each point of the group scans only the slice within reach.
+        cand.clear();
+        if (box >= 0)
+          for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
+            cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
+        std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.idx < b.idx; });
+        for (; k < end; ++k) {
+          const std::uint32_t i = order[k];
+          const vcg::Point3d& p = points[i];
+          double r = -1;
+          if (box >= 0) {
+            nb.clear();
+            auto j = std::lower_bound(cand.begin(), cand.end(), p[0] - reach, [](const Cand& c, double x) { return c.x < x; });
+            for (; j != cand.end() && j->x <= p[0] + reach; ++j) {
+              const double dx = j->x - p[0], dy = j->y - p[1], dz = j->z - p[2];
+              if (dx * dx + dy * dy + dz * dz <= reach2 && j->idx != i) nb.emplace_back(j->x, j->y, j->z);
+            }
+            r = fanRadius(p, normals[i], nb, nullptr, scratch);
           }
-          r = fanRadius(p, normals[i], nb, nullptr, scratch);
+          if (r < 0) {
+            ++pst.unbounded;
+          } else if (r > globalRadius) {
+            ++pst.clamped;
+          } else {
+            radius[i] = static_cast<float>(r);
+          }
+          if (part == 0 && progress != nullptr && ((k - k0 + 1) & 16383) == 0)
+            progress->update(double(k - k0 + 1) / double(k1 - k0));
         }
-        if (r < 0) {
-          ++st.unbounded;
-        } else if (r > globalRadius) {
-          ++st.clamped;
-        } else {
-          radius[i] = static_cast<float>(r);
-        }
-        if (progress != nullptr && (++done & 16383) == 0) progress->update(double(done) / double(points.size()));
       }
-    }
+    });
+    for (const SplatSizeStats& p : partStats) st.unbounded += p.unbounded, st.clamped += p.clamped;
   }
   double sum = 0;
   for (float r : radius) sum += r;

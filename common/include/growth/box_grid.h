@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace growth {
@@ -165,15 +166,23 @@ private:
   vcg::Point3d faceDirection(int face, double u, double v) const;
   vcg::Point3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const; // a direction of S_F
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
-    return offset_[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
+    return tables_->offset[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
   }
   int level_;
   // Per quadtree cell above the leaves: centre direction and cos/sin of the largest angle from
   // the centre to the cell's corners (precomputed once: the search then needs no trigonometry).
-  std::vector<size_t> offset_;
-  std::vector<vcg::Point3d> centre_;
-  std::vector<double> cosAlpha_, sinAlpha_;
-  // Scratch of the searches (an instance is not meant to be shared between threads).
+  // Immutable once built, so copies of an instance share them.
+  struct CellInfo {
+    vcg::Point3d centre;
+    double cosAlpha, sinAlpha;
+  };
+  struct Tables {
+    std::vector<size_t> offset;
+    std::vector<CellInfo> cell;
+  };
+  std::shared_ptr<const Tables> tables_;
+  // Scratch of the searches: an instance is not meant to be shared between threads, but a copy
+  // (cheap: it shares the tables) can be used by another thread.
   struct Cell {
     double bound;
     int face, depth;
@@ -195,8 +204,10 @@ class BoxGrid {
 public:
   // Builds the grid of side `side` over the points (with unit normals), applies the normal filter
   // and computes the box normals. `progress` (optional) is updated with fractions of the build.
+  // The filter and the box normals run on `threads` threads (0 = automatic, parallel.h); the grid
+  // is the same for any number.
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
-             Progress* progress = nullptr);
+             Progress* progress = nullptr, int threads = 0);
 
   double side() const { return index_.side(); }
   const BoxIndexer& indexer() const { return index_; }

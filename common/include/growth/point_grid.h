@@ -38,6 +38,15 @@ public:
   int nearest(const Point& c, double* squaredDistance = nullptr, int exclude = -1,
               double maxRadius = std::numeric_limits<double>::infinity()) const;
 
+  // For every point of the grid whose index i (into the built array) is a multiple of `stride`:
+  // squared[i / stride] = the squared distance to its nearest other point, bit for bit what
+  // nearest(points[i], &d2, i) gives (-1 when there is none; `squared` is resized to cover every
+  // multiple below the built array's size, and non-finite points keep -1). Computed cell by cell:
+  // the points of a cell share the look-up of the 27 cells around it, and only the few whose
+  // answer the ring search would look beyond those take nearest(). Runs on `threads` threads
+  // (0 = automatic, parallel.h); the result is the same for any number.
+  void nearestOtherSquaredDistances(size_t stride, std::vector<double>& squared, int threads = 0) const;
+
   // Memory held by the grid, in bytes (for the benchmark's memory accounting).
   size_t memoryBytes() const;
 
@@ -68,6 +77,7 @@ private:
 
   double cell_ = 1.0, inv_ = 1.0;
   Point origin_{0, 0, 0};
+  size_t builtSize_ = 0;               // size of the array the grid was built over
   std::int64_t maxCell_[3] = {-1, -1, -1};
   std::vector<Key> cellKey_;           // per occupied cell
   std::vector<std::uint32_t> cellStart_; // CSR offsets into the sorted arrays, size cells+1

@@ -78,9 +78,11 @@ struct SplatSizeStats {
 // points of the box containing each point. Of those, only the points within 2s of p are handed to
 // localSplatRadius: a farther point can only be a Delaunay neighbour of p when p's Voronoi cell
 // reaches beyond s, and then the radius is clamped to s anyway; so the result is the same, at a
-// cost that does not grow with the box (d) but with s.
+// cost that does not grow with the box (d) but with s. Runs on `threads` threads (0 = automatic,
+// parallel.h); the radii are the same for any number.
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local,
-                                     SplatSizeStats* stats = nullptr, Progress* progress = nullptr);
+                                     SplatSizeStats* stats = nullptr, Progress* progress = nullptr,
+                                     int threads = 0);
 
 } // namespace growth
