@@ -72,7 +72,6 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     // The search structures go before the cleanup allocates its own.
     stat.workingBytes = mesher.memoryBytes();
     mesher.releaseGrowthState();
-    releaseFreeHeap();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
 
