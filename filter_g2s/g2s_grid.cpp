@@ -102,7 +102,7 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
       }
     }
   }
-  stride_ = n + 4; // padded for whole 4-lane loads
+  stride_ = n + kNearPad; // padded for whole-vector loads
   assignHuge(coords_, 3 * stride_, std::numeric_limits<float>::max());
   float* fx = coords_.data();
   float* fy = fx + stride_;

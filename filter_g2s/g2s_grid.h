@@ -14,6 +14,8 @@
 // caller's point order, a second sort for a spatial order) this removes a build and two memory
 // indirections per cell; tools/g2s_grid_bench.cpp measures both and vcglib's GridStaticPtr on the
 // mesher's query pattern.
+#include "g2s_near.h"
+
 #include <growth/huge_pages.h>
 #include <growth/morton.h>
 
@@ -75,6 +77,19 @@ public:
   void forEachNearBall(const P3& c, double radius, F&& f) const {
     visitBall<false>(c, radius, [&](std::uint32_t i, double) {
       f(i);
+      return false;
+    });
+  }
+  // The points forEachNearBall(c, radius) visits, in the same order, written to `out` (cleared
+  // first) with their float coordinates, by the vector scans of g2s_near.h.
+  void gatherNear(const P3& c, double radius, NearList& out) const {
+    out.clear();
+    if (pts_.empty() || !(radius >= 0)) return;
+    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
+    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    const float* fx = coords_.data();
+    visitCells(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
+      out.appendWithin(fx, fx + stride_, fx + 2 * stride_, begin, end, fc, r2f);
       return false;
     });
   }
@@ -154,6 +169,15 @@ private:
     // exactly in double.
     const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
     const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    return visitCells(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
+      return scanCell<Exact>(begin, end, c, fc, r2, r2f, stop);
+    });
+  }
+
+  // Calls cell(begin, end) for the point range of every occupied cell that the ball's bounding
+  // box touches, until it returns true; returns whether it did.
+  template <class F>
+  bool visitCells(const P3& c, double radius, F&& cell) const {
     std::int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::max<std::int64_t>(coord(c[a] - radius, a), 0);
@@ -162,7 +186,7 @@ private:
     }
     // Morton bits of each cell coordinate in the (small) ranges, computed once per query.
     std::uint64_t ky[kMaxSpan], kz[kMaxSpan];
-    if (hi[1] - lo[1] >= kMaxSpan || hi[2] - lo[2] >= kMaxSpan) return visitBallWide<Exact>(c, radius, lo, hi, stop);
+    if (hi[1] - lo[1] >= kMaxSpan || hi[2] - lo[2] >= kMaxSpan) return visitCellsWide(lo, hi, cell);
     for (std::int64_t y = lo[1]; y <= hi[1]; ++y) ky[y - lo[1]] = spread(std::uint64_t(y)) << 1;
     for (std::int64_t z = lo[2]; z <= hi[2]; ++z) kz[z - lo[2]] = spread(std::uint64_t(z)) << 2;
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
@@ -172,7 +196,7 @@ private:
         for (std::int64_t z = 0; z <= hi[2] - lo[2]; ++z) {
           const Slot* s = find(kxy | kz[z]);
           if (s == nullptr) continue;
-          if (scanCell<Exact>(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+          if (cell(s->begin, s->end)) return true;
         }
       }
     }
@@ -180,16 +204,13 @@ private:
   }
 
   // Balls spanning many cells (seldom: large seed balls, the cylinder walk on coarse clouds).
-  template <bool Exact, class F>
-  bool visitBallWide(const P3& c, double radius, const std::int64_t* lo, const std::int64_t* hi, F&& stop) const {
-    const double r2 = radius * radius;
-    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
-    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+  template <class F>
+  bool visitCellsWide(const std::int64_t* lo, const std::int64_t* hi, F&& cell) const {
     if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
       // More cells in the box than occupied ones: walk the occupied cells instead.
       for (const Slot& s : table_) {
         if (s.key == kEmpty) continue;
-        if (scanCell<Exact>(s.begin, s.end, c, fc, r2, r2f, stop)) return true;
+        if (cell(s.begin, s.end)) return true;
       }
       return false;
     }
@@ -197,7 +218,7 @@ private:
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
           const Slot* s = find(morton(std::uint64_t(x), std::uint64_t(y), std::uint64_t(z)));
-          if (s != nullptr && scanCell<Exact>(s->begin, s->end, c, fc, r2, r2f, stop)) return true;
+          if (s != nullptr && cell(s->begin, s->end)) return true;
         }
     return false;
   }
@@ -219,7 +240,7 @@ private:
       return d2 <= r2 && stop(k, d2);
     };
 #if defined(__SSE2__)
-    // The coordinate arrays are padded by 4, so the last, partial block of a cell is loaded
+    // The coordinate arrays are padded (kNearPad), so the last, partial block of a cell is loaded
     // whole and its lanes past `end` are masked off.
     const __m128 cx = _mm_set1_ps(fc[0]), cy = _mm_set1_ps(fc[1]), cz = _mm_set1_ps(fc[2]);
     const __m128 rr = _mm_set1_ps(r2f);
@@ -246,8 +267,8 @@ private:
   }
 
   std::vector<P3> pts_;
-  // The points relative to box_.min, in float, same order: x, y, z arrays of stride_ = n + 4
-  // (padded for whole 4-lane loads) in one block (one mapping, see HugeAllocator).
+  // The points relative to box_.min, in float, same order: x, y, z arrays of stride_ = n + kNearPad
+  // (padded for whole-vector loads) in one block (one mapping, see HugeAllocator).
   HugeVector<float> coords_;
   size_t stride_ = 0;
   double floatSlack_ = 0;

@@ -8,10 +8,6 @@
 #include <cmath>
 #include <limits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace growth {
 namespace g2s {
 
@@ -102,35 +98,8 @@ double Mesher::localSpacing(std::uint32_t v) const {
   return edgeCount_[v] > 0 ? double(edgeLengthSum_[v]) / double(edgeCount_[v]) : 0.0;
 }
 
-size_t Mesher::NearList::collectWithin(const float* c, float r2, std::uint32_t* out) const {
-  size_t count = 0;
-#if defined(__SSE2__)
-  // The arrays are padded by 4 (see push), so whole blocks are loaded; lanes past size masked off.
-  const __m128 cx = _mm_set1_ps(c[0]), cy = _mm_set1_ps(c[1]), cz = _mm_set1_ps(c[2]), rr = _mm_set1_ps(r2);
-  for (size_t k = 0; k < size; k += 4) {
-    const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&x[k]), cx);
-    const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&y[k]), cy);
-    const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&z[k]), cz);
-    const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-    unsigned mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(d2, rr)));
-    if (size - k < 4) mask &= (1u << (size - k)) - 1;
-    while (mask != 0) {
-      out[count++] = static_cast<std::uint32_t>(k + size_t(__builtin_ctz(mask)));
-      mask &= mask - 1;
-    }
-  }
-#else
-  for (size_t k = 0; k < size; ++k) {
-    const float dx = x[k] - c[0], dy = y[k] - c[1], dz = z[k] - c[2];
-    if (dx * dx + dy * dy + dz * dz <= r2) out[count++] = static_cast<std::uint32_t>(k);
-  }
-#endif
-  return count;
-}
-
 void Mesher::gather(const P3& centre, double radius) {
-  near_.clear();
-  grid_.forEachNearBall(centre, radius, [&](std::uint32_t i) { near_.push(i, grid_.fx(i), grid_.fy(i), grid_.fz(i)); });
+  grid_.gatherNear(centre, radius, near_);
 }
 
 bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
@@ -143,40 +112,12 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
   float cf[3];
   grid_.toFloat(ball.centre, cf);
   // Each point within the float error of the sphere (or inside) is decided: inside by more than
-  // that error in float, otherwise exactly in double. Stops at the first point strictly inside.
-  auto inside = [&](size_t k, float d2) {
-    const std::uint32_t id = near_.id[k];
-    if (id == a || id == b || id == c) return false;
-    return d2 < inner || strictlyInside((pts_[id] - ball.centre).SquaredNorm(), ball.radius2);
-  };
-#if defined(__SSE2__)
-  {
-    const __m128 cx = _mm_set1_ps(cf[0]), cy = _mm_set1_ps(cf[1]), cz = _mm_set1_ps(cf[2]), rr = _mm_set1_ps(outer);
-    const size_t size = near_.size;
-    for (size_t k = 0; k < size; k += 4) {
-      const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&near_.x[k]), cx);
-      const __m128 dy = _mm_sub_ps(_mm_loadu_ps(&near_.y[k]), cy);
-      const __m128 dz = _mm_sub_ps(_mm_loadu_ps(&near_.z[k]), cz);
-      const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-      unsigned mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(d2, rr)));
-      if (mask == 0) continue;
-      if (size - k < 4) mask &= (1u << (size - k)) - 1;
-      alignas(16) float lane[4];
-      _mm_store_ps(lane, d2);
-      while (mask != 0) {
-        const unsigned j = static_cast<unsigned>(__builtin_ctz(mask));
-        mask &= mask - 1;
-        if (inside(k + j, lane[j])) return false;
-      }
-    }
-  }
-#else
-  for (size_t k = 0; k < near_.size; ++k) {
-    const float dx = near_.x[k] - cf[0], dy = near_.y[k] - cf[1], dz = near_.z[k] - cf[2];
-    const float d2 = dx * dx + dy * dy + dz * dz;
-    if (d2 <= outer && inside(k, d2)) return false;
-  }
-#endif
+  // that error in float, otherwise exactly in double.
+  const std::uint32_t skip[3] = {a, b, c};
+  size_t borderline = 0;
+  if (near_.insideOrBorderline(cf, inner, outer, skip, near_.hit.data(), &borderline)) return false;
+  for (size_t h = 0; h < borderline; ++h)
+    if (strictlyInside((pts_[near_.id[near_.hit[h]]] - ball.centre).SquaredNorm(), ball.radius2)) return false;
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {

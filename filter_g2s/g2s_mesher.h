@@ -132,42 +132,6 @@ public:
   std::vector<std::uint32_t>& scratch() { return scratch_; }
 
 private:
-  // The points of the last gathered ball: ids and float coordinates relative to the grid's box
-  // (structure of arrays, padded by 4, for 4-lane scans); every distance computed from them is
-  // within the grid's floatSlack() of the exact one, so a scan decides most points in float and
-  // re-checks in double only those within the slack of a sphere.
-  struct NearList {
-    std::vector<std::uint32_t> id;
-    std::vector<float> x, y, z;
-    std::vector<std::uint32_t> hit; // scratch for collectWithin, as long as id
-    size_t size = 0;
-    void clear() { size = 0; }
-    void push(std::uint32_t i, float px, float py, float pz) {
-      if (size + 4 >= id.size()) grow();
-      id[size] = i;
-      x[size] = px;
-      y[size] = py;
-      z[size] = pz;
-      ++size;
-    }
-    void swap(size_t i, size_t j) {
-      std::swap(id[i], id[j]);
-      std::swap(x[i], x[j]);
-      std::swap(y[i], y[j]);
-      std::swap(z[i], z[j]);
-    }
-    void grow() {
-      const size_t n = std::max<size_t>(64, 2 * id.size());
-      id.resize(n);
-      hit.resize(n);
-      x.resize(n, 0.f);
-      y.resize(n, 0.f);
-      z.resize(n, 0.f);
-    }
-    // Writes to out, in increasing order, the indices whose float squared distance to c is
-    // <= r2 (out must hold size + 4 entries); returns how many.
-    size_t collectWithin(const float* c, float r2, std::uint32_t* out) const;
-  };
   struct Scored {
     int flatLevel;     // pl_f
     double radius2;    // squared circumradius of the candidate triangle

@@ -11,6 +11,7 @@
 // engine_page_faults_first_run counts the minor page faults of the first run (each costs several
 // microseconds of kernel time on a virtual machine).
 #include "g2s.h"
+#include "g2s_near.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -144,6 +145,7 @@ int main(int argc, char** argv) {
                 st.secondsGrowth, st.secondsCleanup, st.secondsOutput);
     std::printf("triangles_per_second: %.0f\n", double(st.faces) / best);
     std::printf("cpu_seconds: %.4f\n", bestCpu);
+    std::printf("simd: %s\n", growth::g2s::simdLevelName(growth::g2s::simdLevel()));
     std::printf("triangles_per_cpu_second: %.0f\n", double(st.faces) / bestCpu);
     std::printf("engine_page_faults_first_run: %ld\n", faults);
     std::printf("working_bytes_per_point: %.1f\n", double(st.workingBytes) / double(st.inputPoints));
