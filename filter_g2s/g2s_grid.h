@@ -88,10 +88,24 @@ public:
     const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
     const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
     const float* fx = coords_.data();
+    // The cells' ranges are collected first and scanned in one call (one call per cell costs as
+    // much as the scan of a small cell).
+    constexpr std::size_t kBatch = 32;
+    std::uint32_t range[2 * kBatch];
+    std::size_t ranges = 0, points = 0;
+    auto flush = [&]() {
+      out.appendWithin(fx, fx + stride_, fx + 2 * stride_, range, ranges, points, fc, r2f);
+      ranges = points = 0;
+    };
     visitCells(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
-      out.appendWithin(fx, fx + stride_, fx + 2 * stride_, begin, end, fc, r2f);
+      if (ranges == kBatch) flush();
+      range[2 * ranges] = begin;
+      range[2 * ranges + 1] = end;
+      ++ranges;
+      points += end - begin;
       return false;
     });
+    if (ranges > 0) flush();
   }
   // The point's coordinates relative to box().min, in float (|float − exact| <= floatSlack()/2
   // per distance, see build()).

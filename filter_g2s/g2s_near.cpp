@@ -15,8 +15,9 @@ namespace {
 
 // One implementation of the three scans. `n`/`size` and the returned counts are point counts.
 struct Kernels {
-  std::size_t (*append)(const float* fx, const float* fy, const float* fz, std::uint32_t begin, std::uint32_t end,
-                        const float* c, float r2, std::uint32_t* oid, float* ox, float* oy, float* oz, std::size_t n);
+  std::size_t (*append)(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
+                        std::size_t rangeCount, const float* c, float r2, std::uint32_t* oid, float* ox, float* oy,
+                        float* oz, std::size_t n);
   std::size_t (*collect)(const float* x, const float* y, const float* z, std::size_t size, const float* c, float r2,
                          std::uint32_t* out);
   bool (*border)(const std::uint32_t* id, const float* x, const float* y, const float* z, std::size_t size,
@@ -31,11 +32,13 @@ inline float dist2(float x, float y, float z, const float* c) {
   return (dx * dx + dy * dy) + dz * dz;
 }
 
-std::size_t appendBase(const float* fx, const float* fy, const float* fz, std::uint32_t begin, std::uint32_t end,
-                       const float* c, float r2, std::uint32_t* oid, float* ox, float* oy, float* oz, std::size_t n) {
+std::size_t appendBase(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
+                       std::size_t rangeCount, const float* c, float r2, std::uint32_t* oid, float* ox, float* oy,
+                       float* oz, std::size_t n) {
 #if defined(__SSE2__)
   const __m128 cx = _mm_set1_ps(c[0]), cy = _mm_set1_ps(c[1]), cz = _mm_set1_ps(c[2]), rr = _mm_set1_ps(r2);
-  for (std::uint32_t i = begin; i < end; i += 4) {
+  for (std::size_t r = 0; r < rangeCount; ++r)
+  for (std::uint32_t i = ranges[2 * r], end = ranges[2 * r + 1]; i < end; i += 4) {
     const __m128 dx = _mm_sub_ps(_mm_loadu_ps(fx + i), cx);
     const __m128 dy = _mm_sub_ps(_mm_loadu_ps(fy + i), cy);
     const __m128 dz = _mm_sub_ps(_mm_loadu_ps(fz + i), cz);
@@ -53,7 +56,8 @@ std::size_t appendBase(const float* fx, const float* fy, const float* fz, std::u
     }
   }
 #else
-  for (std::uint32_t k = begin; k < end; ++k) {
+  for (std::size_t r = 0; r < rangeCount; ++r)
+  for (std::uint32_t k = ranges[2 * r]; k < ranges[2 * r + 1]; ++k) {
     if (!(dist2(fx[k], fy[k], fz[k], c) <= r2)) continue;
     oid[n] = k;
     ox[n] = fx[k];
@@ -165,13 +169,14 @@ __attribute__((target("avx2,popcnt"))) inline __m256 dist2Avx2(__m256 x, __m256 
 }
 
 __attribute__((target("avx2,popcnt"))) std::size_t appendAvx2(const float* fx, const float* fy, const float* fz,
-                                                      std::uint32_t begin, std::uint32_t end, const float* c, float r2,
-                                                      std::uint32_t* oid, float* ox, float* oy, float* oz,
-                                                      std::size_t n) {
+                                                             const std::uint32_t* ranges, std::size_t rangeCount,
+                                                             const float* c, float r2, std::uint32_t* oid, float* ox,
+                                                             float* oy, float* oz, std::size_t n) {
   const __m256 cx = _mm256_set1_ps(c[0]), cy = _mm256_set1_ps(c[1]), cz = _mm256_set1_ps(c[2]);
   const __m256 rr = _mm256_set1_ps(r2);
   const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (std::uint32_t i = begin; i < end; i += 8) {
+  for (std::size_t r = 0; r < rangeCount; ++r)
+  for (std::uint32_t i = ranges[2 * r], end = ranges[2 * r + 1]; i < end; i += 8) {
     const __m256 x = _mm256_loadu_ps(fx + i), y = _mm256_loadu_ps(fy + i), z = _mm256_loadu_ps(fz + i);
     const unsigned mask =
         unsigned(_mm256_movemask_ps(_mm256_cmp_ps(dist2Avx2(x, y, z, cx, cy, cz), rr, _CMP_LE_OQ))) & validLanes8(end - i);
@@ -244,13 +249,14 @@ __attribute__((target("avx512f,popcnt"))) inline __m512 dist2Avx512(__m512 x, __
 }
 
 __attribute__((target("avx512f,popcnt"))) std::size_t appendAvx512(const float* fx, const float* fy, const float* fz,
-                                                           std::uint32_t begin, std::uint32_t end, const float* c,
-                                                           float r2, std::uint32_t* oid, float* ox, float* oy,
-                                                           float* oz, std::size_t n) {
+                                                                  const std::uint32_t* ranges, std::size_t rangeCount,
+                                                                  const float* c, float r2, std::uint32_t* oid,
+                                                                  float* ox, float* oy, float* oz, std::size_t n) {
   const __m512 cx = _mm512_set1_ps(c[0]), cy = _mm512_set1_ps(c[1]), cz = _mm512_set1_ps(c[2]);
   const __m512 rr = _mm512_set1_ps(r2);
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
-  for (std::uint32_t i = begin; i < end; i += 16) {
+  for (std::size_t r = 0; r < rangeCount; ++r)
+  for (std::uint32_t i = ranges[2 * r], end = ranges[2 * r + 1]; i < end; i += 16) {
     const __m512 x = _mm512_loadu_ps(fx + i), y = _mm512_loadu_ps(fy + i), z = _mm512_loadu_ps(fz + i);
     const __mmask16 mask =
         _mm512_mask_cmp_ps_mask(validLanes16(end - i), dist2Avx512(x, y, z, cx, cy, cz), rr, _CMP_LE_OQ);
@@ -372,10 +378,10 @@ const char* simdLevelName(SimdLevel level) {
   }
 }
 
-void NearList::appendWithin(const float* fx, const float* fy, const float* fz, std::uint32_t begin,
-                            std::uint32_t end, const float* c, float r2) {
-  reserve(size + (end - begin));
-  size = gKernels->append(fx, fy, fz, begin, end, c, r2, id.data(), x.data(), y.data(), z.data(), size);
+void NearList::appendWithin(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
+                            std::size_t rangeCount, std::size_t points, const float* c, float r2) {
+  reserve(size + points);
+  size = gKernels->append(fx, fy, fz, ranges, rangeCount, c, r2, id.data(), x.data(), y.data(), z.data(), size);
 }
 
 std::size_t NearList::collectWithin(const float* c, float r2, std::uint32_t* out) const {

@@ -49,7 +49,13 @@ struct NearList {
   // last point) whose float squared distance to c, ((dx·dx + dy·dy) + dz·dz), is <= r2; their ids
   // are their indices. Calls reserve() itself.
   void appendWithin(const float* fx, const float* fy, const float* fz, std::uint32_t begin, std::uint32_t end,
-                    const float* c, float r2);
+                    const float* c, float r2) {
+    const std::uint32_t range[2] = {begin, end};
+    appendWithin(fx, fy, fz, range, 1, end - begin, c, r2);
+  }
+  // The same for several ranges, ranges[2k]..ranges[2k+1]-1 in turn, holding `points` in all.
+  void appendWithin(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
+                    std::size_t rangeCount, std::size_t points, const float* c, float r2);
   // Writes to out, in increasing order, the positions k < size whose float squared distance to c is
   // <= r2 (out must hold size + kNearPad entries); returns how many.
   std::size_t collectWithin(const float* c, float r2, std::uint32_t* out) const;
