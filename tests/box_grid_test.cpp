@@ -212,6 +212,7 @@ TEST(BoxGrid, EmptyInputGivesNoBoxes) {
 
 // The filter and the box normals run on several threads: the grid is the same, bit for bit, for
 // any number of them (noisy normals so that the filter drops points and some boxes are flagged).
+// Also: the box normals are those of the sampling whether computed by build() or on first use.
 TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
   growth::CloudSpec spec;
   spec.shape = growth::Shape::Torus;
@@ -234,6 +235,22 @@ TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
   ASSERT_GT(one.boxCount(), 3 * 256u); // enough for 3 parts (parallelParts: 256 boxes at least per part)
   EXPECT_GT(one.droppedByFilter(), 0u);
   EXPECT_GT(one.dTooLargeCount(), 0u);
+  // Box normals (computed by build() or on first use): those of the sampling on the box's points,
+  // and the flagged boxes are exactly those with a negative minimum.
+  {
+    BoxGrid g;
+    g.build(c.points, c.normals, d, nullptr, 1);
+    const SphereSampling sampling(6);
+    size_t flagged = 0;
+    for (int b = 0; b < int(g.boxCount()); ++b) {
+      double minDot = 0;
+      const Point3d n = sampling.maxMinDirection(c.normals, g.pointsBegin(b), g.pointCount(b), &minDot);
+      ASSERT_EQ(g.boxNormal(b), n);
+      ASSERT_EQ(g.boxMinDot(b), minDot);
+      flagged += minDot < 0 ? 1 : 0;
+    }
+    EXPECT_EQ(g.dTooLargeCount(), flagged);
+  }
   for (int threads : {2, 3}) {
     BoxGrid g;
     g.build(c.points, c.normals, d, nullptr, threads);

@@ -157,6 +157,33 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
   }
 }
 
+bool SphereSampling::sumLeaf(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
+                             vcg::Point3d& dir) const {
+  vcg::Point3d m(0, 0, 0);
+  for (size_t k = 0; k < count; ++k) m += normals[idx[k]];
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(m[a]) > std::abs(m[axis])) axis = a;
+  if (!(std::abs(m[axis]) > 0)) return false;
+  const int face = 2 * axis + (m[axis] > 0 ? 0 : 1);
+  const double inv = 1.0 / std::abs(m[axis]);
+  const std::uint32_t cells = std::uint32_t(1) << level_;
+  auto leaf = [&](double t) {
+    const double f = (t * inv + 1.0) * 0.5 * double(cells);
+    return static_cast<std::uint32_t>(std::min(double(cells - 1), std::max(0.0, std::floor(f))));
+  };
+  dir = leafCentre(face, leaf(m[(axis + 1) % 3]), leaf(m[(axis + 2) % 3]));
+  return true;
+}
+
+double SphereSampling::quickLowerBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+                                       size_t count) const {
+  if (count == 0) return 1; // maxMinDirection's value for no normals
+  vcg::Point3d c;
+  if (!sumLeaf(normals, idx, count, c)) return -std::numeric_limits<double>::infinity();
+  return minDot(normals, idx, count, c, -std::numeric_limits<double>::infinity());
+}
+
 vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
                                             size_t count, double* minDotOut, const vcg::Point3d* warm) const {
   // Best-first branch and bound over the quadtree of each cube face. For a cell with centre
@@ -190,20 +217,8 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
 
   // A good first guess: the leaf holding the direction of the summed normals.
   {
-    vcg::Point3d m(0, 0, 0);
-    for (size_t k = 0; k < count; ++k) m += normals[idx[k]];
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-      if (std::abs(m[a]) > std::abs(m[axis])) axis = a;
-    if (std::abs(m[axis]) > 0) {
-      const int face = 2 * axis + (m[axis] > 0 ? 0 : 1);
-      const double inv = 1.0 / std::abs(m[axis]);
-      const std::uint32_t cells = std::uint32_t(1) << level_;
-      auto leaf = [&](double t) {
-        const double f = (t * inv + 1.0) * 0.5 * double(cells);
-        return static_cast<std::uint32_t>(std::min(double(cells - 1), std::max(0.0, std::floor(f))));
-      };
-      const vcg::Point3d c = leafCentre(face, leaf(m[(axis + 1) % 3]), leaf(m[(axis + 2) % 3]));
+    vcg::Point3d c;
+    if (sumLeaf(normals, idx, count, c)) {
       best = value(c, -std::numeric_limits<double>::infinity());
       bestDir = c;
     }
@@ -279,7 +294,13 @@ const SphereSampling& boxNormalSampling() {
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
          points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
-         boxMinDot_.capacity() * sizeof(double);
+         boxMinDot_.capacity() * sizeof(double) + known_.capacity();
+}
+
+void BoxGrid::computeNormal(int box) const {
+  const size_t b = size_t(box);
+  boxNormal_[b] = sampling_.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &boxMinDot_[b]);
+  known_[b] = 1;
 }
 
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
@@ -288,6 +309,8 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   points_.clear();
   boxNormal_.clear();
   boxMinDot_.clear();
+  known_.clear();
+  normals_ = &normals;
   dTooLargeCount_ = dropped_ = 0;
   hash_.reset(16);
   if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
@@ -318,15 +341,12 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   }
   std::vector<std::int32_t> near(ownCoord.size() / 3 * 27, -1); // box ids of the 27 neighbours, lazily
 
-  // Calls f(box id) for every box within distance `side` of point i (at most 27), creating the
-  // ids in order of first appearance when `create` (deterministic).
-  std::vector<std::uint32_t> count;
-  auto forBoxesNear = [&](size_t i, bool create, auto&& f) {
+  // The boxes within distance `side` of point i: per axis the boxes within reach and the squared
+  // distance of p to each slab (the terms of squaredDistanceToBox, in the same order, so the test
+  // is the same to the last bit), then every box of the block whose distance is within `side`,
+  // in the order x, y, z. Calls f(x, y, z) for each (at most 27).
+  auto forBoxesWithin = [&](size_t i, auto&& f) {
     const vcg::Point3d& p = pts[i];
-    const std::uint32_t o = ownOf[i];
-    const std::int64_t* oc = &ownCoord[size_t(o) * 3];
-    // Per axis, the boxes within reach and the squared distance of p to each slab (the terms of
-    // squaredDistanceToBox, in the same order, so the test is the same to the last bit).
     std::int64_t lo[3], hi[3];
     double sq[3][8];
     for (int a = 0; a < 3; ++a) {
@@ -342,57 +362,136 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
         const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
         if (sxy > d2) continue;
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-          if (sxy + sq[2][z - lo[2]] > d2) continue;
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (!(sxy + sq[2][z - lo[2]] > d2)) f(x, y, z);
+      }
+  };
+  const size_t n = pts.size();
+
+  // Pass 0 (per point, on threads): the boxes within reach as a mask of the 27 offsets -1..1 from
+  // the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing bits are the order
+  // x, y, z; kBeyond when a box outside that block is within reach (rounding at a box face:
+  // such points take the general path below).
+  constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
+  std::vector<std::uint32_t> mask(n);
+  parallelFor(n, parallelParts(n, threads, 8192), [&](size_t i0, size_t i1, int) {
+    for (size_t i = i0; i < i1; ++i) {
+      const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
+      std::uint32_t m = 0;
+      forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+        const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+        if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
+          m |= std::uint32_t(1) << ((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1));
+        else
+          m |= kBeyond;
+      });
+      mask[i] = m;
+    }
+  });
+
+  // Pass 1 (in point order): box ids in order of first appearance (deterministic), reference
+  // counts per part of the points of pass 2. The ids of the 27 boxes around an own box are kept
+  // (near), so the hash is asked once per own box and offset, not once per point.
+  const int fillParts = parallelParts(n, threads, 8192);
+  std::vector<std::vector<std::uint32_t>> count(static_cast<size_t>(fillParts)); // [part][box]
+  auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const int id = hash_.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(count[0].size()));
+    if (size_t(id) == count[0].size())
+      for (auto& c : count) c.push_back(0);
+    return id;
+  };
+  hash_.reset(n / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
+  for (int part = 0; part < fillParts; ++part) {
+    std::vector<std::uint32_t>& cnt = count[size_t(part)];
+    for (size_t i = partBegin(n, fillParts, part), e = partBegin(n, fillParts, part + 1); i < e; ++i) {
+      const std::uint32_t o = ownOf[i];
+      const std::int64_t* oc = &ownCoord[size_t(o) * 3];
+      std::int32_t* slots = &near[size_t(o) * 27];
+      if (mask[i] & kBeyond) {
+        forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
           const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
           std::int32_t* slot = nullptr;
           if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
-            slot = &near[size_t(o) * 27 + size_t((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1))];
+            slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
           int id = slot != nullptr ? *slot : -1;
           if (id < 0) {
-            const KeyHash::Key k = BoxIndexer::pack(x, y, z);
-            id = create ? hash_.findOrInsert(k, static_cast<int>(count.size())) : hash_.find(k);
-            if (create && size_t(id) == count.size()) count.push_back(0);
+            id = newId(x, y, z);
             if (slot != nullptr) *slot = id;
           }
-          f(size_t(id));
+          ++count[size_t(part)][size_t(id)];
+        });
+      } else {
+        for (std::uint32_t m = mask[i]; m != 0; m &= m - 1) {
+          const int bit = __builtin_ctz(m);
+          int id = slots[bit];
+          if (id < 0) id = slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
+          ++cnt[size_t(id)];
         }
       }
-  };
-
-  // Pass 1: box ids in order of first appearance (deterministic), reference counts.
-  hash_.reset(pts.size() / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
-  for (size_t i = 0; i < pts.size(); ++i) {
-    forBoxesNear(i, true, [&](size_t id) { ++count[id]; });
-    if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 * double(i) / double(pts.size()));
+      if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 * double(i) / double(n));
+    }
   }
-  const size_t boxes = count.size();
+  const size_t boxes = count[0].size();
+  // CSR offsets; count[part][b] becomes where part `part` writes its first reference in box b.
   start_.assign(boxes + 1, 0);
-  for (size_t b = 0; b < boxes; ++b) start_[b + 1] = start_[b] + count[b];
-  // Pass 2: fill (points in increasing index order inside each box).
-  points_.assign(start_[boxes], 0);
-  for (size_t b = 0; b < boxes; ++b) count[b] = start_[b];
-  for (size_t i = 0; i < pts.size(); ++i) {
-    forBoxesNear(i, false, [&](size_t id) { points_[count[id]++] = static_cast<std::uint32_t>(i); });
-    if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 + 0.3 * double(i) / double(pts.size()));
+  for (size_t b = 0; b < boxes; ++b) {
+    std::uint32_t at = start_[b];
+    for (auto& c : count) {
+      const std::uint32_t k = c[b];
+      c[b] = at;
+      at += k;
+    }
+    start_[b + 1] = at;
   }
-  std::vector<std::int32_t>().swap(near);
+  // Pass 2 (per part of the points, on threads): fill, points in increasing index order inside
+  // each box (the parts are in point order and write to consecutive ranges of each box).
+  points_.assign(start_[boxes], 0);
+  parallelFor(n, fillParts, [&](size_t i0, size_t i1, int part) {
+    std::vector<std::uint32_t>& at = count[size_t(part)];
+    for (size_t i = i0; i < i1; ++i) {
+      const std::int32_t* slots = &near[size_t(ownOf[i]) * 27];
+      const std::uint32_t value = static_cast<std::uint32_t>(i);
+      if (mask[i] & kBeyond) {
+        const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
+        forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+          const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
+                             ? slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)]
+                             : hash_.find(BoxIndexer::pack(x, y, z));
+          points_[at[size_t(id)]++] = value;
+        });
+      } else {
+        for (std::uint32_t m = mask[i]; m != 0; m &= m - 1) points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
+      }
+      if (part == 0 && progress != nullptr && ((i - i0) & 16383) == 0)
+        progress->update(0.3 + 0.3 * double(i - i0) / double(i1 - i0));
+    }
+  });
   std::vector<std::uint32_t>().swap(ownOf);
-  std::vector<std::uint32_t>().swap(count);
+  std::vector<std::uint32_t>().swap(mask);
+  std::vector<std::vector<std::uint32_t>>().swap(count);
 
   // Normal filter and box normals, independent per box: the boxes are cut into one contiguous
   // part per thread, each box filtered in place inside its own CSR range, its kept count, normal
   // and minimum written to its own slots (so the result does not depend on the threads). Then the
   // CSR arrays are compacted in box order.
-  boxNormal_.resize(boxes);
-  boxMinDot_.resize(boxes);
+  // The box normal is computed here only for the boxes that contain an input point (the vertices
+  // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
+  // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
+  // others are computed when first asked for (boxNormal()), with the same result.
+  boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
+  boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
+  known_.assign(boxes, 0);
+  std::vector<std::uint8_t> eager(boxes, 0);
+  for (size_t o = 0; o < ownCoord.size() / 3; ++o) eager[size_t(near[o * 27 + 13])] = 1; // own box: offset (0, 0, 0)
+  std::vector<std::int32_t>().swap(near);
   std::vector<std::uint32_t> kept(boxes);
   // A box costs a few microseconds: below a few hundred boxes one thread is faster.
   const int parts = parallelParts(boxes, threads, 256);
   std::vector<size_t> partDropped(size_t(parts), 0), partTooLarge(size_t(parts), 0);
-  const SphereSampling& shared = boxNormalSampling();
+  sampling_ = boxNormalSampling(); // shares the tables
   parallelFor(boxes, parts, [&](size_t b0, size_t b1, int part) {
-    const SphereSampling sampling(shared); // shares the tables, own scratch
+    const SphereSampling sampling(sampling_); // own scratch
     size_t dropped = 0, tooLarge = 0;
     for (size_t b = b0; b < b1; ++b) {
       const size_t begin = start_[b], n = start_[b + 1] - begin;
@@ -400,8 +499,13 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
       const size_t k = filterBoxNormals(normals, idx, n);
       kept[b] = static_cast<std::uint32_t>(k);
       dropped += n - k;
-      boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
-      if (boxMinDot_[b] < 0) ++tooLarge;
+      // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
+      // maxMinDirection is at least that (up to rounding, hence the margin).
+      if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
+        boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
+        known_[b] = 1;
+        if (boxMinDot_[b] < 0) ++tooLarge;
+      }
       if (part == 0 && progress != nullptr && ((b - b0) & 4095) == 0)
         progress->update(0.6 + 0.4 * double(b - b0) / double(b1 - b0));
     }

@@ -39,6 +39,8 @@ public:
     keys_.assign(cap, 0);
     vals_.assign(cap, -1);
     mask_ = cap - 1;
+    shift_ = 64;
+    for (size_t c = cap; c > 1; c >>= 1) --shift_;
     size_ = 0;
   }
   size_t size() const { return size_; }
@@ -84,7 +86,10 @@ public:
   }
 
 private:
-  size_t slot(Key k) const { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 20) & mask_; }
+  // Fibonacci hashing: the top bits of the product depend on every bit of the key (the bits just
+  // above bit 20, taken before, ignored the x of a box key and the first vertex of an edge key,
+  // so keys that differ only there all probed one run of slots).
+  size_t slot(Key k) const { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow() {
     std::vector<Key> k;
     std::vector<int> v;
@@ -97,6 +102,7 @@ private:
   std::vector<Key> keys_;
   std::vector<int> vals_;
   size_t mask_ = 0, size_ = 0;
+  int shift_ = 64; // 64 − log2(capacity)
 };
 
 // Integer box coordinates of a cubic partition of space with side `side` and a fixed origin,
@@ -159,7 +165,15 @@ public:
   vcg::Point3d maxMinDirectionBruteForce(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
                                          size_t count, double* minDot = nullptr) const;
 
+  // A lower bound of maxMinDirection()'s value, at the cost of one pass over the normals: their
+  // minimum at the direction of S_F nearest to their sum (the search's first guess); −∞ when the
+  // normals sum to zero.
+  double quickLowerBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count) const;
+
 private:
+  // The leaf of S_F holding the direction of the summed normals; false when they sum to zero.
+  bool sumLeaf(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
+               vcg::Point3d& dir) const;
   // warm: a direction of S_F to start from (its value is a first lower bound), or null.
   vcg::Point3d branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
                               double* minDot, const vcg::Point3d* warm) const;
@@ -205,7 +219,8 @@ public:
   // Builds the grid of side `side` over the points (with unit normals), applies the normal filter
   // and computes the box normals. `progress` (optional) is updated with fractions of the build.
   // The filter and the box normals run on `threads` threads (0 = automatic, parallel.h); the grid
-  // is the same for any number.
+  // is the same for any number. `normals` must outlive the grid: the normals of the boxes that
+  // hold no input point are computed from them when first asked for.
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
              Progress* progress = nullptr, int threads = 0);
 
@@ -221,10 +236,19 @@ public:
   const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
   const std::uint32_t* pointsEnd(int box) const { return points_.data() + start_[size_t(box) + 1]; }
   size_t pointCount(int box) const { return start_[size_t(box) + 1] - start_[size_t(box)]; }
-  const vcg::Point3d& boxNormal(int box) const { return boxNormal_[size_t(box)]; }
+  // The box normal (sec. 4.1). Computed by build() for most boxes, on first use for the others:
+  // the same value either way, but a first use writes to the grid, so these accessors must not
+  // be called from several threads at once.
+  const vcg::Point3d& boxNormal(int box) const {
+    if (!known_[size_t(box)]) computeNormal(box);
+    return boxNormal_[size_t(box)];
+  }
   // max over S_F of min_p <n_p, n>: negative means d looked too large in this box.
-  double boxMinDot(int box) const { return boxMinDot_[size_t(box)]; }
-  bool dTooLarge(int box) const { return boxMinDot_[size_t(box)] < 0; }
+  double boxMinDot(int box) const {
+    if (!known_[size_t(box)]) computeNormal(box);
+    return boxMinDot_[size_t(box)];
+  }
+  bool dTooLarge(int box) const { return boxMinDot(box) < 0; }
   size_t dTooLargeCount() const { return dTooLargeCount_; }
   size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
   size_t references() const { return points_.size(); }
@@ -235,8 +259,13 @@ private:
   KeyHash hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
   std::vector<std::uint32_t> points_;  // point indices per box
-  std::vector<vcg::Point3d> boxNormal_;
-  std::vector<double> boxMinDot_;
+  void computeNormal(int box) const;
+
+  mutable std::vector<vcg::Point3d> boxNormal_;
+  mutable std::vector<double> boxMinDot_;
+  mutable std::vector<std::uint8_t> known_; // box normal computed
+  mutable SphereSampling sampling_{0};      // for the box normals computed on first use
+  const std::vector<vcg::Point3d>* normals_ = nullptr;
   size_t dTooLargeCount_ = 0, dropped_ = 0;
 };
 
