@@ -30,6 +30,32 @@ bool grow(BorderGraph& g, std::uint32_t c, std::uint32_t a, std::uint32_t b) {
   return g.connect(c, a, g.gapOf(a, g.position(c)), b, g.gapOf(b, g.position(c)));
 }
 
+// gapOf() from scratch: the neighbours' angles computed now with angleAt() (the graph keeps them
+// from the insertions), the same rule otherwise.
+int referenceGapOf(const BorderGraph& g, std::uint32_t v, const Point3d& target) {
+  const int deg = g.degree(v);
+  if (deg == 0) return -1;
+  if (deg == 1) return 0;
+  const double twoPi = 2 * M_PI;
+  auto ccw = [&](double a, double b) {
+    double t = b - a;
+    while (t < 0) t += twoPi;
+    while (t >= twoPi) t -= twoPi;
+    return t;
+  };
+  const double th = g.angleAt(v, target);
+  int best = 0;
+  double bestSlack = -twoPi - 1;
+  for (int k = 0; k < deg; ++k) {
+    const double a0 = g.angleAt(v, g.position(g.neighbour(v, k)));
+    const double a1 = g.angleAt(v, g.position(g.neighbour(v, (k + 1) % deg)));
+    const double span = ccw(a0, a1), into = ccw(a0, th);
+    if (into < span) return k;
+    if (span - into > bestSlack) bestSlack = span - into, best = k;
+  }
+  return best;
+}
+
 // Signed area of a cycle projected along kUp.
 double signedArea(const BorderGraph& g, const std::vector<std::uint32_t>& c) {
   double a = 0;
@@ -221,6 +247,12 @@ TEST(Borders, GrowthOnALatticeKeepsAPlanarEmbedding) {
       const HalfEdge h{v, k};
       EXPECT_EQ(g.prev(g.next(h)), h);
       EXPECT_EQ(g.next(g.prev(h)), h);
+    }
+  // The corners found from the angles kept per edge are those computed from scratch.
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
+    for (int t = 0; t < 16; ++t) {
+      const Point3d target = g.position(v) + rnd.unitVector();
+      ASSERT_EQ(g.gapOf(v, target), referenceGapOf(g, v, target));
     }
   // Exactly one border (the outer one) runs clockwise.
   int clockwise = 0;

@@ -54,6 +54,15 @@ TEST(CircleSplat, IntersectionsAreOnTheCircleThePlaneAndTheDisk) {
       ASSERT_TRUE(growth::circleSplatPoint(c, p, n, s, root[j], y));
       EXPECT_EQ(x[j], y);
     }
+    // And every root circleSplatPoint() accepts is one of them (a tangent circle's two equal
+    // roots count once).
+    for (int r = 0; r < 2; ++r) {
+      Point3d y;
+      if (!growth::circleSplatPoint(c, p, n, s, r, y)) continue;
+      bool listed = false;
+      for (int j = 0; j < m; ++j) listed = listed || x[j] == y;
+      EXPECT_TRUE(listed) << "trial " << k << " root " << r;
+    }
     // Completeness: dense samples of the circle on the plane and inside the disk are near a root.
     Point3d e1, e2;
     growth::tangentFrame(c.axis, e1, e2);

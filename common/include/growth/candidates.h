@@ -71,12 +71,26 @@ inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const
 
 // Both roots; returns how many lie in the disk (written to out/rootOut in root order). A tangent
 // circle (t = 0) gives one point.
+// The same values as circleSplatPoint() for root 0 and 1 (the same expressions), the parts common
+// to both roots computed once.
 inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s,
                                     vcg::Point3d out[2], int rootOut[2]) {
+  if (!c.valid) return 0;
+  const vcg::Point3d w = n - c.axis * (n * c.axis);
+  const double wlen = w.Norm();
+  if (!(wlen > 1e-12)) return 0;
+  const vcg::Point3d wh = w / wlen;
+  const double alpha = -((c.centre - p) * n) / wlen;
+  const double t2 = c.radius * c.radius - alpha * alpha;
+  if (t2 < 0) return 0;
+  const double t = std::sqrt(t2);
+  const vcg::Point3d v = c.axis ^ wh;
+  const vcg::Point3d base = c.centre + wh * alpha;
+  const double s2 = s * s;
   int k = 0;
   for (int root = 0; root < 2; ++root) {
-    vcg::Point3d x;
-    if (!circleSplatPoint(c, p, n, s, root, x)) continue;
+    const vcg::Point3d x = base + v * (root == 0 ? -t : t);
+    if (!((x - p).SquaredNorm() <= s2)) continue;
     if (k == 1 && root == 1 && (x - out[0]).SquaredNorm() == 0) break; // tangent: one point
     out[k] = x;
     rootOut[k] = root;
