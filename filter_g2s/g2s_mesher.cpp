@@ -248,8 +248,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     }
     const P3 centre = searchCentre(A, B, dir, radius);
     const double r2 = radius * radius * (1.0 + 1e-12);
-    // The points of the search sphere (other than the front triangle's), moved to the front of
-    // near_ (so that G2S tests, which most often fail on one of them, stop early), each with the
+    // The points of the search sphere (other than the front triangle's), each with the
     // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
     size_t found = 0;
     std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
@@ -258,15 +257,12 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     grid_.toFloat(centre, cf);
     const double slack = 2.0 * grid_.floatSlack();
     const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
-    // Swapping a found point to the front moves to position k a point examined already (found
-    // <= k), and leaves the later positions alone, so the collected indices stay valid.
-    const size_t hits = near_.collectWithin(cf, outer, near_.hit.data());
+    const std::uint32_t front[3] = {a, b, c};
+    const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());
     for (size_t h = 0; h < hits; ++h) {
-      const size_t k = near_.hit[h];
-      const std::uint32_t id = near_.id[k];
+      const std::uint32_t id = near_.id[near_.hit[h]];
       const P3& q = pts_[id];
-      if ((q - centre).SquaredNorm() > r2 || id == a || id == b || id == c) continue;
-      if (k != found) near_.swap(k, found); // what comes to k was examined already
+      if ((q - centre).SquaredNorm() > r2) continue; // within the float error outside
       ++found;
       if (interior(id)) continue; // counts as found and for G2S balls, never a candidate
       // A point of the previous level's sphere was a candidate there and was rejected by the
@@ -325,8 +321,9 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // candidates (the first one or two are usually taken, so most of a sort would be wasted),
     // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
     // list: (R², id) is a strict order, the ids being distinct.
+    // (Evaluated without short-circuit branches: the selection is a chain of conditional moves.)
     auto before = [](const Scored& x, const Scored& y) {
-      return x.radius2 < y.radius2 || (x.radius2 == y.radius2 && x.id < y.id);
+      return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
     };
     const size_t count = scored_.size();
     const bool sorted = count > 8;
@@ -334,8 +331,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     for (size_t done = 0; done < count; ++done) {
       if (!sorted) {
         size_t best = done;
-        for (size_t j = done + 1; j < count; ++j)
-          if (before(scored_[j], scored_[best])) best = j;
+        for (size_t j = done + 1; j < count; ++j) best = before(scored_[j], scored_[best]) ? j : best;
         std::swap(scored_[done], scored_[best]);
       }
       const std::uint32_t id = scored_[done].id;
@@ -661,7 +657,7 @@ size_t Mesher::boundaryLoops() {
     return found;
   };
   for (std::uint32_t v = 0; v < grid_.size(); ++v) {
-    std::uint32_t w;
+    std::uint32_t w = 0;
     while (nextFrom(v, w)) {
       ++loops;
       std::uint32_t cur = v;

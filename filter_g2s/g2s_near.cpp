@@ -18,8 +18,8 @@ struct Kernels {
   std::size_t (*append)(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
                         std::size_t rangeCount, const float* c, float r2, std::uint32_t* oid, float* ox, float* oy,
                         float* oz, std::size_t n);
-  std::size_t (*collect)(const float* x, const float* y, const float* z, std::size_t size, const float* c, float r2,
-                         std::uint32_t* out);
+  std::size_t (*collect)(const std::uint32_t* id, const float* x, const float* y, const float* z, std::size_t size,
+                         const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out);
   bool (*border)(const std::uint32_t* id, const float* x, const float* y, const float* z, std::size_t size,
                  const float* c, float inner, float outer, const std::uint32_t* skip, std::uint32_t* out,
                  std::size_t* count);
@@ -69,8 +69,12 @@ std::size_t appendBase(const float* fx, const float* fy, const float* fz, const 
   return n;
 }
 
-std::size_t collectBase(const float* x, const float* y, const float* z, std::size_t size, const float* c, float r2,
-                        std::uint32_t* out) {
+inline bool skipped(std::uint32_t id, const std::uint32_t* skip) {
+  return id == skip[0] || id == skip[1] || id == skip[2];
+}
+
+std::size_t collectBase(const std::uint32_t* id, const float* x, const float* y, const float* z, std::size_t size,
+                        const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out) {
   std::size_t count = 0;
 #if defined(__SSE2__)
   const __m128 cx = _mm_set1_ps(c[0]), cy = _mm_set1_ps(c[1]), cz = _mm_set1_ps(c[2]), rr = _mm_set1_ps(r2);
@@ -82,13 +86,14 @@ std::size_t collectBase(const float* x, const float* y, const float* z, std::siz
     unsigned mask = static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(d2, rr)));
     if (size - k < 4) mask &= (1u << (size - k)) - 1;
     while (mask != 0) {
-      out[count++] = static_cast<std::uint32_t>(k + std::size_t(__builtin_ctz(mask)));
+      const std::size_t j = k + std::size_t(__builtin_ctz(mask));
       mask &= mask - 1;
+      if (!skipped(id[j], skip)) out[count++] = static_cast<std::uint32_t>(j);
     }
   }
 #else
   for (std::size_t k = 0; k < size; ++k)
-    if (dist2(x[k], y[k], z[k], c) <= r2) out[count++] = static_cast<std::uint32_t>(k);
+    if (dist2(x[k], y[k], z[k], c) <= r2 && !skipped(id[k], skip)) out[count++] = static_cast<std::uint32_t>(k);
 #endif
   return count;
 }
@@ -98,7 +103,7 @@ bool borderBase(const std::uint32_t* id, const float* x, const float* y, const f
                 std::size_t* count) {
   std::size_t n = 0;
   auto take = [&](std::size_t k, float d2) { // false: inside
-    if (id[k] == skip[0] || id[k] == skip[1] || id[k] == skip[2]) return true;
+    if (skipped(id[k], skip)) return true;
     if (d2 < inner) return false;
     out[n++] = static_cast<std::uint32_t>(k);
     return true;
@@ -191,15 +196,28 @@ __attribute__((target("avx2,popcnt"))) std::size_t appendAvx2(const float* fx, c
   return n;
 }
 
-__attribute__((target("avx2,popcnt"))) std::size_t collectAvx2(const float* x, const float* y, const float* z,
-                                                       std::size_t size, const float* c, float r2, std::uint32_t* out) {
+// Lanes whose id is none of skip[0..2].
+__attribute__((target("avx2,popcnt"))) inline unsigned keptLanes8(const std::uint32_t* id, __m256i s0, __m256i s1,
+                                                                 __m256i s2) {
+  const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(id));
+  const __m256i skip = _mm256_or_si256(_mm256_or_si256(_mm256_cmpeq_epi32(ids, s0), _mm256_cmpeq_epi32(ids, s1)),
+                                       _mm256_cmpeq_epi32(ids, s2));
+  return ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(skip))) & 0xffu;
+}
+
+__attribute__((target("avx2,popcnt"))) std::size_t collectAvx2(const std::uint32_t* id, const float* x, const float* y,
+                                                              const float* z, std::size_t size, const float* c, float r2,
+                                                              const std::uint32_t* skip, std::uint32_t* out) {
   const __m256 cx = _mm256_set1_ps(c[0]), cy = _mm256_set1_ps(c[1]), cz = _mm256_set1_ps(c[2]);
   const __m256 rr = _mm256_set1_ps(r2);
+  const __m256i s0 = _mm256_set1_epi32(int(skip[0])), s1 = _mm256_set1_epi32(int(skip[1])),
+                s2 = _mm256_set1_epi32(int(skip[2]));
   const __m256i iota = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   std::size_t count = 0;
   for (std::size_t k = 0; k < size; k += 8) {
     const __m256 d2 = dist2Avx2(_mm256_loadu_ps(x + k), _mm256_loadu_ps(y + k), _mm256_loadu_ps(z + k), cx, cy, cz);
-    const unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, rr, _CMP_LE_OQ))) & validLanes8(size - k);
+    const unsigned mask = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, rr, _CMP_LE_OQ))) & validLanes8(size - k) &
+                          keptLanes8(id + k, s0, s1, s2);
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + count),
                         _mm256_permutevar8x32_epi32(_mm256_add_epi32(iota, _mm256_set1_epi32(int(k))), compressIndex(mask)));
     count += std::size_t(__builtin_popcount(mask));
@@ -219,10 +237,7 @@ __attribute__((target("avx2,popcnt"))) bool borderAvx2(const std::uint32_t* id, 
   std::size_t n = 0;
   for (std::size_t k = 0; k < size; k += 8) {
     const __m256 d2 = dist2Avx2(_mm256_loadu_ps(x + k), _mm256_loadu_ps(y + k), _mm256_loadu_ps(z + k), cx, cy, cz);
-    const __m256i ids = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(id + k));
-    const __m256i skipped = _mm256_or_si256(_mm256_or_si256(_mm256_cmpeq_epi32(ids, s0), _mm256_cmpeq_epi32(ids, s1)),
-                                            _mm256_cmpeq_epi32(ids, s2));
-    const unsigned keep = ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(skipped))) & validLanes8(size - k);
+    const unsigned keep = keptLanes8(id + k, s0, s1, s2) & validLanes8(size - k);
     const unsigned inside = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, in, _CMP_LT_OQ))) & keep;
     if (inside != 0) return true;
     const unsigned near = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, on, _CMP_LE_OQ))) & keep;
@@ -269,16 +284,28 @@ __attribute__((target("avx512f,popcnt"))) std::size_t appendAvx512(const float* 
   return n;
 }
 
-__attribute__((target("avx512f,popcnt"))) std::size_t collectAvx512(const float* x, const float* y, const float* z,
-                                                            std::size_t size, const float* c, float r2,
-                                                            std::uint32_t* out) {
+// Lanes whose id is none of skip[0..2].
+__attribute__((target("avx512f,popcnt"))) inline __mmask16 keptLanes16(const std::uint32_t* id, __m512i s0, __m512i s1,
+                                                                      __m512i s2) {
+  const __m512i ids = _mm512_loadu_si512(id);
+  return __mmask16(~(_mm512_cmpeq_epi32_mask(ids, s0) | _mm512_cmpeq_epi32_mask(ids, s1) |
+                     _mm512_cmpeq_epi32_mask(ids, s2)));
+}
+
+__attribute__((target("avx512f,popcnt"))) std::size_t collectAvx512(const std::uint32_t* id, const float* x,
+                                                                   const float* y, const float* z, std::size_t size,
+                                                                   const float* c, float r2, const std::uint32_t* skip,
+                                                                   std::uint32_t* out) {
   const __m512 cx = _mm512_set1_ps(c[0]), cy = _mm512_set1_ps(c[1]), cz = _mm512_set1_ps(c[2]);
   const __m512 rr = _mm512_set1_ps(r2);
+  const __m512i s0 = _mm512_set1_epi32(int(skip[0])), s1 = _mm512_set1_epi32(int(skip[1])),
+                s2 = _mm512_set1_epi32(int(skip[2]));
   const __m512i iota = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
   std::size_t count = 0;
   for (std::size_t k = 0; k < size; k += 16) {
     const __m512 d2 = dist2Avx512(_mm512_loadu_ps(x + k), _mm512_loadu_ps(y + k), _mm512_loadu_ps(z + k), cx, cy, cz);
-    const __mmask16 mask = _mm512_mask_cmp_ps_mask(validLanes16(size - k), d2, rr, _CMP_LE_OQ);
+    const __mmask16 mask =
+        _mm512_mask_cmp_ps_mask(__mmask16(validLanes16(size - k) & keptLanes16(id + k, s0, s1, s2)), d2, rr, _CMP_LE_OQ);
     _mm512_storeu_si512(out + count, _mm512_maskz_compress_epi32(mask, _mm512_add_epi32(iota, _mm512_set1_epi32(int(k)))));
     count += std::size_t(__builtin_popcount(unsigned(mask)));
   }
@@ -297,10 +324,7 @@ __attribute__((target("avx512f,popcnt"))) bool borderAvx512(const std::uint32_t*
   std::size_t n = 0;
   for (std::size_t k = 0; k < size; k += 16) {
     const __m512 d2 = dist2Avx512(_mm512_loadu_ps(x + k), _mm512_loadu_ps(y + k), _mm512_loadu_ps(z + k), cx, cy, cz);
-    const __m512i ids = _mm512_loadu_si512(id + k);
-    const __mmask16 skipped = __mmask16(_mm512_cmpeq_epi32_mask(ids, s0) | _mm512_cmpeq_epi32_mask(ids, s1) |
-                                        _mm512_cmpeq_epi32_mask(ids, s2));
-    const __mmask16 keep = __mmask16(validLanes16(size - k) & ~skipped);
+    const __mmask16 keep = __mmask16(validLanes16(size - k) & keptLanes16(id + k, s0, s1, s2));
     if (_mm512_mask_cmp_ps_mask(keep, d2, in, _CMP_LT_OQ) != 0) return true;
     const __mmask16 near = _mm512_mask_cmp_ps_mask(keep, d2, on, _CMP_LE_OQ);
     _mm512_storeu_si512(out + n, _mm512_maskz_compress_epi32(near, _mm512_add_epi32(iota, _mm512_set1_epi32(int(k)))));
@@ -384,8 +408,8 @@ void NearList::appendWithin(const float* fx, const float* fy, const float* fz, c
   size = gKernels->append(fx, fy, fz, ranges, rangeCount, c, r2, id.data(), x.data(), y.data(), z.data(), size);
 }
 
-std::size_t NearList::collectWithin(const float* c, float r2, std::uint32_t* out) const {
-  return gKernels->collect(x.data(), y.data(), z.data(), size, c, r2, out);
+std::size_t NearList::collectWithin(const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out) const {
+  return gKernels->collect(id.data(), x.data(), y.data(), z.data(), size, c, r2, skip, out);
 }
 
 bool NearList::insideOrBorderline(const float* c, float inner, float outer, const std::uint32_t* skip,

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace growth {
@@ -39,12 +38,6 @@ struct NearList {
   void reserve(std::size_t count) {
     if (count + kNearPad > id.size()) grow(count + kNearPad);
   }
-  void swap(std::size_t i, std::size_t j) {
-    std::swap(id[i], id[j]);
-    std::swap(x[i], x[j]);
-    std::swap(y[i], y[j]);
-    std::swap(z[i], z[j]);
-  }
   // Appends the points begin..end-1 of the arrays fx, fy, fz (which hold kNearPad entries past the
   // last point) whose float squared distance to c, ((dx·dx + dy·dy) + dz·dz), is <= r2; their ids
   // are their indices. Calls reserve() itself.
@@ -56,9 +49,10 @@ struct NearList {
   // The same for several ranges, ranges[2k]..ranges[2k+1]-1 in turn, holding `points` in all.
   void appendWithin(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
                     std::size_t rangeCount, std::size_t points, const float* c, float r2);
-  // Writes to out, in increasing order, the positions k < size whose float squared distance to c is
-  // <= r2 (out must hold size + kNearPad entries); returns how many.
-  std::size_t collectWithin(const float* c, float r2, std::uint32_t* out) const;
+  // Writes to out, in increasing order, the positions k < size of the points other than skip[0..2]
+  // whose float squared distance to c is <= r2 (out must hold size + kNearPad entries); returns
+  // how many.
+  std::size_t collectWithin(const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out) const;
   // For an emptiness test against a ball of centre c: true when a point other than skip[0..2] has
   // float squared distance < inner (inside, whatever the float error); otherwise writes to out the
   // positions of the points other than skip[0..2] with inner <= d2 <= outer (to be decided exactly;

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <vector>
 
@@ -104,10 +105,17 @@ TEST(G2SNear, CollectWithinAndTheEmptinessScanAgreeWithAPlainLoop) {
       ASSERT_EQ(near.size, len); // all taken
       const float c[3] = {0.4f, 0.6f, 0.5f};
       std::vector<std::uint32_t> out(near.size + kNearPad);
-      const size_t hits = near.collectWithin(c, 0.1f, out.data());
+      const std::uint32_t skipNone[3] = {~0u, ~0u, ~0u}, skipSome[3] = {2, 3, 17};
       std::vector<std::uint32_t> want;
       for (std::uint32_t k = 0; k < len; ++k)
         if (dist2(near.x[k], near.y[k], near.z[k], c) <= 0.1f) want.push_back(k);
+      size_t hits = near.collectWithin(c, 0.1f, skipNone, out.data());
+      ASSERT_EQ(hits, want.size()) << simdLevelName(level);
+      for (size_t i = 0; i < hits; ++i) EXPECT_EQ(out[i], want[i]);
+      // Skipped ids are left out (ids are the positions here: all points were appended in order).
+      want.erase(std::remove_if(want.begin(), want.end(), [](std::uint32_t k) { return k == 2 || k == 3 || k == 17; }),
+                 want.end());
+      hits = near.collectWithin(c, 0.1f, skipSome, out.data());
       ASSERT_EQ(hits, want.size()) << simdLevelName(level);
       for (size_t i = 0; i < hits; ++i) EXPECT_EQ(out[i], want[i]);
 

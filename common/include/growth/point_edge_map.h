@@ -21,6 +21,10 @@
 #include <stdexcept>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace growth {
 
 class PointEdgeMap {
@@ -161,6 +165,22 @@ private:
   const std::uint32_t* find(std::uint32_t v, std::uint32_t w) const {
     std::uint32_t n = count_[v];
     const std::uint32_t* blk = &slot_[size_t(v) * kInline];
+#if defined(__SSE2__)
+    // All entries inline (almost always): the block's eight entries compared at once, instead of
+    // a loop whose exit depends on where w is (a mispredicted branch per lookup). Entries past
+    // count_[v] are masked off; w occurs at most once.
+    if (n <= kInline) {
+      static_assert(kInline == 8, "two 4-lane compares per block");
+      const __m128i key = _mm_set1_epi32(static_cast<int>(w));
+      const __m128i index = _mm_set1_epi32(static_cast<int>(kIndex));
+      const __m128i lo = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(blk)), index);
+      const __m128i hi = _mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(blk + 4)), index);
+      const unsigned match = (unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(lo, key)))) |
+                              unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(hi, key)))) << 4) &
+                             ((1u << n) - 1u);
+      return match != 0 ? blk + __builtin_ctz(match) : nullptr;
+    }
+#endif
     for (;;) {
       const std::uint32_t here = n <= kInline ? n : kInline - 1;
       for (std::uint32_t i = 0; i < here; ++i)
