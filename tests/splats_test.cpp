@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
 
 using vcg::Point3d;
 
@@ -187,4 +189,191 @@ TEST(SplatRadii, SameRadiiForAnyNumberOfThreads) {
     EXPECT_EQ(st.clamped, one.clamped);
     EXPECT_EQ(st.meanRadius, one.meanRadius);
   }
+}
+
+// The local splat radius as computed before the scratch arrays and the sort were rewritten for
+// speed (commit 7970b81, verbatim): the rewrite must give the same radius and the same fan, bit for
+// bit, on every kind of neighbourhood.
+namespace reference {
+using growth::tangentFrame;
+struct Q {
+  double x, y;
+  double angle;
+  double dist2;
+  int index;
+};
+inline double cross(const Q& a, const Q& b) { return a.x * b.y - a.y * b.x; }
+// A monotonic function of the polar angle of (x, y) over [0, 2π), in [0, 4): the same cyclic
+// order as atan2 without the trigonometry.
+inline double pseudoAngle(double x, double y) {
+  if (y >= 0) return x >= 0 ? y / (x + y) : 1 - x / (y - x);
+  return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
+}
+inline double orient(const Q& a, const Q& b, double cx, double cy) {
+  return (b.x - a.x) * (cy - a.y) - (b.y - a.y) * (cx - a.x);
+}
+// > 0 when d lies inside the circumcircle of the counter-clockwise triangle (origin, b, c).
+inline double inCircleOrigin(const Q& b, const Q& c, const Q& d) {
+  const double b2 = b.x * b.x + b.y * b.y, c2 = c.x * c.x + c.y * c.y, d2 = d.x * d.x + d.y * d.y;
+  return -(b.x * (c.y * d2 - c2 * d.y) - b.y * (c.x * d2 - c2 * d.x) + b2 * (c.x * d.y - c.y * d.x));
+}
+
+// Scratch buffers of the computation, reused from point to point.
+struct FanScratch {
+  std::vector<Q> fan;
+  std::vector<int> prev, next, work;
+  std::vector<char> alive;
+};
+
+double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                 std::vector<int>* keptOut, FanScratch& scratch) {
+  std::vector<Q>& fan = scratch.fan;
+  std::vector<int>&prev = scratch.prev, &next = scratch.next, &work = scratch.work;
+  std::vector<char>& alive = scratch.alive;
+  fan.clear();
+  if (keptOut != nullptr) keptOut->clear();
+
+  vcg::Point3d e1, e2;
+  tangentFrame(n, e1, e2);
+  // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
+  // p_i - p, rescaled to the full distance |p_i - p|.
+  // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
+  for (size_t i = 0; i < neighbours.size(); ++i) {
+    const vcg::Point3d v = neighbours[i] - p;
+    const double len2 = v.SquaredNorm();
+    const double h = v * n;
+    const double tlen2 = len2 - h * h;
+    if (!(tlen2 > 1e-24 * len2)) continue; // on the normal line: no direction in T_p
+    const double scale = std::sqrt(len2 / tlen2);
+    Q q;
+    q.x = (v * e1) * scale;
+    q.y = (v * e2) * scale;
+    q.angle = pseudoAngle(q.x, q.y);
+    q.dist2 = len2;
+    q.index = static_cast<int>(i);
+    fan.push_back(q);
+  }
+  std::sort(fan.begin(), fan.end(), [](const Q& a, const Q& b) {
+    if (a.angle != b.angle) return a.angle < b.angle;
+    if (a.dist2 != b.dist2) return a.dist2 < b.dist2;
+    return a.index < b.index;
+  });
+  // The same direction (up to rounding): only the nearer point can be a Delaunay neighbour.
+  {
+    size_t w = 0;
+    for (size_t i = 0; i < fan.size(); ++i) {
+      if (w > 0) {
+        const Q& a = fan[w - 1];
+        const double c = cross(a, fan[i]);
+        if (c * c <= 1e-24 * a.dist2 * fan[i].dist2 && a.x * fan[i].x + a.y * fan[i].y > 0) {
+          if (fan[i].dist2 < a.dist2) fan[w - 1] = fan[i];
+          continue;
+        }
+      }
+      fan[w++] = fan[i];
+    }
+    fan.resize(w);
+    // The same check across the seam of the sort.
+    if (fan.size() > 1) {
+      const Q &a = fan.back(), &b = fan.front();
+      const double c = cross(a, b);
+      if (c * c <= 1e-24 * a.dist2 * b.dist2 && a.x * b.x + a.y * b.y > 0) {
+        if (a.dist2 < b.dist2) fan.front() = a;
+        fan.pop_back();
+      }
+    }
+  }
+  const int m = static_cast<int>(fan.size());
+  if (m < 3) return -1;
+
+  prev.resize(size_t(m));
+  next.resize(size_t(m));
+  alive.assign(size_t(m), 1);
+  for (int i = 0; i < m; ++i) prev[size_t(i)] = i - 1, next[size_t(i)] = i + 1;
+  prev[0] = m - 1;
+  next[size_t(m - 1)] = 0;
+  work.resize(size_t(m));
+  std::iota(work.begin(), work.end(), 0);
+  std::reverse(work.begin(), work.end()); // popped from the back: index 0 first
+  int count = m;
+
+  // Flip central edges p–q_i that are not locally Delaunay; a flipped q_i leaves the fan.
+  while (!work.empty() && count > 3) {
+    const int i = work.back();
+    work.pop_back();
+    if (!alive[size_t(i)]) continue;
+    const int j = prev[size_t(i)], l = next[size_t(i)];
+    const Q &qj = fan[size_t(j)], &qi = fan[size_t(i)], &ql = fan[size_t(l)];
+    // Both fan triangles (p, q_j, q_i) and (p, q_i, q_l) must exist (angles in (0, π)).
+    if (!(cross(qj, qi) > 0) || !(cross(qi, ql) > 0)) continue;
+    // The quadrilateral p, q_j, q_i, q_l must be convex for the flip: p and q_i on opposite sides
+    // of the new diagonal q_j–q_l.
+    const double sp = orient(qj, ql, 0.0, 0.0), si = orient(qj, ql, qi.x, qi.y);
+    if (!(sp > 0 && si < 0)) continue;
+    if (!(inCircleOrigin(qj, qi, ql) > 0)) continue; // locally Delaunay: keep
+    alive[size_t(i)] = 0;
+    --count;
+    next[size_t(j)] = l;
+    prev[size_t(l)] = j;
+    work.push_back(l);
+    work.push_back(j);
+  }
+
+  // The fan must be closed (every angle below π) for p's Voronoi cell to be bounded.
+  int start = 0;
+  while (!alive[size_t(start)]) ++start;
+  double radius = 0;
+  int i = start;
+  do {
+    const int l = next[size_t(i)];
+    const Q &a = fan[size_t(i)], &b = fan[size_t(l)];
+    const double c = cross(a, b);
+    if (!(c > 0) || l == i) return -1;
+    // Circumradius of (p, a, b) = distance from p to the Voronoi vertex of the three.
+    const double ab2 = (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y);
+    radius = std::max(radius, std::sqrt(a.dist2 * b.dist2 * ab2) / (2.0 * c));
+    if (keptOut != nullptr) keptOut->push_back(a.index);
+    i = l;
+  } while (i != start);
+  return radius;
+}
+
+double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                        std::vector<int>* keptOut) {
+  FanScratch scratch;
+  return fanRadius(p, n, neighbours, keptOut, scratch);
+}
+} // namespace reference
+
+TEST(SplatRadii, LocalRadiusIsThatOfTheReferenceImplementation) {
+  growth::Random rnd(21);
+  size_t bounded = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const Point3d p(rnd.uniform(-1, 1), rnd.uniform(-1, 1), rnd.uniform(-1, 1));
+    const Point3d n = rnd.unitVector();
+    Point3d e1, e2;
+    growth::tangentFrame(n, e1, e2);
+    std::vector<Point3d> nb;
+    const int kind = trial % 6;
+    const int count = 1 + int(rnd.uniform(0, kind == 5 ? 80 : 30));
+    for (int k = 0; k < count; ++k) {
+      double u = rnd.uniform(-1, 1), v = rnd.uniform(-1, 1), h = rnd.uniform(-0.2, 0.2);
+      if (kind == 1) u = std::round(u * 4) / 4, v = std::round(v * 4) / 4, h = 0; // lattice: cocircular ties
+      if (kind == 2) {                                                            // regular polygon
+        const double a = 2 * M_PI * k / count;
+        u = std::cos(a), v = std::sin(a), h = 0;
+      }
+      nb.push_back(p + e1 * u + e2 * v + n * h);
+      if (kind == 3 && k % 3 == 0) nb.push_back(p + (e1 * u + e2 * v) * 2.0); // same direction, farther
+      if (kind == 4 && k % 4 == 0) nb.push_back(p + n * rnd.uniform(-1, 1));  // on the normal line
+      if (kind == 4 && k % 5 == 0) nb.push_back(p + e1 * u + e2 * v - n * h); // mirror: equal angle and distance
+    }
+    std::vector<int> keptA, keptB;
+    const double a = growth::localSplatRadius(p, n, nb, &keptA);
+    const double b = reference::localSplatRadius(p, n, nb, &keptB);
+    ASSERT_EQ(a, b) << "trial " << trial;
+    ASSERT_EQ(keptA, keptB) << "trial " << trial;
+    bounded += a >= 0 ? 1 : 0;
+  }
+  EXPECT_GT(bounded, 1000u);
 }

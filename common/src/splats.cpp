@@ -34,26 +34,47 @@ inline double inCircleOrigin(const Q& b, const Q& c, const Q& d) {
 } // namespace
 
 namespace {
-// Scratch buffers of the computation, reused from point to point.
+// Scratch buffers of the computation, reused from point to point (grown, never shrunk).
 struct FanScratch {
   std::vector<Q> fan;
-  std::vector<int> prev, next, work;
+  std::vector<int> links; // prev, next, work stack: 5 per fan point
   std::vector<char> alive;
 };
 
+// Sorts fan[0, m) by (angle, dist2, index): insertion sort for the usual short fans (a strict
+// total order, so the same result as any other sort), std::sort for long ones, and for fans with a
+// NaN angle (a neighbour on the normal line up to rounding: then the comparison is no order, and
+// only the same algorithm as before gives the same result).
+void sortFan(Q* fan, int m, bool nanAngle) {
+  auto less = [](const Q& a, const Q& b) {
+    if (a.angle != b.angle) return a.angle < b.angle;
+    if (a.dist2 != b.dist2) return a.dist2 < b.dist2;
+    return a.index < b.index;
+  };
+  if (m > 48 || nanAngle) {
+    std::sort(fan, fan + m, less);
+    return;
+  }
+  for (int i = 1; i < m; ++i) {
+    const Q q = fan[i];
+    int j = i;
+    for (; j > 0 && less(q, fan[j - 1]); --j) fan[j] = fan[j - 1];
+    fan[j] = q;
+  }
+}
+
 double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
                  std::vector<int>* keptOut, FanScratch& scratch) {
-  std::vector<Q>& fan = scratch.fan;
-  std::vector<int>&prev = scratch.prev, &next = scratch.next, &work = scratch.work;
-  std::vector<char>& alive = scratch.alive;
-  fan.clear();
   if (keptOut != nullptr) keptOut->clear();
+  if (scratch.fan.size() < neighbours.size()) scratch.fan.resize(neighbours.size() + 16);
+  Q* fan = scratch.fan.data();
 
   vcg::Point3d e1, e2;
   tangentFrame(n, e1, e2);
   // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
   // p_i - p, rescaled to the full distance |p_i - p|.
   // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
+  int size = 0;
   for (size_t i = 0; i < neighbours.size(); ++i) {
     const vcg::Point3d v = neighbours[i] - p;
     const double len2 = v.SquaredNorm();
@@ -61,23 +82,20 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     const double tlen2 = len2 - h * h;
     if (!(tlen2 > 1e-24 * len2)) continue; // on the normal line: no direction in T_p
     const double scale = std::sqrt(len2 / tlen2);
-    Q q;
+    Q& q = fan[size++];
     q.x = (v * e1) * scale;
     q.y = (v * e2) * scale;
     q.angle = pseudoAngle(q.x, q.y);
     q.dist2 = len2;
     q.index = static_cast<int>(i);
-    fan.push_back(q);
   }
-  std::sort(fan.begin(), fan.end(), [](const Q& a, const Q& b) {
-    if (a.angle != b.angle) return a.angle < b.angle;
-    if (a.dist2 != b.dist2) return a.dist2 < b.dist2;
-    return a.index < b.index;
-  });
+  bool nanAngle = false;
+  for (int i = 0; i < size; ++i) nanAngle |= fan[i].angle != fan[i].angle;
+  sortFan(fan, size, nanAngle);
   // The same direction (up to rounding): only the nearer point can be a Delaunay neighbour.
   {
-    size_t w = 0;
-    for (size_t i = 0; i < fan.size(); ++i) {
+    int w = 0;
+    for (int i = 0; i < size; ++i) {
       if (w > 0) {
         const Q& a = fan[w - 1];
         const double c = cross(a, fan[i]);
@@ -88,38 +106,39 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
       }
       fan[w++] = fan[i];
     }
-    fan.resize(w);
+    size = w;
     // The same check across the seam of the sort.
-    if (fan.size() > 1) {
-      const Q &a = fan.back(), &b = fan.front();
+    if (size > 1) {
+      const Q &a = fan[size - 1], &b = fan[0];
       const double c = cross(a, b);
       if (c * c <= 1e-24 * a.dist2 * b.dist2 && a.x * b.x + a.y * b.y > 0) {
-        if (a.dist2 < b.dist2) fan.front() = a;
-        fan.pop_back();
+        if (a.dist2 < b.dist2) fan[0] = a;
+        --size;
       }
     }
   }
-  const int m = static_cast<int>(fan.size());
+  const int m = size;
   if (m < 3) return -1;
 
-  prev.resize(size_t(m));
-  next.resize(size_t(m));
-  alive.assign(size_t(m), 1);
-  for (int i = 0; i < m; ++i) prev[size_t(i)] = i - 1, next[size_t(i)] = i + 1;
+  // The work stack holds at most m + 2 per flip (at most m flips) entries.
+  if (scratch.links.size() < size_t(5 * m)) scratch.links.resize(size_t(5 * m) + 64);
+  if (scratch.alive.size() < size_t(m)) scratch.alive.resize(size_t(m) + 16);
+  int* prev = scratch.links.data();
+  int* next = prev + m;
+  int* work = next + m; // 3m entries
+  char* alive = scratch.alive.data();
+  for (int i = 0; i < m; ++i) prev[i] = i - 1, next[i] = i + 1, alive[i] = 1, work[i] = m - 1 - i;
   prev[0] = m - 1;
-  next[size_t(m - 1)] = 0;
-  work.resize(size_t(m));
-  std::iota(work.begin(), work.end(), 0);
-  std::reverse(work.begin(), work.end()); // popped from the back: index 0 first
+  next[m - 1] = 0;
+  int top = m; // popped from the back: index 0 first
   int count = m;
 
   // Flip central edges p–q_i that are not locally Delaunay; a flipped q_i leaves the fan.
-  while (!work.empty() && count > 3) {
-    const int i = work.back();
-    work.pop_back();
-    if (!alive[size_t(i)]) continue;
-    const int j = prev[size_t(i)], l = next[size_t(i)];
-    const Q &qj = fan[size_t(j)], &qi = fan[size_t(i)], &ql = fan[size_t(l)];
+  while (top > 0 && count > 3) {
+    const int i = work[--top];
+    if (!alive[i]) continue;
+    const int j = prev[i], l = next[i];
+    const Q &qj = fan[j], &qi = fan[i], &ql = fan[l];
     // Both fan triangles (p, q_j, q_i) and (p, q_i, q_l) must exist (angles in (0, π)).
     if (!(cross(qj, qi) > 0) || !(cross(qi, ql) > 0)) continue;
     // The quadrilateral p, q_j, q_i, q_l must be convex for the flip: p and q_i on opposite sides
@@ -127,22 +146,22 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     const double sp = orient(qj, ql, 0.0, 0.0), si = orient(qj, ql, qi.x, qi.y);
     if (!(sp > 0 && si < 0)) continue;
     if (!(inCircleOrigin(qj, qi, ql) > 0)) continue; // locally Delaunay: keep
-    alive[size_t(i)] = 0;
+    alive[i] = 0;
     --count;
-    next[size_t(j)] = l;
-    prev[size_t(l)] = j;
-    work.push_back(l);
-    work.push_back(j);
+    next[j] = l;
+    prev[l] = j;
+    work[top++] = l;
+    work[top++] = j;
   }
 
   // The fan must be closed (every angle below π) for p's Voronoi cell to be bounded.
   int start = 0;
-  while (!alive[size_t(start)]) ++start;
+  while (!alive[start]) ++start;
   double radius = 0;
   int i = start;
   do {
-    const int l = next[size_t(i)];
-    const Q &a = fan[size_t(i)], &b = fan[size_t(l)];
+    const int l = next[i];
+    const Q &a = fan[i], &b = fan[l];
     const double c = cross(a, b);
     if (!(c > 0) || l == i) return -1;
     // Circumradius of (p, a, b) = distance from p to the Voronoi vertex of the three.
