@@ -7,6 +7,19 @@
 namespace growth {
 namespace g2s {
 
+namespace {
+// Inverse of mortonSpread: gathers every third bit (bit 3i to bit i).
+std::uint64_t mortonCompact(std::uint64_t v) {
+  v &= 0x1249249249249249ull;
+  v = (v | v >> 2) & 0x10c30c30c30c30c3ull;
+  v = (v | v >> 4) & 0x100f00f00f00f00full;
+  v = (v | v >> 8) & 0x1f0000ff0000ffull;
+  v = (v | v >> 16) & 0x1f00000000ffffull;
+  v = (v | v >> 32) & 0x1fffff;
+  return v;
+}
+} // namespace
+
 void MortonGrid::build(std::vector<P3> points, double cellSize) {
   const size_t n = points.size();
   pts_.clear();
@@ -14,6 +27,9 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   stride_ = 0;
   order_.clear();
   table_.clear();
+  brickOf_.clear();
+  brickBase_.clear();
+  brickOff_.clear();
   cells_ = 0;
   box_.SetNull();
   for (const P3& p : points) box_.Add(p);
@@ -117,6 +133,10 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   floatSlack_ = 8.0 * std::sqrt(3.0) * std::ldexp(extent, -24) + 1e-300;
 
   for (size_t i = 0; i < n; ++i) cells_ += (i == 0 || key[i] != key[i - 1]);
+
+  // Cell lookups: bricks of 4×4×4 cells where that is compact (see brickOf_), else a hash table of
+  // the occupied cells.
+  if (buildBricks(key)) return;
   size_t cap = 16;
   while (cap < 4 * cells_) cap *= 2; // load <= 1/4: clustered keys make short probe runs
   mask_ = cap - 1;
@@ -133,6 +153,43 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
     table_[h].end = static_cast<std::uint32_t>(j);
     i = j;
   }
+}
+
+bool MortonGrid::buildBricks(const HugeVector<std::uint64_t>& key) {
+  const size_t n = key.size();
+  std::int64_t dim[3];
+  double boxBricks = 1;
+  for (int a = 0; a < 3; ++a) {
+    dim[a] = (maxCell_[a] >> 2) + 1;
+    boxBricks *= double(dim[a]);
+  }
+  // At most 4 bytes per point for the brick index of the box (a surface's box holds far fewer
+  // bricks than points), and offsets that fit 16 bits.
+  if (boxBricks > double(n)) return false;
+  size_t bricks = 0;
+  for (size_t i = 0; i < n; ++bricks) {
+    size_t j = i + 1;
+    while (j < n && (key[j] >> 6) == (key[i] >> 6)) ++j;
+    if (j - i > 65535) return false;
+    i = j;
+  }
+  for (int a = 0; a < 3; ++a) brickDim_[a] = dim[a];
+  assignHuge(brickOf_, static_cast<size_t>(boxBricks), 0u);
+  assignHuge(brickBase_, bricks, 0u);
+  assignHuge(brickOff_, bricks * 65, std::uint16_t(0));
+  size_t b = 0;
+  for (size_t i = 0; i < n; ++b) {
+    const std::uint64_t brick = key[i] >> 6;
+    brickOf_[brickIndex(std::int64_t(mortonCompact(brick)), std::int64_t(mortonCompact(brick >> 1)),
+                        std::int64_t(mortonCompact(brick >> 2)))] = static_cast<std::uint32_t>(b + 1);
+    brickBase_[b] = static_cast<std::uint32_t>(i);
+    std::uint16_t* off = &brickOff_[b * 65];
+    size_t j = i;
+    for (; j < n && (key[j] >> 6) == brick; ++j) ++off[(key[j] & 63) + 1];
+    for (int c = 0; c < 64; ++c) off[c + 1] = static_cast<std::uint16_t>(off[c + 1] + off[c]);
+    i = j;
+  }
+  return true;
 }
 
 std::int64_t MortonGrid::nearest(const P3& c, std::int64_t exclude, double maxRadius, double* squaredDistance) const {

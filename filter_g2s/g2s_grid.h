@@ -5,10 +5,12 @@
 // The grid *owns* the points and stores them sorted by cell, cells in Morton (Z-curve) order: the
 // index of a point in the grid is its index everywhere in the mesher, so per-point arrays are laid
 // out in space-filling-curve order and the advancing front walks memory coherently. Building is
-// one stable LSD radix sort of the 63-bit cell keys; a query probes one open-addressing table
-// whose 16-byte entries hold the cell key and its point range (one cache line per probe) and
-// scans contiguous coordinates. Only occupied cells are stored: memory grows with the cloud, not
-// with its bounding box.
+// one stable LSD radix sort of the 63-bit cell keys. A query finds each cell's point range through
+// bricks of 4×4×4 cells (an index over the box's bricks, then 16-bit offsets inside an occupied
+// brick: three loads, no hashing) when the box holds at most one brick per point, as it does for
+// points on a surface; otherwise it probes an open-addressing table whose 16-byte entries hold the
+// cell key and its point range. Either way only occupied cells (bricks) carry ranges, so memory
+// grows with the cloud, not with its bounding box. Coordinates are scanned contiguously.
 //
 // Compared with growth::PointGrid (separate key/start arrays, x-major order that is not the
 // caller's point order, a second sort for a spatial order) this removes a build and two memory
@@ -54,11 +56,16 @@ public:
   void releaseSearch() {
     HugeVector<float>().swap(coords_);
     HugeVector<Slot>().swap(table_);
+    HugeVector<std::uint32_t>().swap(brickOf_);
+    HugeVector<std::uint32_t>().swap(brickBase_);
+    HugeVector<std::uint16_t>().swap(brickOff_);
   }
   // Frees the points too: only order() is left (size() is then 0).
   void releasePoints() { std::vector<P3>().swap(pts_); }
   double cellSize() const { return cell_; }
   size_t cellCount() const { return cells_; }
+  // Cells are looked up through bricks (compact clouds) rather than the hash table.
+  bool usesBricks() const { return !brickOf_.empty(); }
   const vcg::Box3d& box() const { return box_; }
 
   // Calls f(index, squaredDistance) for every point with |p − c| <= radius, cell by cell.
@@ -133,7 +140,8 @@ public:
   size_t memoryBytes() const {
     return pts_.capacity() * sizeof(P3) + coords_.capacity() * sizeof(float) +
            order_.capacity() * sizeof(std::uint32_t) +
-           table_.capacity() * sizeof(Slot);
+           table_.capacity() * sizeof(Slot) + (brickOf_.capacity() + brickBase_.capacity()) * sizeof(std::uint32_t) +
+           brickOff_.capacity() * sizeof(std::uint16_t);
   }
 
   // Morton code helpers (public for the tests).
@@ -197,6 +205,31 @@ private:
       lo[a] = std::max<std::int64_t>(coord(c[a] - radius, a), 0);
       hi[a] = std::min<std::int64_t>(coord(c[a] + radius, a), maxCell_[a]);
       if (lo[a] > hi[a]) return false;
+    }
+    if (!brickOf_.empty()) {
+      if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
+        // More cells in the box than occupied ones: walk the occupied cells instead.
+        for (size_t b = 0; b < brickBase_.size(); ++b)
+          for (int k = 0; k < 64; ++k) {
+            const std::uint16_t* off = &brickOff_[b * 65 + size_t(k)];
+            if (off[0] != off[1] && cell(brickBase_[b] + off[0], brickBase_[b] + off[1])) return true;
+          }
+        return false;
+      }
+      // Morton place of a cell in its brick from the low two bits of each coordinate.
+      static constexpr unsigned kPlace[4] = {0, 1, 8, 9};
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+          const size_t row = brickIndex(x >> 2, y >> 2, 0);
+          const unsigned xy = kPlace[x & 3] | kPlace[y & 3] << 1;
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+            const std::uint32_t b = brickOf_[row + size_t(z >> 2)];
+            if (b == 0) continue;
+            const std::uint16_t* off = &brickOff_[size_t(b - 1) * 65 + (xy | kPlace[z & 3] << 2)];
+            if (off[0] != off[1] && cell(brickBase_[b - 1] + off[0], brickBase_[b - 1] + off[1])) return true;
+          }
+        }
+      return false;
     }
     // Morton bits of each cell coordinate in the (small) ranges, computed once per query.
     std::uint64_t ky[kMaxSpan], kz[kMaxSpan];
@@ -288,6 +321,19 @@ private:
   double floatSlack_ = 0;
   std::vector<std::uint32_t> order_;
   HugeVector<Slot> table_;
+  // The alternative to table_ (then empty) when compact: bricks of 4×4×4 cells, aligned, so that
+  // a brick's points are contiguous and the low 6 bits of a cell's key are its place in the brick.
+  // brickOf_: per brick of the box (x-major), 1 + its index among the occupied bricks, 0 when
+  // empty; brickBase_: an occupied brick's first point; brickOff_: 65 offsets from it per brick,
+  // where its 64 cells begin in Morton order (the last one: its end). A lookup is three loads,
+  // without hashing or probing.
+  HugeVector<std::uint32_t> brickOf_, brickBase_;
+  HugeVector<std::uint16_t> brickOff_;
+  std::int64_t brickDim_[3] = {0, 0, 0};
+  size_t brickIndex(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return static_cast<size_t>((x * brickDim_[1] + y) * brickDim_[2] + z);
+  }
+  bool buildBricks(const HugeVector<std::uint64_t>& sortedKeys);
   vcg::Box3d box_;
   double cell_ = 1, inv_ = 1;
   std::int64_t maxCell_[3] = {-1, -1, -1};

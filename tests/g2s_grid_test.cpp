@@ -74,9 +74,11 @@ TEST(MortonGrid, PointsAreAPermutationInCellOrder) {
 TEST(MortonGrid, BallQueriesMatchBruteForceAtEveryCellSize) {
   const auto pts = torusCloud(4000, 5);
   growth::Random rng(11);
+  bool bricks = false, hash = false; // both ways of looking cells up are exercised
   for (double cell : {0.002, 0.02, 0.1, 0.35, 2.0, 50.0}) { // 0.002: keys beyond 32 bits
     MortonGrid g;
     g.build(pts, cell);
+    (g.usesBricks() ? bricks : hash) = true;
     for (int q = 0; q < 60; ++q) {
       const Point3d c = pts[size_t(q) * 61 % pts.size()] + rng.inBall(0.3);
       const double r = rng.uniform(0.0, 0.5);
@@ -88,6 +90,29 @@ TEST(MortonGrid, BallQueriesMatchBruteForceAtEveryCellSize) {
       EXPECT_EQ(got, bruteBall(g, c, r)) << "cell " << cell << " query " << q;
     }
   }
+  EXPECT_TRUE(bricks);
+  EXPECT_TRUE(hash);
+}
+
+TEST(MortonGrid, ABrickOfMoreThan65535PointsFallsBackToTheHashTable) {
+  // Brick offsets are 16 bits: a cloud whose points all fall into one brick needs the hash table.
+  growth::Random rng(5);
+  std::vector<Point3d> pts;
+  for (int i = 0; i < 70000; ++i) pts.push_back(Point3d(rng.uniform(0, 1), rng.uniform(0, 1), rng.uniform(0, 1)));
+  MortonGrid g;
+  g.build(pts, 0.3); // 4 cells along each axis: one brick
+  EXPECT_FALSE(g.usesBricks());
+  for (int q = 0; q < 5; ++q) {
+    const Point3d c(0.2 * q, 0.5, 0.9 - 0.15 * q);
+    std::set<std::uint32_t> got;
+    g.forEachInBall(c, 0.12, [&](std::uint32_t i, double) { got.insert(i); });
+    EXPECT_EQ(got, bruteBall(g, c, 0.12));
+  }
+  g.build(std::vector<Point3d>(pts.begin(), pts.begin() + 60000), 0.3);
+  EXPECT_TRUE(g.usesBricks());
+  std::set<std::uint32_t> got;
+  g.forEachInBall(Point3d(0.5, 0.5, 0.5), 0.2, [&](std::uint32_t i, double) { got.insert(i); });
+  EXPECT_EQ(got, bruteBall(g, Point3d(0.5, 0.5, 0.5), 0.2));
 }
 
 TEST(MortonGrid, PointsExactlyOnTheSphereAreFoundDespiteTheFloatPrefilter) {
