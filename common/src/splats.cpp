@@ -226,10 +226,18 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
         const int box = static_cast<int>(group) - 1;
         if (k >= end) continue;
         // The box's points sorted by x: each point of the group scans only the slice within reach.
+        // Only the box's points within reach of the box itself can be within reach of a point
+        // in it (the margin keeps every point the exact test below could accept).
         cand.clear();
-        if (box >= 0)
+        if (box >= 0) {
+          const BoxIndexer& ix = grid.indexer();
+          const vcg::Point3d& q = points[order[k]];
+          const vcg::Point3d lo = ix.corner(ix.coord(q[0], 0), ix.coord(q[1], 1), ix.coord(q[2], 2));
+          const double keep2 = reach2 * (1 + 1e-9);
           for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-            cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
+            if (squaredDistanceToBox(points[*it], lo, ix.side()) <= keep2)
+              cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
+        }
         std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.idx < b.idx; });
         for (; k < end; ++k) {
           const std::uint32_t i = order[k];
