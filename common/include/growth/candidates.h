@@ -161,20 +161,19 @@ size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& ver
   if (box < 0) return 0;
   size_t near = 0;
   const double d2 = d * d;
-  // The circle of each partner, computed once (a partner is usually listed by many splats).
-  struct Partner {
-    std::uint32_t id;
-    ParentCircle circle;
-  };
-  Partner cache[32];
-  int cached = 0;
+  // The circle of each partner, computed once (a partner is usually listed by many splats): a
+  // direct-mapped memo on the partner's id (a collision only recomputes the same circle).
+  constexpr std::uint32_t kSlots = 64;
+  std::uint32_t cachedId[kSlots];
+  ParentCircle cachedCircle[kSlots];
+  for (std::uint32_t k = 0; k < kSlots; ++k) cachedId[k] = v; // v is never its own partner
   auto circleOf = [&](std::uint32_t u) -> const ParentCircle& {
-    for (int k = 0; k < cached; ++k)
-      if (cache[k].id == u) return cache[k].circle;
-    Partner& slot = cache[cached < 32 ? cached++ : 31];
-    slot.id = u;
-    slot.circle = parentCircle(x, vertexPos[u], d);
-    return slot.circle;
+    const std::uint32_t k = u & (kSlots - 1);
+    if (cachedId[k] != u) {
+      cachedId[k] = u;
+      cachedCircle[k] = parentCircle(x, vertexPos[u], d);
+    }
+    return cachedCircle[k];
   };
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) {
     const std::uint32_t s = *it;
