@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 using growth::PointGrid;
@@ -117,7 +119,7 @@ TEST(PointGrid, BatchedNearestDistancesAreThoseOfNearest) {
   auto pts = growth::generateCloud(spec).points;
   pts.push_back(pts[17]); // a duplicate: distance 0
   pts.push_back(Point3d(40, 0, 0)); // far away: found by the full search only
-  for (double cell : {0.003, 0.05, 0.3, 4.0})
+  for (double cell : {0.04, 0.15, 0.6, 4.0}) // spacing ~0.13: from "beyond the 27 cells" to "all in a few"
     for (size_t stride : {1u, 7u}) {
       PointGrid g;
       g.build(pts, cell);
@@ -141,4 +143,43 @@ TEST(PointGrid, BatchedNearestDistancesAreThoseOfNearest) {
   one.nearestOtherSquaredDistances(1, got);
   ASSERT_EQ(got.size(), 1u);
   EXPECT_EQ(got[0], -1.0); // no other point
+}
+
+// Points of one cell are visited in input order (the cell sort is stable), also when the cell
+// coordinates need several radix passes (cells far finer than the cloud).
+TEST(PointGrid, PointsOfACellAreVisitedInInputOrder) {
+  growth::Random rnd(12);
+  // The origin point makes the grid's cells [0.005 k, 0.005 (k + 1)); each cluster keeps 0.0005
+  // away from their faces, so the test knows which points share a cell.
+  std::vector<Point3d> pts{Point3d(0, 0, 0)};
+  for (int i = 0; i < 6000; ++i) {
+    // Clusters of points sharing a cell, spread over a large extent along all three axes.
+    const Point3d c(std::floor(rnd.uniform(0, 3000)), std::floor(rnd.uniform(0, 3000)), std::floor(rnd.uniform(0, 50)));
+    pts.push_back(c * 0.01 + Point3d(0.0005, 0.0005, 0.0005) +
+                  Point3d(rnd.uniform(0, 0.004), rnd.uniform(0, 0.004), rnd.uniform(0, 0.004)));
+  }
+  for (int i = 0; i < 200; ++i) pts.push_back(pts[size_t(i) * 7]); // exact repeats land in the same cell
+  PointGrid g;
+  g.build(pts, 0.005);
+  for (int q = 0; q < 300; ++q) {
+    const Point3d c = pts[size_t(rnd.uniform(0, double(pts.size())))];
+    std::vector<int> seen;
+    g.forEachInBall(c, 0.004, [&](int i, double) { seen.push_back(i); });
+    // Brute force: the same set.
+    std::vector<int> expect;
+    for (size_t i = 0; i < pts.size(); ++i)
+      if ((pts[i] - c).SquaredNorm() <= 0.004 * 0.004) expect.push_back(int(i));
+    std::vector<int> sorted = seen;
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(sorted, expect);
+    // Within one cell (consecutive visits of points with the same cell), increasing indices.
+    for (size_t k = 1; k < seen.size(); ++k) {
+      const Point3d &a = pts[size_t(seen[k - 1])], &b = pts[size_t(seen[k])];
+      bool sameCell = true;
+      for (int ax = 0; ax < 3; ++ax) sameCell = sameCell && std::floor(a[ax] / 0.005) == std::floor(b[ax] / 0.005);
+      if (sameCell) {
+        EXPECT_LT(seen[k - 1], seen[k]);
+      }
+    }
+  }
 }

@@ -46,10 +46,42 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
     key[i] = pack(std::min(coord(p[0], lo[0]), kMaxCoord), std::min(coord(p[1], lo[1]), kMaxCoord),
                   std::min(coord(p[2], lo[2]), kMaxCoord));
   }
+  // Points ordered by key, stably (equal keys keep the input order, so queries visit points
+  // deterministically): an LSD radix sort on the key's bits that can differ (the cell coordinates
+  // are at most maxCell_), the order std::stable_sort gives.
   std::vector<std::uint32_t> order(valid.size());
-  std::iota(order.begin(), order.end(), 0u);
-  // Stable: equal keys keep the input order, so queries visit points deterministically.
-  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  {
+    auto bitsOf = [](std::int64_t v) {
+      int b = 0;
+      while (b < 63 && (std::int64_t(1) << b) <= v) ++b;
+      return b;
+    };
+    const int bx = bitsOf(maxCell_[0]), by = bitsOf(maxCell_[1]), bz = bitsOf(maxCell_[2]);
+    // The key with each coordinate in its own width: the same order as the packed key.
+    std::vector<std::uint64_t> compact(key.size());
+    for (size_t i = 0; i < key.size(); ++i) {
+      const Key k = key[i];
+      compact[i] = ((k >> (2 * kBits)) << (by + bz)) | (((k >> kBits) & Key(kMaxCoord)) << bz) | (k & Key(kMaxCoord));
+    }
+    const int total = bx + by + bz;
+    constexpr int kDigit = 11;
+    std::iota(order.begin(), order.end(), 0u);
+    std::vector<std::uint32_t> tmp(order.size());
+    std::vector<std::uint32_t> count(size_t(1) << kDigit);
+    for (int shift = 0; shift < total; shift += kDigit) {
+      std::fill(count.begin(), count.end(), 0u);
+      const std::uint64_t digitMask = (std::uint64_t(1) << kDigit) - 1;
+      for (const std::uint32_t j : order) ++count[size_t((compact[j] >> shift) & digitMask)];
+      std::uint32_t at = 0;
+      for (auto& c : count) {
+        const std::uint32_t k = c;
+        c = at;
+        at += k;
+      }
+      for (const std::uint32_t j : order) tmp[count[size_t((compact[j] >> shift) & digitMask)]++] = j;
+      order.swap(tmp);
+    }
+  }
 
   sortedPoint_.resize(valid.size());
   pointIndex_.resize(valid.size());
@@ -65,11 +97,12 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   cellStart_.push_back(static_cast<std::uint32_t>(order.size()));
 
   size_t cap = 16;
-  while (cap < 2 * cellKey_.size()) cap *= 2;
+  shift_ = 60;
+  while (cap < 2 * cellKey_.size()) cap *= 2, --shift_;
   mask_ = cap - 1;
   table_.assign(cap, -1);
   for (size_t s = 0; s < cellKey_.size(); ++s) {
-    size_t h = hash(cellKey_[s]) & mask_;
+    size_t h = hash(cellKey_[s]);
     while (table_[h] >= 0) h = (h + 1) & mask_;
     table_[h] = static_cast<std::int64_t>(s);
   }

@@ -61,12 +61,15 @@ private:
   static Key pack(std::int64_t x, std::int64_t y, std::int64_t z) {
     return (Key(x) << (2 * kBits)) | (Key(y) << kBits) | Key(z);
   }
-  static size_t hash(Key k) { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> 17); }
+  // Fibonacci hashing: the top bits of the product depend on every bit of the key (bits 17 and
+  // up, taken before, ignored a cell's x for tables below 2^25 slots: cells differing only in x
+  // probed one run of slots).
+  size_t hash(Key k) const { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_); }
   // Slot of a cell in cellStart_/cellKey_, or -1 when the cell is empty.
   std::int64_t findCell(std::int64_t x, std::int64_t y, std::int64_t z) const {
     if (x < 0 || y < 0 || z < 0 || x > maxCell_[0] || y > maxCell_[1] || z > maxCell_[2]) return -1;
     const Key k = pack(x, y, z);
-    size_t h = hash(k) & mask_;
+    size_t h = hash(k);
     for (;;) {
       const std::int64_t slot = table_[h];
       if (slot < 0) return -1;
@@ -83,6 +86,7 @@ private:
   std::vector<std::uint32_t> cellStart_; // CSR offsets into the sorted arrays, size cells+1
   std::vector<std::int64_t> table_;    // open addressing: slot of a cell, -1 when free
   size_t mask_ = 0;
+  int shift_ = 63;                     // 64 − log2(table size)
   std::vector<Point> sortedPoint_;     // coordinates in cell order
   std::vector<std::uint32_t> pointIndex_; // original index, in cell order
 };
