@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <set>
 
 using growth::BoxGrid;
@@ -146,6 +148,61 @@ TEST(BoxGrid, BoxesReferToExactlyThePointsWithinD) {
     EXPECT_EQ(got, expect);
     // Box normals agree with the torus normals of their points.
     for (auto i : got) EXPECT_GT(c.normals[i] * g.boxNormal(box), 0.0);
+  }
+}
+
+// Points exactly on box faces (a lattice of step d from the origin of the boxes): rounding can
+// put a box two steps away in reach; those points take build()'s general path. Every box refers
+// to the points whose reach test (per axis: the boxes from coord(p − d) to coord(p + d), squared
+// slab distances summed x, y, z, at most d²) accepts it, in index order, for any number of
+// threads. (Not quite brute force: a box at distance exactly d can fall outside that range by
+// rounding, as it always could.)
+TEST(BoxGrid, PointsOnBoxFacesAreReferredToExactly) {
+  const double d = 0.3;
+  std::vector<Point3d> pts, nrm;
+  growth::Random rnd(14);
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j) {
+      pts.emplace_back(i * d, j * d, 0.0);
+      nrm.emplace_back(0, 0, 1);
+      pts.emplace_back(rnd.uniform(0, 39 * d), rnd.uniform(0, 39 * d), rnd.uniform(-0.01, 0.01));
+      nrm.emplace_back(0, 0, 1);
+    }
+  BoxGrid one, two;
+  one.build(pts, nrm, d, nullptr, 1);
+  two.build(pts, nrm, d, nullptr, 2);
+  EXPECT_GT(one.pointsAtBoxFaces(), 0u);
+  EXPECT_EQ(two.pointsAtBoxFaces(), one.pointsAtBoxFaces());
+  ASSERT_EQ(two.boxCount(), one.boxCount());
+  const auto& ix = one.indexer();
+  std::map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>> expect;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const Point3d& p = pts[i];
+    std::int64_t lo[3], hi[3];
+    double sq[3][8];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = ix.coord(p[a] - d, a);
+      hi[a] = std::min(ix.coord(p[a] + d, a), lo[a] + 7);
+      for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
+        const double l = ix.origin()[a] + double(c) * d;
+        const double v = p[a] < l ? l - p[a] : (p[a] > l + d ? p[a] - l - d : 0.0);
+        sq[a][c - lo[a]] = v * v;
+      }
+    }
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (!(sq[0][x - lo[0]] + sq[1][y - lo[1]] + sq[2][z - lo[2]] > d * d))
+            expect[{x, y, z}].push_back(std::uint32_t(i));
+  }
+  ASSERT_EQ(one.boxCount(), expect.size());
+  for (const auto& e : expect) {
+    const Point3d centre = ix.corner(e.first[0], e.first[1], e.first[2]) + Point3d(0.5 * d, 0.5 * d, 0.5 * d);
+    for (const BoxGrid* g : {&one, &two}) {
+      const int box = g->boxOf(centre);
+      ASSERT_GE(box, 0);
+      ASSERT_EQ(std::vector<std::uint32_t>(g->pointsBegin(box), g->pointsEnd(box)), e.second);
+    }
   }
 }
 

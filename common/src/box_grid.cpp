@@ -317,7 +317,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   boxMinDot_.clear();
   known_.clear();
   normals_ = &normals;
-  dTooLargeCount_ = dropped_ = 0;
+  dTooLargeCount_ = dropped_ = facePoints_ = 0;
   hash_.reset(16);
   if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
 
@@ -376,21 +376,42 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
 
   // Pass 0 (per point, on threads): the boxes within reach as a mask of the 27 offsets -1..1 from
   // the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing bits are the order
-  // x, y, z; kBeyond when a box outside that block is within reach (rounding at a box face:
-  // such points take the general path below).
+  // x, y, z; kBeyond when the boxes in reach are not all in that block (rounding at a box face:
+  // such points take the general path below). The same ranges, slab distances and tests as
+  // forBoxesWithin.
   constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
   std::vector<std::uint32_t> mask(n);
   parallelFor(n, parallelParts(n, threads, 8192), [&](size_t i0, size_t i1, int) {
     for (size_t i = i0; i < i1; ++i) {
+      const vcg::Point3d& p = pts[i];
       const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
+      std::int64_t lo[3], hi[3];
+      double sq[3][3];
+      bool inBlock = true;
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = index_.coord(p[a] - side, a);
+        hi[a] = std::min(index_.coord(p[a] + side, a), lo[a] + 7);
+        inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
+        if (!inBlock) break;
+        for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
+          const double l = index_.origin()[a] + double(c) * side;
+          const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
+          sq[a][c - lo[a]] = v * v;
+        }
+      }
+      if (!inBlock) {
+        mask[i] = kBeyond;
+        continue;
+      }
       std::uint32_t m = 0;
-      forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-        const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
-        if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
-          m |= std::uint32_t(1) << ((dx + 1) * 9 + (dy + 1) * 3 + (dz + 1));
-        else
-          m |= kBeyond;
-      });
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+          const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
+          if (sxy > d2) continue;
+          const int base = int((x - oc[0] + 1) * 9 + (y - oc[1] + 1) * 3 - oc[2] + 1);
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+            if (!(sxy + sq[2][z - lo[2]] > d2)) m |= std::uint32_t(1) << (base + int(z));
+        }
       mask[i] = m;
     }
   });
@@ -400,6 +421,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // (near), so the hash is asked once per own box and offset, not once per point.
   const int fillParts = parallelParts(n, threads, 8192);
   std::vector<std::vector<std::uint32_t>> count(static_cast<size_t>(fillParts)); // [part][box]
+  for (size_t i = 0; i < n; ++i) facePoints_ += (mask[i] & kBeyond) ? 1 : 0;
   auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     const int id = hash_.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(count[0].size()));
     if (size_t(id) == count[0].size())

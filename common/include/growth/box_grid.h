@@ -256,6 +256,9 @@ public:
   bool dTooLarge(int box) const { return boxMinDot(box) < 0; }
   size_t dTooLargeCount() const { return dTooLargeCount_; }
   size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
+  // Points whose boxes in reach were not all among the 27 around their own box (rounding at a box
+  // face); build() takes a slower path for them.
+  size_t pointsAtBoxFaces() const { return facePoints_; }
   size_t references() const { return points_.size(); }
   size_t memoryBytes() const;
 
@@ -271,7 +274,7 @@ private:
   mutable std::vector<std::uint8_t> known_; // box normal computed
   mutable SphereSampling sampling_{0};      // for the box normals computed on first use
   const std::vector<vcg::Point3d>* normals_ = nullptr;
-  size_t dTooLargeCount_ = 0, dropped_ = 0;
+  size_t dTooLargeCount_ = 0, dropped_ = 0, facePoints_ = 0;
 };
 
 // Squared distance from p to the axis-aligned cube [lo, lo + side]^3.
