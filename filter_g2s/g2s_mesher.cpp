@@ -252,19 +252,27 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
     size_t found = 0;
     std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
-    scored_.clear();
     float cf[3];
     grid_.toFloat(centre, cf);
     const double slack = 2.0 * grid_.floatSlack();
     const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
     const std::uint32_t front[3] = {a, b, c};
     const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());
+    // Each hit point q (within the float error of the sphere, or inside) is decided exactly, and
+    // taken without branches on the outcome.
+    // scored_ is a buffer here: its first `count` entries are this level's candidates.
+    if (scored_.size() < hits + 1) scored_.resize(hits + 1);
+    size_t count = 0;
+    const P3 AB = A - B;
+    const double collinear = 1e-20 * edge2;
     for (size_t h = 0; h < hits; ++h) {
-      const std::uint32_t id = near_.id[near_.hit[h]];
+      const std::uint32_t id = near_.hit[h];
       const P3& q = pts_[id];
-      if ((q - centre).SquaredNorm() > r2) continue; // within the float error outside
-      ++found;
-      if (interior(id)) continue; // counts as found and for G2S balls, never a candidate
+      // In the search sphere.
+      const bool in = !((q - centre).SquaredNorm() > r2);
+      found += in;
+      // An interior point counts as found and for G2S balls, never as a candidate.
+      const bool candidate = in & !interior(id);
       // A point of the previous level's sphere was a candidate there and was rejected by the
       // topological or the G2S test; both depend on the point, the edge and the mesh only, which
       // have not changed since, so the G2S ranking below would reject it again. Only the points
@@ -273,14 +281,14 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       // counts as found, and when it is the only point found it is taken directly below, as the
       // single point of the region (the spheres are nested on the growing side only, so a level
       // can hold fewer points than the one before).
-      if (previousR2 >= 0 && (q - previousCentre).SquaredNorm() <= previousR2) {
-        seenBefore = id;
-        continue;
-      }
-      const double n2 = ((A - B) ^ (q - B)).SquaredNorm();
+      const bool previous = (previousR2 >= 0) & ((q - previousCentre).SquaredNorm() <= previousR2);
+      const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
+      seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+      // Not collinear with the edge, so a triangle; R² its squared circumradius.
+      const double n2 = (AB ^ (q - B)).SquaredNorm();
       const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
-      if (!(n2 > 1e-20 * edge2 * aq2)) continue; // collinear with the edge: no triangle
-      scored_.push_back(Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0});
+      scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
+      count += candidate & !previous & (n2 > collinear * aq2);
     }
     previousCentre = centre;
     previousR2 = r2;
@@ -291,9 +299,9 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       const std::uint32_t id = static_cast<std::uint32_t>(seenBefore);
       const P3& q = pts_[id];
       const double n2 = ((A - B) ^ (q - B)).SquaredNorm();
-      if (n2 > 1e-20 * edge2 * (q - A).SquaredNorm()) scored_.push_back(Scored{0, 0.0, id, 0});
+      if (n2 > 1e-20 * edge2 * (q - A).SquaredNorm()) scored_[count++] = Scored{0, 0.0, id, 0};
     }
-    if (scored_.empty()) continue;
+    if (count == 0) continue;
     auto accept = [&](std::uint32_t id, bool single) {
       const P3 newNormal = (A - B) ^ (pts_[id] - B);
       Candidate cand;
@@ -307,7 +315,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // Sec. 3.2 step 4.2: a single point in the search region is taken directly (when the
     // topological tests allow it).
     if (found == 1) {
-      if (topologyAllows(a, b, c, scored_.front().id)) return accept(scored_.front().id, true);
+      if (topologyAllows(a, b, c, scored_[0].id)) return accept(scored_[0].id, true);
       continue;
     }
     // Several points: the reference point is the one whose smallest sphere through it and the
@@ -325,9 +333,8 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     auto before = [](const Scored& x, const Scored& y) {
       return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
     };
-    const size_t count = scored_.size();
     const bool sorted = count > 8;
-    if (sorted) std::sort(scored_.begin(), scored_.end(), before);
+    if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
     for (size_t done = 0; done < count; ++done) {
       if (!sorted) {
         size_t best = done;

@@ -49,9 +49,8 @@ struct NearList {
   // The same for several ranges, ranges[2k]..ranges[2k+1]-1 in turn, holding `points` in all.
   void appendWithin(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
                     std::size_t rangeCount, std::size_t points, const float* c, float r2);
-  // Writes to out, in increasing order, the positions k < size of the points other than skip[0..2]
-  // whose float squared distance to c is <= r2 (out must hold size + kNearPad entries); returns
-  // how many.
+  // Writes to out, in list order, the ids of the points other than skip[0..2] whose float squared
+  // distance to c is <= r2 (out must hold size + kNearPad entries); returns how many.
   std::size_t collectWithin(const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out) const;
   // For an emptiness test against a ball of centre c: true when a point other than skip[0..2] has
   // float squared distance < inner (inside, whatever the float error); otherwise writes to out the
