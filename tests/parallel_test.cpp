@@ -57,3 +57,34 @@ TEST(Parallel, AnExceptionOfAnyPartReachesTheCallerAfterAllParts) {
                }),
                std::logic_error);
 }
+
+TEST(Parallel, ChunksCoverEveryItemOnceWorkerZeroHere) {
+  for (size_t n : {0u, 1u, 5u, 1000u, 4097u})
+    for (int workers : {1, 2, 3}) {
+      std::vector<std::atomic<int>> seen(n);
+      for (auto& s : seen) s = 0;
+      std::atomic<int> chunksHere{0};
+      const std::thread::id self = std::this_thread::get_id();
+      growth::parallelChunks(n, workers, 64, [&](size_t b, size_t e, int worker) {
+        EXPECT_LE(e - b, 64u);
+        EXPECT_EQ(b % 64, 0u);
+        if (worker == 0) {
+          EXPECT_EQ(std::this_thread::get_id(), self);
+          ++chunksHere;
+        }
+        for (size_t i = b; i < e; ++i) ++seen[i];
+      });
+      for (size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i].load(), 1) << n << " " << workers;
+    }
+}
+
+TEST(Parallel, AnExceptionInAChunkStopsTheOthersAndReachesTheCaller) {
+  std::atomic<int> chunks{0};
+  EXPECT_THROW(growth::parallelChunks(1000000, 2, 10,
+                                      [&](size_t b, size_t, int) {
+                                        ++chunks;
+                                        if (b == 500) throw std::runtime_error("chunk 50");
+                                      }),
+               std::runtime_error);
+  EXPECT_LT(chunks.load(), 100000); // handing out stopped soon after the failure
+}

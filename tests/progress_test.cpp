@@ -55,3 +55,25 @@ TEST(Progress, NoCallbackIsANoOp) {
   p.phase("x", 0, 100);
   EXPECT_NO_THROW(p.update(0.5));
 }
+
+// advanceTo() reports every percentage up to the new fraction once, in order, so the callbacks
+// do not depend on which fractions the calls hit (work shared by threads).
+TEST(Progress, AdvanceToReportsEveryPercentOnce) {
+  for (const std::vector<double>& fractions :
+       {std::vector<double>{0.1, 0.55, 1.0}, std::vector<double>{0.0, 0.02, 0.3, 0.3, 0.29, 0.9, 1.0},
+        std::vector<double>{1.0}}) {
+    calls.clear();
+    stopAt = -1;
+    growth::Progress p(&record);
+    p.phase("threads", 20, 40);
+    for (double f : fractions) p.advanceTo(f);
+    ASSERT_EQ(calls.size(), 21u); // 20 from phase(), then 21 .. 40
+    for (int k = 0; k <= 20; ++k) EXPECT_EQ(calls[size_t(k)], 20 + k);
+  }
+  calls.clear();
+  stopAt = 27;
+  growth::Progress p(&record);
+  p.phase("threads", 20, 40);
+  EXPECT_THROW(p.advanceTo(1.0), growth::Cancelled);
+  EXPECT_EQ(calls.back(), 27);
+}

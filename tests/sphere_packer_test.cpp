@@ -497,6 +497,31 @@ TEST(SpherePackerProgress, AFewHundredUpdatesAtMost) {
   EXPECT_GT(out.fn, 0);
 }
 
+// The progress callbacks are the same sequence for any number of threads (the phases that share
+// work between threads report every percentage they pass), so a cancel at the k-th callback is
+// reproducible.
+TEST(SpherePackerProgress, SameCallbacksForAnyNumberOfThreads) {
+  const auto ref = build("sphere", sphereSpec(), paperParams());
+  static std::vector<int> seen;
+  auto record = [](const int pos, const char*) {
+    seen.push_back(pos);
+    return true;
+  };
+  std::vector<int> first;
+  for (int threads : {1, 2, 3, 2}) {
+    sp::Params p = paperParams();
+    p.checkInvariants = false;
+    p.threads = threads;
+    seen.clear();
+    CMeshO out;
+    sp::Stat st;
+    sp::build(ref->cloud, out, p, st, record);
+    if (first.empty()) first = seen;
+    EXPECT_EQ(seen, first) << threads << " threads";
+  }
+  EXPECT_GE(first.size(), 50u);
+}
+
 TEST(SpherePackerProgress, CancelLeavesNothing) {
   const auto ref = build("sphere", sphereSpec(), paperParams());
   g_calls = 0;

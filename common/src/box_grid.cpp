@@ -374,14 +374,14 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   };
   const size_t n = pts.size();
 
-  // Pass 0 (per point, on threads): the boxes within reach as a mask of the 27 offsets -1..1 from
-  // the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing bits are the order
-  // x, y, z; kBeyond when the boxes in reach are not all in that block (rounding at a box face:
+  // Pass 0 (per point, on threads taking chunks): the boxes within reach as a mask of the 27
+  // offsets -1..1 from the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing
+  // bits are the order x, y, z; kBeyond when the boxes in reach are not all in that block (rounding at a box face:
   // such points take the general path below). The same ranges, slab distances and tests as
   // forBoxesWithin.
   constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
   std::vector<std::uint32_t> mask(n);
-  parallelFor(n, parallelParts(n, threads, 8192), [&](size_t i0, size_t i1, int) {
+  parallelChunks(n, parallelParts(n, threads, 8192), 1024, [&](size_t i0, size_t i1, int) {
     for (size_t i = i0; i < i1; ++i) {
       const vcg::Point3d& p = pts[i];
       const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
@@ -456,7 +456,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
           ++cnt[size_t(id)];
         }
       }
-      if (progress != nullptr && (i & 16383) == 0) progress->update(0.3 * double(i) / double(n));
+      if (progress != nullptr && (i & 16383) == 0) progress->advanceTo(0.3 * double(i) / double(n));
     }
   }
   const size_t boxes = count[0].size();
@@ -492,7 +492,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
         for (std::uint32_t m = mask[i]; m != 0; m &= m - 1) points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
       }
       if (part == 0 && progress != nullptr && ((i - i0) & 16383) == 0)
-        progress->update(0.3 + 0.3 * double(i - i0) / double(i1 - i0));
+        progress->advanceTo(0.3 + 0.3 * double(i - i0) / double(i1 - i0));
     }
   });
   std::vector<std::uint32_t>().swap(ownOf);
@@ -515,11 +515,16 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   std::vector<std::int32_t>().swap(near);
   std::vector<std::uint32_t> kept(boxes);
   // A box costs a few microseconds: below a few hundred boxes one thread is faster.
-  const int parts = parallelParts(boxes, threads, 256);
-  std::vector<size_t> partDropped(size_t(parts), 0), partTooLarge(size_t(parts), 0);
+  const int workers = parallelParts(boxes, threads, 256);
+  std::vector<size_t> workerDropped(size_t(workers), 0), workerTooLarge(size_t(workers), 0);
   sampling_ = boxNormalSampling(); // shares the tables
-  parallelFor(boxes, parts, [&](size_t b0, size_t b1, int part) {
-    const SphereSampling sampling(sampling_); // own scratch
+  struct Worker {
+    SphereSampling sampling;
+    char pad[64]; // no cache line shared with the next thread's scratch
+  };
+  std::vector<Worker> samplings(size_t(workers), Worker{sampling_, {}}); // own scratch each
+  parallelChunks(boxes, workers, 32, [&](size_t b0, size_t b1, int worker) {
+    const SphereSampling& sampling = samplings[size_t(worker)].sampling;
     size_t dropped = 0, tooLarge = 0;
     for (size_t b = b0; b < b1; ++b) {
       const size_t begin = start_[b], n = start_[b + 1] - begin;
@@ -534,13 +539,13 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
         known_[b] = 1;
         if (boxMinDot_[b] < 0) ++tooLarge;
       }
-      if (part == 0 && progress != nullptr && ((b - b0) & 4095) == 0)
-        progress->update(0.6 + 0.4 * double(b - b0) / double(b1 - b0));
     }
-    partDropped[size_t(part)] = dropped;
-    partTooLarge[size_t(part)] = tooLarge;
+    workerDropped[size_t(worker)] += dropped;
+    workerTooLarge[size_t(worker)] += tooLarge;
+    if (worker == 0 && progress != nullptr) progress->advanceTo(0.6 + 0.4 * double(b1) / double(boxes));
   });
-  for (int k = 0; k < parts; ++k) dropped_ += partDropped[size_t(k)], dTooLargeCount_ += partTooLarge[size_t(k)];
+  if (progress != nullptr) progress->advanceTo(1.0);
+  for (int k = 0; k < workers; ++k) dropped_ += workerDropped[size_t(k)], dTooLargeCount_ += workerTooLarge[size_t(k)];
   size_t w = 0;
   for (size_t b = 0; b < boxes; ++b) {
     const size_t begin = start_[b];

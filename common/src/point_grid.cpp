@@ -183,10 +183,12 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
   squared.assign(builtSize_ == 0 ? 0 : (builtSize_ - 1) / stride + 1, -1.0);
   const size_t cells = cellKey_.size();
   if (cells == 0) return;
-  // A cell costs about as much as a few nearest() calls: parts of at least a few hundred cells.
-  const int parts = parallelParts(cells, threads, 512);
-  parallelFor(cells, parts, [&](size_t s0, size_t s1, int) {
-    std::vector<std::uint32_t> ring1; // [begin, end) of the occupied cells around, own cell excluded
+  // A cell costs about as much as a few nearest() calls: threads for at least a few hundred cells
+  // each, taking chunks of cells.
+  const int workers = parallelParts(cells, threads, 512);
+  std::vector<std::vector<std::uint32_t>> ring1s(static_cast<size_t>(workers));
+  parallelChunks(cells, workers, 256, [&](size_t s0, size_t s1, int worker) {
+    std::vector<std::uint32_t>& ring1 = ring1s[size_t(worker)]; // [begin, end) of the occupied cells around, own cell excluded
     for (size_t slot = s0; slot < s1; ++slot) {
       const size_t b = cellStart_[slot], e = cellStart_[slot + 1];
       bool any = false;

@@ -200,23 +200,30 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     for (size_t i = 0; i < points.size(); ++i) order[start[size_t(own[i] + 1)]++] = static_cast<std::uint32_t>(i);
     std::vector<std::int32_t>().swap(own);
     // start[g] is now the end of group g (group 0: no box; group b + 1: box b), and the groups
-    // lie in order in `order`. The positions of `order` are cut into one contiguous part per
-    // thread; a part walks the groups it overlaps (a group cut in two is gathered by both parts,
-    // in the same order, so every point gets the same neighbour list). Each point's radius goes
-    // to its own slot, the counters are summed per part: the result is the same for any number
-    // of threads.
+    // lie in order in `order`. The positions of `order` are handed out in chunks to the threads
+    // (parallel.h); a chunk walks the groups it overlaps (a group cut in two is gathered for both
+    // chunks, in the same order, so every point gets the same neighbour list). Each point's radius
+    // goes to its own slot and the counters are integers summed per thread: the result is the
+    // same for any number of threads and any scheduling.
     const size_t n = points.size();
-    const int parts = parallelParts(n, threads, 2048);
-    std::vector<SplatSizeStats> partStats(static_cast<size_t>(parts));
-    parallelFor(n, parts, [&](size_t k0, size_t k1, int part) {
+    const int workers = parallelParts(n, threads, 2048);
+    struct Cand {
+      double x, y, z;
+      std::uint32_t idx;
+    };
+    struct Worker {
       FanScratch scratch;
-      struct Cand {
-        double x, y, z;
-        std::uint32_t idx;
-      };
       std::vector<Cand> cand;
       std::vector<vcg::Point3d> nb;
-      SplatSizeStats& pst = partStats[size_t(part)];
+      SplatSizeStats stats;
+      char pad[64]; // no cache line shared with the next thread's state
+    };
+    std::vector<Worker> state(static_cast<size_t>(workers));
+    parallelChunks(n, workers, 1024, [&](size_t k0, size_t k1, int worker) {
+      FanScratch& scratch = state[size_t(worker)].scratch;
+      std::vector<Cand>& cand = state[size_t(worker)].cand;
+      std::vector<vcg::Point3d>& nb = state[size_t(worker)].nb;
+      SplatSizeStats& pst = state[size_t(worker)].stats;
       const double reach = 2 * globalRadius, reach2 = reach * reach;
       size_t k = k0;
       size_t group = size_t(std::upper_bound(start.begin(), start.begin() + std::ptrdiff_t(boxes + 1),
@@ -259,12 +266,12 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
           } else {
             radius[i] = static_cast<float>(r);
           }
-          if (part == 0 && progress != nullptr && ((k - k0 + 1) & 16383) == 0)
-            progress->update(double(k - k0 + 1) / double(k1 - k0));
         }
       }
+      if (worker == 0 && progress != nullptr) progress->advanceTo(double(k1) / double(n));
     });
-    for (const SplatSizeStats& p : partStats) st.unbounded += p.unbounded, st.clamped += p.clamped;
+    if (progress != nullptr) progress->advanceTo(1.0);
+    for (const Worker& w : state) st.unbounded += w.stats.unbounded, st.clamped += w.stats.clamped;
   }
   double sum = 0;
   for (float r : radius) sum += r;

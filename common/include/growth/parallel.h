@@ -6,7 +6,10 @@
 // started for the call and joined before it returns. The caller writes each item's result to its
 // own slot of a pre-sized array and combines per-part counters in part order afterwards, so the
 // result never depends on the number of threads or on their scheduling.
+// parallelChunks() hands out small chunks in order to whichever thread is free instead: a thread
+// slowed down by other load on the machine then simply takes fewer of them.
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <exception>
 #include <thread>
@@ -61,6 +64,49 @@ void parallelFor(size_t n, int parts, F&& f) {
   run(0);
   for (int k = started; k < parts; ++k) run(k);
   for (auto& t : workers) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+}
+
+// Calls f(begin, end, worker) for the chunks [k·chunk, (k + 1)·chunk) ∩ [0, n), handed out in
+// order to `workers` threads as they become free; worker 0 is the calling thread (the only one
+// that may report progress). Which worker runs which chunk depends on scheduling, so f must write
+// per-item results to their own slots and keep per-worker state only for things whose total does
+// not depend on the split (scratch buffers, integer counts). An exception stops the handing out;
+// the first one (in worker order) is rethrown here after all workers have ended.
+template <class F>
+void parallelChunks(size_t n, int workers, size_t chunk, F&& f) {
+  chunk = std::max<size_t>(chunk, 1);
+  if (workers <= 1 || n <= chunk) {
+    for (size_t b = 0; b < n; b += chunk) f(b, std::min(n, b + chunk), 0);
+    return;
+  }
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(workers));
+  auto run = [&](int w) {
+    try {
+      while (!failed.load(std::memory_order_relaxed)) {
+        const size_t b = next.fetch_add(1, std::memory_order_relaxed) * chunk;
+        if (b >= n) break;
+        f(b, std::min(n, b + chunk), w);
+      }
+    } catch (...) {
+      errors[size_t(w)] = std::current_exception();
+      failed = true;
+    }
+  };
+  std::vector<std::thread> threads;
+  threads.reserve(size_t(workers - 1));
+  for (int w = 1; w < workers; ++w) {
+    try {
+      threads.emplace_back(run, w);
+    } catch (...) {
+      break; // no thread available: fewer workers
+    }
+  }
+  run(0);
+  for (auto& t : threads) t.join();
   for (const auto& e : errors)
     if (e) std::rethrow_exception(e);
 }

@@ -8,6 +8,7 @@
 #include <cstring> // wrap/callback.h uses strcpy without including <cstring>
 #include <wrap/callback.h>
 
+#include <algorithm>
 #include <string>
 
 namespace growth {
@@ -34,6 +35,22 @@ public:
     if (percent == last_) return;
     last_ = percent;
     if (!cb_(percent, label_.c_str())) throw Cancelled();
+  }
+
+  // Like update(), but reports every integer percentage between the last reported one and the
+  // new one, each once and in order: the sequence of callbacks then depends only on how far the
+  // phase got, not on which fractions the calls happened to hit. For work handed out to threads
+  // (parallel.h), where the calling thread sees a scheduling-dependent subset of the fractions;
+  // call advanceTo(1) when the work is done.
+  void advanceTo(double fraction) {
+    if (cb_ == nullptr) return;
+    if (fraction < 0.0) fraction = 0.0;
+    if (fraction > 1.0) fraction = 1.0;
+    const int percent = from_ + static_cast<int>(fraction * (to_ - from_));
+    for (int p = std::max(last_ + 1, from_); p <= percent; ++p) {
+      last_ = p;
+      if (!cb_(p, label_.c_str())) throw Cancelled();
+    }
   }
 
   // Cheap check for hot loops: call update() only every `stride` iterations.
