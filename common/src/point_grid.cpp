@@ -183,12 +183,30 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
   squared.assign(builtSize_ == 0 ? 0 : (builtSize_ - 1) / stride + 1, -1.0);
   const size_t cells = cellKey_.size();
   if (cells == 0) return;
-  // A cell costs about as much as a few nearest() calls: threads for at least a few hundred cells
-  // each, taking chunks of cells.
+  // nearest() answers from rings 0 and 1 (the 3×3×3 cells around) or ring 2 (5×5×5) as soon as
+  // its best is within (ring − 1)·cell + slack, slack being the query's distance to the outside
+  // of its cell; the same tests here give the same values. Below 98 cells nearest() takes a
+  // shortcut at ring 2 (all cells by box distance): there only rings 0 and 1 are done here.
+  const bool ring2 = cells >= 98;
+  // The cells are sorted by key (x, then y, then z): the cells of a column (X, Y) with z in a
+  // range are consecutive slots, and as the cells are visited in order, the first slot of the
+  // column (X + dx, Y + dy) at z − 2 only moves forward: one cursor per column offset, moved by
+  // galloping, instead of a hash look-up per cell of the block.
+  auto seek = [&](size_t from, Key target) {
+    if (from >= cells || cellKey_[from] >= target) return from;
+    size_t lo = from, step = 1;
+    while (lo + step < cells && cellKey_[lo + step] < target) lo += step, step *= 2;
+    const size_t hi = std::min(cells, lo + step + 1);
+    return size_t(std::lower_bound(cellKey_.begin() + std::ptrdiff_t(lo), cellKey_.begin() + std::ptrdiff_t(hi), target) -
+                  cellKey_.begin());
+  };
   const int workers = parallelParts(cells, threads, 512);
-  std::vector<std::vector<std::uint32_t>> ring1s(static_cast<size_t>(workers));
-  parallelChunks(cells, workers, 256, [&](size_t s0, size_t s1, int worker) {
-    std::vector<std::uint32_t>& ring1 = ring1s[size_t(worker)]; // [begin, end) of the occupied cells around, own cell excluded
+  parallelChunks(cells, workers, 256, [&](size_t s0, size_t s1, int) {
+    size_t cursor[25] = {}; // per column offset (dx + 2)·5 + (dy + 2): first slot at z − 2 or later
+    struct Span {
+      std::uint32_t b, e; // points [b, e)
+    };
+    Span inner[9], outer[25];
     for (size_t slot = s0; slot < s1; ++slot) {
       const size_t b = cellStart_[slot], e = cellStart_[slot + 1];
       bool any = false;
@@ -197,23 +215,31 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
       const Key k = cellKey_[slot];
       const std::int64_t cx = std::int64_t(k >> (2 * kBits)), cy = std::int64_t((k >> kBits) & Key(kMaxCoord)),
                          cz = std::int64_t(k & Key(kMaxCoord));
-      ring1.clear();
-      for (std::int64_t x = cx - 1; x <= cx + 1; ++x)
-        for (std::int64_t y = cy - 1; y <= cy + 1; ++y)
-          for (std::int64_t z = cz - 1; z <= cz + 1; ++z) {
-            if (x == cx && y == cy && z == cz) continue;
-            const std::int64_t other = findCell(x, y, z);
-            if (other < 0) continue;
-            ring1.push_back(cellStart_[size_t(other)]);
-            ring1.push_back(cellStart_[size_t(other) + 1]);
-          }
+      // Slots of column offset c between z0 and z1 (clamped to the grid): [first, end).
+      auto column = [&](int c, std::int64_t z0, std::int64_t z1, size_t& first, size_t& end) {
+        const std::int64_t x = cx + c / 5 - 2, y = cy + c % 5 - 2;
+        first = end = 0;
+        if (x < 0 || y < 0 || x > maxCell_[0] || y > maxCell_[1]) return;
+        z0 = std::max<std::int64_t>(z0, 0);
+        z1 = std::min(z1, maxCell_[2]);
+        cursor[c] = seek(cursor[c], pack(x, y, std::max<std::int64_t>(cz - 2, 0)));
+        first = seek(cursor[c], pack(x, y, z0));
+        const Key last = pack(x, y, z1);
+        end = first;
+        while (end < cells && cellKey_[end] <= last) ++end;
+      };
+      int nInner = 0;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy) {
+          size_t f, t;
+          column((dx + 2) * 5 + dy + 2, cz - 1, cz + 1, f, t);
+          if (f < t) inner[nInner++] = Span{cellStart_[f], cellStart_[t]};
+        }
+      int nOuter = -1; // the 5×5×5 block's spans, gathered on first need
       for (size_t q = b; q < e; ++q) {
         const std::uint32_t idx = pointIndex_[q];
         if (idx % stride != 0) continue;
         const Point& c = sortedPoint_[q];
-        // nearest(c, .., idx), rings 0 and 1, with its stopping rule: after ring 0 when the best
-        // is within `slack` (c's distance to the outside of its cell), after ring 1 when within
-        // cell + slack; otherwise the full search.
         double slack = std::numeric_limits<double>::infinity();
         const std::int64_t cc[3] = {cx, cy, cz};
         for (int a = 0; a < 3; ++a) {
@@ -221,6 +247,7 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
           slack = std::min({slack, c[a] - lo, lo + cell_ - c[a]});
         }
         slack = std::max(slack, 0.0);
+        // Ring 0: the cell itself.
         double best = std::numeric_limits<double>::infinity();
         bool found = false;
         for (size_t i = b; i < e; ++i) {
@@ -230,17 +257,42 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
           found = true;
         }
         if (!(found && best <= slack * slack)) {
-          for (size_t r = 0; r < ring1.size(); r += 2)
-            for (size_t i = ring1[r], ie = ring1[r + 1]; i < ie; ++i) {
+          // Ring 1: the 3×3×3 block (the cell's own points again: the same minimum).
+          for (int s = 0; s < nInner; ++s)
+            for (size_t i = inner[s].b; i < inner[s].e; ++i) {
+              if (i == q) continue;
               const double d2 = (sortedPoint_[i] - c).SquaredNorm();
               if (d2 < best) best = d2;
               found = true;
             }
-          const double reach = cell_ + slack;
-          if (!(found && best <= reach * reach)) {
-            double d2 = -1;
-            found = nearest(c, &d2, static_cast<int>(idx)) >= 0;
-            best = d2;
+          const double reach1 = cell_ + slack; // nearest(): double(ring − 1)·cell + slack, ring 2
+          if (!(found && best <= reach1 * reach1)) {
+            bool done = false;
+            if (ring2) {
+              // Ring 2: the 5×5×5 block.
+              if (nOuter < 0) {
+                nOuter = 0;
+                for (int col = 0; col < 25; ++col) {
+                  size_t f, t;
+                  column(col, cz - 2, cz + 2, f, t);
+                  if (f < t) outer[nOuter++] = Span{cellStart_[f], cellStart_[t]};
+                }
+              }
+              for (int s = 0; s < nOuter; ++s)
+                for (size_t i = outer[s].b; i < outer[s].e; ++i) {
+                  if (i == q) continue;
+                  const double d2 = (sortedPoint_[i] - c).SquaredNorm();
+                  if (d2 < best) best = d2;
+                  found = true;
+                }
+              const double reach2 = 2.0 * cell_ + slack; // ring 3
+              done = found && best <= reach2 * reach2;
+            }
+            if (!done) {
+              double d2 = -1;
+              found = nearest(c, &d2, static_cast<int>(idx)) >= 0;
+              best = d2;
+            }
           }
         }
         if (found) squared[idx / stride] = best;
