@@ -242,9 +242,9 @@ bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const 
 
 } // namespace
 
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points) {
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   CloudScale sc;
-  sc.spacing = meanSpacing(points);
+  sc.spacing = meanSpacing(points, kMeanSpacingSamples, threads);
   if (!(sc.spacing > 0) || !std::isfinite(sc.spacing)) return sc;
   vcg::Box3d box;
   for (const auto& p : points) box.Add(p);
@@ -298,7 +298,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     throw Error("The window size w must be between 0 and 1000 (the paper uses 8).");
   if (params.maxBorderLength < 3)
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
-  const CloudScale scale = cloudScale(in.points);
+  const CloudScale scale = cloudScale(in.points, params.threads);
   const double diag = in.box.Diag();
   double d = params.sphereDiameter;
   if (!(d > 0)) d = defaultDiameter(scale);

@@ -43,7 +43,8 @@ struct CloudScale {
   double area = 0;           // estimated surface area (occupied cells of side 6·spacing)
   double areaSpacing = 0;    // sqrt(area / points): the side of the area each point stands for
 };
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points);
+// `threads`: for the mean spacing (0 = automatic); the scale is the same for any number.
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0);
 
 // Defaults. d = 7 × the mean spacing: the paper asks for d >= 2ν (noise ν, sec. 5.3); 7 spacings
 // keep the merged Stanford bunny scans (normals off by > 40° on 1% of the points, points up to

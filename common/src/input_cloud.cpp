@@ -163,6 +163,10 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
 }
 
 double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
+  return meanSpacing(points, maxSamples, 0);
+}
+
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads) {
   if (points.size() < 2) return 0;
   vcg::Box3d box;
   for (const auto& p : points) box.Add(p);
@@ -172,7 +176,7 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
   // The samples' nearest distances, batched by grid cell (the same values as one nearest() query
   // per sample), then summed in sample order.
   std::vector<double> d2;
-  grid.nearestOtherSquaredDistances(stride, d2);
+  grid.nearestOtherSquaredDistances(stride, d2, threads);
   double sum = 0;
   size_t n = 0;
   for (const double v : d2) {

@@ -36,7 +36,10 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check);
 
 // Mean distance of each point to its nearest other point (the cloud's mean spacing), computed on
 // up to `maxSamples` points taken at a fixed stride (deterministic). 0 for fewer than 2 points.
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = 20000);
+constexpr size_t kMeanSpacingSamples = 20000;
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
+// The same value, computed on `threads` threads (0 = automatic, growth/parallel.h).
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads);
 
 // Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
 double roughSpacing(const vcg::Box3d& box, size_t n);
