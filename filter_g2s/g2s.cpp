@@ -84,8 +84,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                           std::vector<char>(mesher.triangles().size(), 1));
     }
-    stat.boundaryEdges = mesher.boundaryEdges();
-    stat.holes = mesher.boundaryLoops();
+    const Mesher::BoundaryCount boundary = mesher.boundary();
+    stat.boundaryEdges = boundary.edges;
+    stat.holes = boundary.loops;
     mesher.orientComponents();
     stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
     mesher.releaseWorkingState();

@@ -564,28 +564,33 @@ void Mesher::orientComponents() {
   // Roots are the smallest index of their set, so in increasing order a root is final before the
   // vertices that point at it are compressed.
   for (size_t i = 0; i < n; ++i) parent[i] = root(static_cast<std::uint32_t>(i));
-  std::uint32_t components = 0;
-  for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f]) continue;
-    const std::uint32_t v = tri_[f][0];
-    if ((parent[v] & kRootFlag) != 0) continue;     // v is a numbered root
-    std::uint32_t& r = parent[parent[v]];           // v's root's entry (v itself when v is the root)
-    if ((r & kRootFlag) == 0) r = kRootFlag | components++;
-  }
   auto component = [&](std::uint32_t v) {
     const std::uint32_t p = parent[v];
     return (p & kRootFlag) != 0 ? p & ~kRootFlag : parent[p] & ~kRootFlag;
   };
-  // Centroid of each component's face corners, then its signed volume about that centroid.
-  std::vector<P3> centre(components, P3(0, 0, 0));
-  std::vector<double> volume(components, 0.0), corners(components, 0.0);
+  // Centroid of each component's face corners, then its signed volume about that centroid. The
+  // components are numbered in the order of their first face, in the same pass that sums the
+  // corners (each component's sum in face order, as in a separate pass).
+  std::vector<P3> centre;
+  std::vector<double> volume, corners;
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
-    const std::uint32_t k = component(tri_[f][0]);
-    for (std::uint32_t v : tri_[f]) centre[k] += pts_[v];
+    const std::uint32_t v = tri_[f][0];
+    if ((parent[v] & kRootFlag) == 0) {
+      std::uint32_t& r = parent[parent[v]]; // v's root's entry (v itself when v is the root)
+      if ((r & kRootFlag) == 0) {
+        r = kRootFlag | static_cast<std::uint32_t>(centre.size());
+        centre.push_back(P3(0, 0, 0));
+        corners.push_back(0.0);
+      }
+    }
+    const std::uint32_t k = component(v);
+    for (std::uint32_t w : tri_[f]) centre[k] += pts_[w];
     corners[k] += 3;
   }
-  for (std::uint32_t k = 0; k < components; ++k)
+  const size_t components = centre.size();
+  volume.assign(components, 0.0);
+  for (size_t k = 0; k < components; ++k)
     if (corners[k] > 0) centre[k] /= corners[k];
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
@@ -593,6 +598,7 @@ void Mesher::orientComponents() {
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
+  if (std::none_of(volume.begin(), volume.end(), [](double x) { return x < 0; })) return; // nothing to flip
   // All flipped triangles leave the map before any comes back (an edge shared by two of them
   // keeps its direction only once both are flipped). Two passes instead of a list of the flipped
   // faces, which on an inward closed surface would be a word per face at the memory peak.
@@ -649,10 +655,15 @@ size_t Mesher::boundaryEdges() const {
   return n;
 }
 
-size_t Mesher::boundaryLoops() {
+size_t Mesher::boundaryLoops() { return boundary().loops; }
+
+Mesher::BoundaryCount Mesher::boundary() {
   // Each boundary half-edge v→w (used, w→v unused) is followed by a boundary half-edge leaving w;
-  // at a manifold vertex there is exactly one, so every walk traces one loop (one hole).
-  size_t loops = 0;
+  // at a manifold vertex there is exactly one, so every walk traces one loop (one hole). One
+  // sweep over the points counts the boundary half-edges and starts a walk from each one not yet
+  // marked; the marks are then taken off the walked half-edges only (the map is left as it was).
+  BoundaryCount count;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
   auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
     bool found = false;
     pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
@@ -664,18 +675,26 @@ size_t Mesher::boundaryLoops() {
     return found;
   };
   for (std::uint32_t v = 0; v < grid_.size(); ++v) {
+    bool boundaryHere = false;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) {
+      const bool b = out && !in;
+      count.edges += b;
+      boundaryHere = boundaryHere || b;
+    });
+    if (!boundaryHere) continue;
     std::uint32_t w = 0;
     while (nextFrom(v, w)) {
-      ++loops;
+      ++count.loops;
       std::uint32_t cur = v;
       do {
         pem_.setMark(cur, w, true);
+        marked.emplace_back(cur, w);
         cur = w;
       } while (nextFrom(cur, w));
     }
   }
-  pem_.clearMarks(); // leave the map as it was
-  return loops;
+  for (const auto& e : marked) pem_.setMark(e.first, e.second, false);
+  return count;
 }
 
 size_t Mesher::memoryBytes() const {

@@ -126,6 +126,11 @@ public:
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
+  // Both at once, in one pass over the point-edge map.
+  struct BoundaryCount {
+    size_t edges = 0, loops = 0;
+  };
+  BoundaryCount boundary();
   size_t memoryBytes() const;
   double spacing() const { return spacing_; }
   // One word per point that callers may use once the mesh is final (saves an allocation).
@@ -146,7 +151,8 @@ private:
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
-  bool interior(std::uint32_t v) const { return edgeCount_[v] != 0 && freeEdges_[v] == 0; }
+  // (Both loads and a bitwise and: no branch, the outcome is data-dependent.)
+  bool interior(std::uint32_t v) const { return (edgeCount_[v] != 0) & (freeEdges_[v] == 0); }
   double localSpacing(std::uint32_t v) const;
   int flatnessLevelOfCos(double cosBeta) const;
   void orientSeed(std::array<std::uint32_t, 3>& tri) const;

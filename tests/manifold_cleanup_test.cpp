@@ -222,3 +222,66 @@ TEST(ManifoldCleanup, LargeMeshWithManyBowTiesEndsManifold) {
   EXPECT_EQ(st.facesRemoved, size_t(n / 10)); // each lone triangle is the smaller fan
   EXPECT_EQ(countNonManifoldVertices(tri, next, a), 0u);
 }
+
+namespace {
+
+// Fans of every vertex by a plain reference: incident alive, non-degenerate triangles joined
+// across each edge at the vertex that exactly two of them share.
+size_t referenceNonManifold(const std::vector<Triangle>& f, size_t vertexCount) {
+  size_t n = 0;
+  for (std::uint32_t v = 0; v < vertexCount; ++v) {
+    std::vector<size_t> inc;
+    for (size_t i = 0; i < f.size(); ++i)
+      if (f[i][0] != f[i][1] && f[i][1] != f[i][2] && f[i][2] != f[i][0] &&
+          (f[i][0] == v || f[i][1] == v || f[i][2] == v))
+        inc.push_back(i);
+    std::vector<size_t> comp(inc.size());
+    for (size_t i = 0; i < comp.size(); ++i) comp[i] = i;
+    auto find = [&](size_t i) {
+      while (comp[i] != i) i = comp[i];
+      return i;
+    };
+    for (std::uint32_t w = 0; w < vertexCount; ++w) {
+      if (w == v) continue;
+      std::vector<size_t> on;
+      for (size_t i = 0; i < inc.size(); ++i)
+        if (f[inc[i]][0] == w || f[inc[i]][1] == w || f[inc[i]][2] == w) on.push_back(i);
+      if (on.size() == 2) comp[find(on[0])] = find(on[1]);
+    }
+    size_t fans = 0;
+    for (size_t i = 0; i < comp.size(); ++i) fans += find(i) == i;
+    n += fans > 1;
+  }
+  return n;
+}
+
+} // namespace
+
+TEST(ManifoldCleanup, FanCountsAgreeWithAPlainReferenceOnRandomPatches) {
+  // Random subsets of a triangulated grid, some triangles flipped, duplicated or added across it:
+  // open and closed fans, bow ties, inconsistent orientations, valences above eight.
+  std::uint64_t state = 12345;
+  auto next = [&](std::uint32_t m) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return std::uint32_t((state >> 33) % m);
+  };
+  const std::uint32_t side = 6, vertices = side * side;
+  for (int round = 0; round < 300; ++round) {
+    std::vector<Triangle> f;
+    for (std::uint32_t y = 0; y + 1 < side; ++y)
+      for (std::uint32_t x = 0; x + 1 < side; ++x) {
+        const std::uint32_t a = y * side + x, b = a + 1, c = a + side, d = c + 1;
+        if (next(10) < 8) f.push_back({a, b, d});
+        if (next(10) < 8) f.push_back({a, d, c});
+      }
+    for (Triangle& t : f)
+      if (next(20) == 0) std::swap(t[1], t[2]);
+    const size_t extra = next(6);
+    for (size_t k = 0; k < extra; ++k) {
+      if (!f.empty() && next(2) == 0) f.push_back(f[next(std::uint32_t(f.size()))]);
+      else f.push_back({next(vertices), next(vertices), next(vertices)});
+    }
+    ASSERT_EQ(countNonManifoldVertices(f, vertices, std::vector<char>(f.size(), 1)), referenceNonManifold(f, vertices))
+        << "round " << round;
+  }
+}

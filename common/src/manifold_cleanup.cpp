@@ -40,6 +40,59 @@ public:
       if (alive[inc.face[k]]) local_.push_back(inc.face[k]);
     const size_t d = local_.size();
     if (d == 0) return 0;
+    if (singleFan(v)) return 1; // the usual answer, found without sorting
+    return countFans(v);
+  }
+
+  // After analyse() found several fans: the local indices of the triangles outside the kept fan.
+  void extraFans(std::vector<std::uint32_t>& removeFaces);
+
+private:
+  // A quick proof that v's triangles local_ form one fan, for the common case of at most eight
+  // consistently oriented triangles (false: not proved, countFans decides). Triangle (v, w, x)
+  // links w to x; when the w's are distinct and the x's are distinct (every half-edge at v used
+  // once), the links form disjoint paths and cycles, and two triangles share a two-triangle edge
+  // at v exactly when one's x is the other's w, so the fans are the components of the links: one
+  // fan is one path or one cycle through all of them.
+  bool singleFan(std::uint32_t v) const {
+    const size_t d = local_.size();
+    if (d > 8) return false;
+    std::uint32_t w[8], x[8];
+    for (size_t i = 0; i < d; ++i) {
+      const Triangle& t = faces_[local_[i]];
+      const int at = t[0] == v ? 0 : (t[1] == v ? 1 : 2);
+      w[i] = t[(at + 1) % 3];
+      x[i] = t[(at + 2) % 3];
+    }
+    int next[8];
+    unsigned hasPrevious = 0;
+    bool distinct = true;
+    for (size_t i = 0; i < d; ++i) {
+      int j = -1;
+      for (size_t k = 0; k < d; ++k) {
+        j = w[k] == x[i] ? int(k) : j;
+        distinct &= k <= i || (w[k] != w[i] && x[k] != x[i]);
+      }
+      next[i] = j;
+      hasPrevious |= (j >= 0 ? 1u : 0u) << (j >= 0 ? j : 0);
+    }
+    if (!distinct) return false;
+    // Paths start where no link arrives; a single path or, with none, a single cycle.
+    const unsigned all = (1u << d) - 1u, starts = all & ~hasPrevious;
+    if (starts != 0 && (starts & (starts - 1)) != 0) return false; // two paths or more
+    int cur = starts != 0 ? __builtin_ctz(starts) : 0;
+    size_t length = 1;
+    while (next[cur] >= 0 && length <= d) {
+      cur = next[cur];
+      if (starts == 0 && cur == 0) break; // back at the cycle's start
+      ++length;
+    }
+    return length == d && (starts != 0 ? next[cur] < 0 : next[cur] >= 0);
+  }
+
+  // The fans of v's triangles local_, by the union-find below (any orientation, any valence).
+  int countFans(std::uint32_t v) {
+    const size_t d = local_.size();
     keyed_.clear();
     for (size_t i = 0; i < d; ++i) {
       const Triangle& t = faces_[local_[i]];
@@ -70,41 +123,6 @@ public:
     return fans;
   }
 
-  // After analyse() found several fans: the local indices of the triangles outside the kept fan.
-  void extraFans(std::vector<std::uint32_t>& removeFaces) {
-    const size_t d = local_.size();
-    // Per root: triangle count, open flag, lowest triangle index.
-    size_.assign(d, 0);
-    fanOpen_.assign(d, 0);
-    lowest_.assign(d, ~0u);
-    for (size_t i = 0; i < d; ++i) {
-      const std::uint32_t r = root(static_cast<std::uint32_t>(i));
-      ++size_[r];
-      fanOpen_[r] |= open_[i];
-      lowest_[r] = std::min(lowest_[r], local_[i]);
-    }
-    std::uint32_t keep = ~0u;
-    for (size_t r = 0; r < d; ++r) {
-      if (size_[r] == 0) continue;
-      if (keep == ~0u) {
-        keep = static_cast<std::uint32_t>(r);
-        continue;
-      }
-      const bool closedR = !fanOpen_[r], closedK = !fanOpen_[keep];
-      if (closedR != closedK) {
-        if (closedR) keep = static_cast<std::uint32_t>(r);
-      } else if (size_[r] != size_[keep]) {
-        if (size_[r] > size_[keep]) keep = static_cast<std::uint32_t>(r);
-      } else if (lowest_[r] < lowest_[keep]) {
-        keep = static_cast<std::uint32_t>(r);
-      }
-    }
-    removeFaces.clear();
-    for (size_t i = 0; i < d; ++i)
-      if (root(static_cast<std::uint32_t>(i)) != keep) removeFaces.push_back(local_[i]);
-  }
-
-private:
   std::uint32_t root(std::uint32_t i) {
     while (parent_[i] != i) {
       parent_[i] = parent_[parent_[i]];
@@ -119,6 +137,39 @@ private:
   std::vector<char> open_, fanOpen_;
 };
 
+void FanFinder::extraFans(std::vector<std::uint32_t>& removeFaces) {
+  const size_t d = local_.size();
+  // Per root: triangle count, open flag, lowest triangle index.
+  size_.assign(d, 0);
+  fanOpen_.assign(d, 0);
+  lowest_.assign(d, ~0u);
+  for (size_t i = 0; i < d; ++i) {
+    const std::uint32_t r = root(static_cast<std::uint32_t>(i));
+    ++size_[r];
+    fanOpen_[r] |= open_[i];
+    lowest_[r] = std::min(lowest_[r], local_[i]);
+  }
+  std::uint32_t keep = ~0u;
+  for (size_t r = 0; r < d; ++r) {
+    if (size_[r] == 0) continue;
+    if (keep == ~0u) {
+      keep = static_cast<std::uint32_t>(r);
+      continue;
+    }
+    const bool closedR = !fanOpen_[r], closedK = !fanOpen_[keep];
+    if (closedR != closedK) {
+      if (closedR) keep = static_cast<std::uint32_t>(r);
+    } else if (size_[r] != size_[keep]) {
+      if (size_[r] > size_[keep]) keep = static_cast<std::uint32_t>(r);
+    } else if (lowest_[r] < lowest_[keep]) {
+      keep = static_cast<std::uint32_t>(r);
+    }
+  }
+  removeFaces.clear();
+  for (size_t i = 0; i < d; ++i)
+    if (root(static_cast<std::uint32_t>(i)) != keep) removeFaces.push_back(local_[i]);
+}
+
 bool degenerate(const Triangle& t) { return t[0] == t[1] || t[1] == t[2] || t[2] == t[0]; }
 
 } // namespace
@@ -132,7 +183,6 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
       alive[f] = 0;
       ++st.facesRemoved;
     }
-  const Incidence inc(faces, vertexCount, alive);
   FanFinder fans(faces);
 
   // Work list: every vertex (or suspect) once, then every vertex of a removed triangle again.
@@ -149,6 +199,9 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
     for (size_t v = 0; v < vertexCount; ++v) work[v] = static_cast<std::uint32_t>(v);
     std::fill(queued.begin(), queued.end(), 1);
   }
+  // (Rows for the suspects only, rebuilt when the work reaches a vertex of a removed triangle,
+  // cost more on the merged bunny scans: three rebuilds over all triangles.)
+  const Incidence inc(faces, vertexCount, alive);
   std::vector<std::uint32_t> removeFaces;
   for (size_t head = 0; head < work.size(); ++head) {
     const std::uint32_t v = work[head];
