@@ -327,10 +327,11 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   // Sec. 4.1: box grid, normal filter, box normals.
   progress.phase("Sphere packing: box grid", 2, 12);
   st.secondsInput = watch.lap();
+  // The normals of the boxes holding input points are deferred: computed on another thread while
+  // the growth (one thread) runs, which asks for them as it goes.
   BoxGrid grid;
-  grid.build(in.points, in.normals, d, &progress, params.threads);
+  grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true);
   st.boxes = grid.boxCount();
-  st.boxesDTooLarge = grid.dTooLargeCount();
   st.secondsBoxGrid = watch.lap();
 
   // Sec. 4.3: splat radii.
@@ -403,12 +404,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                   "). Give the starting points by hand or change d.");
   }
 
-  // Sec. 3.4–3.6: disk growing.
+  // Sec. 3.4–3.6: disk growing; meanwhile the deferred box normals on another thread, those near
+  // the start first (the growth spreads from there).
+  grid.startNormals(params.threads, s1);
   progress.phase("Sphere packing: growing", 21, 92);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
   growth.start(s1, splat1, s2, splat2);
   growth.run();
   const BorderGraph& g = growth.graph();
+  grid.finishNormals();
+  st.boxesDTooLarge = grid.dTooLargeCount();
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: triangulate the regions.

@@ -86,9 +86,10 @@ struct Stat {
   double qualityAvg = 0;         // Q_avg of the output
   double seconds = 0;
   double secondsInput = 0;       // of which: reading the cloud, mean spacing and area (defaults)
-  double secondsBoxGrid = 0;     //           box grid and box normals (sec. 4.1)
+  double secondsBoxGrid = 0;     //           box grid, normal filter, some box normals (sec. 4.1)
   double secondsSplats = 0;      //           splat radii (sec. 4.3)
-  double secondsGrowth = 0;      //           initialization and disk growing (sec. 3.3–3.6)
+  double secondsGrowth = 0;      //           initialization and disk growing (sec. 3.3–3.6), and
+                                 //           the other box normals, on another thread meanwhile
   double secondsTriangulation = 0; //         regions and output (sec. 3.7)
   std::vector<std::string> warnings;
 };

@@ -324,6 +324,40 @@ TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
   }
 }
 
+// Deferred box normals, computed on another thread while this one asks for them in another order
+// (or with one thread: on first use and in finishNormals()), are those build() computes.
+TEST(BoxGrid, DeferredNormalsAreTheSame) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 20000;
+  spec.seed = 9;
+  auto c = growth::generateCloud(spec);
+  growth::Random rnd(10);
+  for (size_t i = 0; i < c.normals.size(); i += 7) c.normals[i] = (c.normals[i] + rnd.unitVector() * 1.2).Normalize();
+  const double d = 0.35;
+  BoxGrid ref;
+  ref.build(c.points, c.normals, d, nullptr, 1);
+  EXPECT_GT(ref.dTooLargeCount(), 0u);
+  for (int threads : {1, 2}) {
+    BoxGrid g;
+    g.build(c.points, c.normals, d, nullptr, threads, /*deferNormals=*/true);
+    ASSERT_EQ(g.boxCount(), ref.boxCount());
+    g.startNormals(threads, c.points[0]);
+    // Ask from the last box down while the other thread goes up.
+    for (int b = int(g.boxCount()) - 1; b >= 0; b -= 3) ASSERT_EQ(g.boxNormal(b), ref.boxNormal(b)) << b;
+    g.finishNormals();
+    EXPECT_EQ(g.dTooLargeCount(), ref.dTooLargeCount()) << threads;
+    for (int b = 0; b < int(g.boxCount()); ++b) {
+      ASSERT_EQ(g.boxNormal(b), ref.boxNormal(b));
+      ASSERT_EQ(g.boxMinDot(b), ref.boxMinDot(b));
+    }
+  }
+  // Dropped while its thread runs: no crash, no leak of the thread.
+  BoxGrid dropped;
+  dropped.build(c.points, c.normals, d, nullptr, 2, true);
+  dropped.startNormals(2, Point3d(0, 0, 0));
+}
+
 // Copies of a sampling share its tables and answer like it.
 TEST(SphereSampling, ACopyAnswersLikeTheOriginal) {
   const SphereSampling s(5);

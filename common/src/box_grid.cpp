@@ -300,24 +300,69 @@ const SphereSampling& boxNormalSampling() {
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
          points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
-         boxMinDot_.capacity() * sizeof(double) + known_.capacity();
+         boxMinDot_.capacity() * sizeof(double) + boxNormal_.size() * 2 + pending_.capacity() * sizeof(std::uint32_t);
 }
 
-void BoxGrid::computeNormal(int box) const {
+void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
   const size_t b = size_t(box);
-  boxNormal_[b] = sampling_.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &boxMinDot_[b]);
-  known_[b] = 1;
+  std::uint8_t expected = kNone;
+  if (state_[b].compare_exchange_strong(expected, kBusy, std::memory_order_acq_rel)) {
+    boxNormal_[b] = sampling.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &boxMinDot_[b]);
+    if (counted_[b] && boxMinDot_[b] < 0) ++dTooLargeCount_;
+    state_[b].store(kDone, std::memory_order_release);
+    return;
+  }
+  while (state_[b].load(std::memory_order_acquire) != kDone) std::this_thread::yield(); // the other thread's
+}
+
+void BoxGrid::startNormals(int threads, const vcg::Point3d& from) {
+  stopNormals();
+  if (pending_.empty() || parallelParts(pending_.size(), threads, 64) < 2) return;
+  // Nearest boxes first (by their lower corners; ties by id).
+  {
+    std::vector<std::pair<double, std::uint32_t>> order(pending_.size());
+    for (size_t k = 0; k < pending_.size(); ++k) order[k] = {(pendingCorner_[k] - from).SquaredNorm(), pending_[k]};
+    std::sort(order.begin(), order.end());
+    for (size_t k = 0; k < order.size(); ++k) pending_[k] = order[k].second;
+    std::vector<vcg::Point3d>().swap(pendingCorner_);
+  }
+  // The copy (own scratch) is made here: once started, the caller may use sampling_.
+  background_ = std::thread([this, sampling = SphereSampling(sampling_)] {
+    for (const std::uint32_t b : pending_) {
+      if (stop_.load(std::memory_order_relaxed)) return;
+      if (state_[b].load(std::memory_order_acquire) == kNone) computeNormal(int(b), sampling);
+    }
+  });
+}
+
+void BoxGrid::stopNormals() {
+  if (!background_.joinable()) return;
+  stop_ = true;
+  background_.join();
+}
+
+void BoxGrid::finishNormals() {
+  if (background_.joinable()) background_.join();
+  for (const std::uint32_t b : pending_)
+    if (state_[b].load(std::memory_order_acquire) != kDone) computeNormal(int(b), sampling_);
+  std::vector<std::uint32_t>().swap(pending_);
+  std::vector<vcg::Point3d>().swap(pendingCorner_);
 }
 
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
-                    Progress* progress, int threads) {
+                    Progress* progress, int threads, bool deferNormals) {
+  stopNormals();
   start_.assign(1, 0);
   points_.clear();
   boxNormal_.clear();
   boxMinDot_.clear();
-  known_.clear();
+  state_.reset();
+  counted_.clear();
+  pending_.clear();
+  pendingCorner_.clear();
   normals_ = &normals;
-  dTooLargeCount_ = dropped_ = facePoints_ = 0;
+  dTooLargeCount_ = 0;
+  dropped_ = facePoints_ = 0;
   hash_.reset(16);
   if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
 
@@ -509,9 +554,12 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // others are computed when first asked for (boxNormal()), with the same result.
   boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
   boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
-  known_.assign(boxes, 0);
+  state_.reset(new std::atomic<std::uint8_t>[boxes]);
+  for (size_t b = 0; b < boxes; ++b) state_[b].store(kNone, std::memory_order_relaxed);
+  counted_.assign(boxes, 0);
   std::vector<std::uint8_t> eager(boxes, 0);
-  for (size_t o = 0; o < ownCoord.size() / 3; ++o) eager[size_t(near[o * 27 + 13])] = 1; // own box: offset (0, 0, 0)
+  std::vector<std::int32_t> ownBox(ownCoord.size() / 3); // box id of each own box: offset (0, 0, 0)
+  for (size_t o = 0; o < ownBox.size(); ++o) eager[size_t(ownBox[o] = near[o * 27 + 13])] = 1;
   std::vector<std::int32_t>().swap(near);
   std::vector<std::uint32_t> kept(boxes);
   // A box costs a few microseconds: below a few hundred boxes one thread is faster.
@@ -535,8 +583,10 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
       // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
       // maxMinDirection is at least that (up to rounding, hence the margin).
       if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
+        counted_[b] = 1;
+        if (eager[b] && deferNormals) continue; // computed later, on the compacted lists
         boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
-        known_[b] = 1;
+        state_[b].store(kDone, std::memory_order_relaxed);
         if (boxMinDot_[b] < 0) ++tooLarge;
       }
     }
@@ -557,6 +607,16 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   start_[boxes] = static_cast<std::uint32_t>(w);
   points_.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
                      // references the filter dropped)
+  if (deferNormals) {
+    std::vector<std::int32_t> ownOfBox(boxes, -1);
+    for (size_t o = 0; o < ownCoord.size() / 3; ++o) ownOfBox[size_t(ownBox[o])] = static_cast<std::int32_t>(o);
+    for (size_t b = 0; b < boxes; ++b)
+      if (eager[b]) {
+        const std::int64_t* c = &ownCoord[size_t(ownOfBox[b]) * 3];
+        pending_.push_back(static_cast<std::uint32_t>(b));
+        pendingCorner_.push_back(index_.corner(c[0], c[1], c[2]));
+      }
+  }
 }
 
 } // namespace growth

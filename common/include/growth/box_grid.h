@@ -19,8 +19,10 @@
 
 #include <cmath>
 #include <cstddef>
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <thread>
 #include <vector>
 
 namespace growth {
@@ -226,8 +228,24 @@ public:
   // The filter and the box normals run on `threads` threads (0 = automatic, parallel.h); the grid
   // is the same for any number. `normals` must outlive the grid: the normals of the boxes that
   // hold no input point are computed from them when first asked for.
+  // deferNormals: the normals of the boxes holding input points are left for startNormals() /
+  // finishNormals() (or first use) too, so that they can be computed while the caller works on.
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
-             Progress* progress = nullptr, int threads = 0);
+             Progress* progress = nullptr, int threads = 0, bool deferNormals = false);
+
+  BoxGrid() = default;
+  BoxGrid(const BoxGrid&) = delete;
+  BoxGrid& operator=(const BoxGrid&) = delete;
+  ~BoxGrid() { stopNormals(); }
+
+  // The deferred box normals: startNormals() computes them on one more thread while the caller
+  // goes on (when `threads` allows more than one; 0 = automatic), nearest to `from` first (where
+  // the caller will ask first), finishNormals() waits for it and computes what is still missing.
+  // Meanwhile boxNormal() is safe to call from one thread: a box not done yet is computed there
+  // (or awaited when the other thread is at it). The values are the same whoever computes them;
+  // dTooLargeCount() is final after finishNormals().
+  void startNormals(int threads, const vcg::Point3d& from);
+  void finishNormals();
 
   double side() const { return index_.side(); }
   const BoxIndexer& indexer() const { return index_; }
@@ -241,20 +259,20 @@ public:
   const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
   const std::uint32_t* pointsEnd(int box) const { return points_.data() + start_[size_t(box) + 1]; }
   size_t pointCount(int box) const { return start_[size_t(box) + 1] - start_[size_t(box)]; }
-  // The box normal (sec. 4.1). Computed by build() for most boxes, on first use for the others:
-  // the same value either way, but a first use writes to the grid, so these accessors must not
-  // be called from several threads at once.
+  // The box normal (sec. 4.1). Computed by build() (or startNormals()) for most boxes, on first
+  // use for the others: the same value either way, but a first use writes to the grid, so these
+  // accessors must not be called from several threads at once.
   const vcg::Point3d& boxNormal(int box) const {
-    if (!known_[size_t(box)]) computeNormal(box);
+    if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
     return boxNormal_[size_t(box)];
   }
   // max over S_F of min_p <n_p, n>: negative means d looked too large in this box.
   double boxMinDot(int box) const {
-    if (!known_[size_t(box)]) computeNormal(box);
+    if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
     return boxMinDot_[size_t(box)];
   }
   bool dTooLarge(int box) const { return boxMinDot(box) < 0; }
-  size_t dTooLargeCount() const { return dTooLargeCount_; }
+  size_t dTooLargeCount() const { return dTooLargeCount_.load(); }
   size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
   // Points whose boxes in reach were not all among the 27 around their own box (rounding at a box
   // face); build() takes a slower path for them.
@@ -267,14 +285,26 @@ private:
   KeyHash hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
   std::vector<std::uint32_t> points_;  // point indices per box
-  void computeNormal(int box) const;
+  // Box normal states: not computed, being computed (by the other thread), done.
+  static constexpr std::uint8_t kNone = 0, kBusy = 1, kDone = 2;
+  // Computes box's normal with `sampling` unless another thread claimed it (then waits for it).
+  void computeNormal(int box, const SphereSampling& sampling) const;
+  void ensureNormal(int box) const { computeNormal(box, sampling_); }
+  void stopNormals();
 
   mutable std::vector<vcg::Point3d> boxNormal_;
   mutable std::vector<double> boxMinDot_;
-  mutable std::vector<std::uint8_t> known_; // box normal computed
-  mutable SphereSampling sampling_{0};      // for the box normals computed on first use
+  std::unique_ptr<std::atomic<std::uint8_t>[]> state_; // per box: kNone, kBusy, kDone
+  std::vector<std::uint8_t> counted_;  // boxes that count for dTooLargeCount (all but those the
+                                       // quick test cleared)
+  std::vector<std::uint32_t> pending_; // deferred boxes, for startNormals()/finishNormals()
+  std::vector<vcg::Point3d> pendingCorner_; // their lower corners, until startNormals() orders them
+  mutable SphereSampling sampling_{0}; // for the box normals computed on first use
   const std::vector<vcg::Point3d>* normals_ = nullptr;
-  size_t dTooLargeCount_ = 0, dropped_ = 0, facePoints_ = 0;
+  mutable std::atomic<size_t> dTooLargeCount_{0};
+  size_t dropped_ = 0, facePoints_ = 0;
+  std::thread background_;
+  std::atomic<bool> stop_{false};
 };
 
 // Squared distance from p to the axis-aligned cube [lo, lo + side]^3.
