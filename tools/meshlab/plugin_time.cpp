@@ -3,7 +3,7 @@
 // an .mlx script, getRequirements → updateDataMask, then applyFilter), with one steady clock around
 // applyFilter only. Each repeat starts from a freshly loaded cloud; the fastest repeat is reported.
 //
-//   plugin_time <plugin.so> <script.mlx> <cloud.ply> [--repeat R] [--min-seconds S]
+//   plugin_time <plugin.so> <script.mlx> <cloud.ply> [--repeat R] [--min-seconds S] [--min-repeats K]
 //
 // The benchmark uses it for clouds whose filter time is too short for a wall-clock difference of
 // meshlabserver runs (resolution 0.01 s): MeshLab's Ball Pivoting and our filters are then timed by
@@ -34,8 +34,9 @@ bool quietCallback(const int, const char*) { return true; }
 
 int usage() {
   std::fprintf(stderr, "usage: plugin_time <plugin.so> <script.mlx> <cloud.ply> [--repeat R] [--min-seconds S]\n"
+                       "                   [--min-repeats K]\n"
                        "  R: repeats (default 5); S: keep repeating, up to R, until this much filter time\n"
-                       "  was spent (default 0: always R)\n");
+                       "  was spent (default 0: always R), but at least K times (default 1)\n");
   return 2;
 }
 
@@ -49,9 +50,11 @@ int main(int argc, char** argv) {
   if (argc < 4) return usage();
   int repeat = 5;
   double minSeconds = 0;
+  int minRepeats = 1;
   for (int a = 4; a < argc; ++a) {
     if (std::strcmp(argv[a], "--repeat") == 0 && a + 1 < argc) repeat = std::max(1, std::atoi(argv[++a]));
     else if (std::strcmp(argv[a], "--min-seconds") == 0 && a + 1 < argc) minSeconds = std::atof(argv[++a]);
+    else if (std::strcmp(argv[a], "--min-repeats") == 0 && a + 1 < argc) minRepeats = std::max(1, std::atoi(argv[++a]));
     else return usage();
   }
   QPluginLoader loader(QFileInfo(QString::fromLocal8Bit(argv[1])).absoluteFilePath());
@@ -78,7 +81,7 @@ int main(int argc, char** argv) {
   std::vector<double> times;
   double spent = 0;
   int faces = 0, vertices = 0, layers = 0;
-  for (int r = 0; r < repeat && (r == 0 || minSeconds <= 0 || spent < minSeconds); ++r) {
+  for (int r = 0; r < repeat && (r < minRepeats || minSeconds <= 0 || spent < minSeconds); ++r) {
     MeshDocument md;
     MeshModel* m = md.addNewMesh("", "cloud", true);
     int mask = 0;
