@@ -8,6 +8,7 @@
 #include <growth/error.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/morton.h>
 #include <growth/progress.h>
 #include <growth/region_triangulation.h>
 #include <growth/splats.h>
@@ -217,11 +218,79 @@ private:
   std::vector<std::uint32_t> near_;
 };
 
+// The points renumbered in a spatial order, for memory locality on large clouds: by the Morton
+// code of their boxes of side d, equal codes in input order. Everything the method does in an
+// order of the points keeps the input order through these maps (box lists, ties of neighbours
+// and of the starting vertex), so the mesh is the same as without renumbering. Small clouds fit
+// in the caches and are not renumbered (orig/rank stay empty: identity): Params::spatialOrderMinPoints,
+// 20,000 by default (torus, 2 threads: 10k and 20k the same time either way, 30k -4 %, 100k -7 %,
+// 1M -12 %).
+struct Renumbering {
+  std::vector<std::uint32_t> orig; // new index -> input index (until the starting vertices)
+  std::vector<std::uint32_t> rank; // input index -> new index (for the box grid)
+  std::uint32_t origOf(std::uint32_t i) const { return orig.empty() ? i : orig[i]; }
+};
+
+Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
+  Renumbering r;
+  const size_t n = in.points.size();
+  if (n < std::max<size_t>(minPoints, 2)) return r;
+  // Box coordinates (at most 21 bits each, as the box grid's), interleaved.
+  std::vector<std::uint64_t> code(n);
+  std::uint64_t maxCode = 0;
+  for (size_t i = 0; i < n; ++i) {
+    std::uint64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = std::min<std::uint64_t>(std::uint64_t(std::max(0.0, std::floor((in.points[i][a] - in.box.min[a]) / d))),
+                                     (std::uint64_t(1) << 21) - 1);
+    code[i] = mortonCode(c[0], c[1], c[2]);
+    maxCode = std::max(maxCode, code[i]);
+  }
+  // Stable LSD radix sort on the code's bits.
+  int bits = 0;
+  while (bits < 64 && (maxCode >> bits) != 0) ++bits;
+  r.orig.resize(n);
+  for (size_t i = 0; i < n; ++i) r.orig[i] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> tmp(n), count(size_t(1) << 11);
+  for (int shift = 0; shift < bits; shift += 11) {
+    std::fill(count.begin(), count.end(), 0u);
+    for (const std::uint32_t i : r.orig) ++count[size_t((code[i] >> shift) & 2047)];
+    std::uint32_t at = 0;
+    for (auto& c : count) {
+      const std::uint32_t k = c;
+      c = at;
+      at += k;
+    }
+    for (const std::uint32_t i : r.orig) tmp[count[size_t((code[i] >> shift) & 2047)]++] = i;
+    r.orig.swap(tmp);
+  }
+  r.rank.resize(n);
+  for (size_t i = 0; i < n; ++i) r.rank[r.orig[i]] = static_cast<std::uint32_t>(i);
+  // Permute the arrays in place, cycle by cycle (no second copy of them: the peak memory).
+  std::vector<bool> done(n, false);
+  for (size_t start = 0; start < n; ++start) {
+    if (done[start]) continue;
+    const vcg::Point3d p0 = in.points[start], n0 = in.normals[start];
+    size_t i = start;
+    for (;;) {
+      done[i] = true;
+      const size_t from = r.orig[i];
+      if (from == start) break;
+      in.points[i] = in.points[from];
+      in.normals[i] = in.normals[from];
+      i = from;
+    }
+    in.points[i] = p0;
+    in.normals[i] = n0;
+  }
+  return r;
+}
+
 // Closest splat to x (smallest distance to its disk) and the projection of x onto it (sec. 3.3).
 // The splats of the box containing x (all points within d of it) are searched; when x is farther
 // than d from every point, all splats are.
 bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
-                             const BoxGrid& grid, vcg::Point3d& proj, std::uint32_t& splat) {
+                             const BoxGrid& grid, const Renumbering& order, vcg::Point3d& proj, std::uint32_t& splat) {
   double best = std::numeric_limits<double>::infinity();
   std::int64_t bestIdx = -1;
   auto consider = [&](std::uint32_t i) {
@@ -232,8 +301,12 @@ bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const 
   if (box >= 0) {
     for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) consider(*it);
   }
-  if (bestIdx < 0)
-    for (std::uint32_t i = 0; i < in.points.size(); ++i) consider(i);
+  if (bestIdx < 0) // all points: of equally close ones, the first in input order
+    for (std::uint32_t i = 0; i < in.points.size(); ++i) {
+      const double dd = squaredDistanceToDisk(x, in.points[i], in.normals[i], radius[i]);
+      if (dd < best || (dd == best && bestIdx >= 0 && order.origOf(i) < order.origOf(std::uint32_t(bestIdx))))
+        best = dd, bestIdx = i;
+    }
   if (bestIdx < 0) return false;
   splat = static_cast<std::uint32_t>(bestIdx);
   proj = projectOntoDisk(x, in.points[splat], in.normals[splat], radius[splat]);
@@ -266,7 +339,7 @@ Params suggestParams(const CMeshO& cloud) {
     CloudCheck check;
     check.needNormals = false;
     check.allowFaces = true;
-    const InputCloud in = readCloud(cloud, check);
+    InputCloud in = readCloud(cloud, check);
     const CloudScale sc = cloudScale(in.points);
     if (sc.spacing > 0 && std::isfinite(sc.spacing)) {
       p.sphereDiameter = defaultDiameter(sc);
@@ -289,7 +362,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   check.needNormals = true;
   check.allowFaces = false;
   check.minPoints = 3;
-  const InputCloud in = readCloud(cloud, check);
+  InputCloud in = readCloud(cloud, check);
   st.inputPoints = in.points.size();
   st.duplicatesDropped = in.duplicatesDropped;
 
@@ -324,14 +397,19 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                 "; the default for this cloud is " + fmt(defaultDiameter(scale)) + ").");
   }
 
+  std::vector<int>().swap(in.vertexIndex); // not needed here
+  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
+
   // Sec. 4.1: box grid, normal filter, box normals.
   progress.phase("Sphere packing: box grid", 2, 12);
   st.secondsInput = watch.lap();
   // The normals of the boxes holding input points are deferred: computed on another thread while
   // the growth (one thread) runs, which asks for them as it goes.
   BoxGrid grid;
-  grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true);
+  grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
+             order.rank.empty() ? nullptr : &order.rank);
   st.boxes = grid.boxCount();
+  std::vector<std::uint32_t>().swap(order.rank);
   st.secondsBoxGrid = watch.lap();
 
   // Sec. 4.3: splat radii.
@@ -339,7 +417,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   SplatSizeStats splatStats;
   const std::vector<float> radius =
       computeSplatRadii(in.points, in.normals, grid, s, params.localSplatSizes, &splatStats, &progress,
-                        params.threads);
+                        params.threads, order.orig.empty() ? nullptr : &order.orig);
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
@@ -353,8 +431,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     for (const auto& q : params.startPoint)
       if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
         throw Error("The starting points must have finite coordinates.");
-    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, s1, splat1);
-    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, s2, splat2);
+    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, s1, splat1);
+    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, s2, splat2);
     const double dist = (s1 - s2).Norm();
     if (dist < d || dist > 2 * d)
       throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
@@ -364,16 +442,17 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
     // in turn (isolated ones skipped: fewer than 3 other points within d), s1 on its own splat,
     // s2 the projection of a point 1.5·d away in s1's tangent plane, 12 directions tried.
-    std::vector<std::uint32_t> order(in.points.size());
-    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    const size_t tries = std::min<size_t>(order.size(), 64);
-    std::partial_sort(order.begin(), order.begin() + std::ptrdiff_t(tries), order.end(),
+    std::vector<std::uint32_t> highest(in.points.size());
+    for (std::uint32_t i = 0; i < highest.size(); ++i) highest[i] = i;
+    const size_t tries = std::min<size_t>(highest.size(), 64);
+    std::partial_sort(highest.begin(), highest.begin() + std::ptrdiff_t(tries), highest.end(),
                       [&](std::uint32_t a, std::uint32_t b) {
-                        return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2] : a < b;
+                        return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2]
+                                                                  : order.origOf(a) < order.origOf(b);
                       });
     bool found = false;
     for (size_t t = 0; t < tries && !found; ++t) {
-      const std::uint32_t i = order[t];
+      const std::uint32_t i = highest[t];
       int around = 0;
       const int box = grid.boxOf(in.points[i]);
       if (box < 0) continue;
@@ -387,7 +466,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
         const vcg::Point3d target = in.points[i] + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
         vcg::Point3d q;
         std::uint32_t sq = 0;
-        if (!projectOntoClosestSplat(target, in, radius, grid, q, sq)) continue;
+        if (!projectOntoClosestSplat(target, in, radius, grid, order, q, sq)) continue;
         const double dist = (q - in.points[i]).Norm();
         if (dist >= d && dist <= 2 * d) {
           s1 = in.points[i];
@@ -403,6 +482,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                   fmt(d) + " is probably too large or the splats too small (s = " + fmt(s) +
                   "). Give the starting points by hand or change d.");
   }
+
+  std::vector<std::uint32_t>().swap(order.orig);
 
   // Sec. 3.4–3.6: disk growing; meanwhile the deferred box normals on another thread, those near
   // the start first (the growth spreads from there).

@@ -31,6 +31,8 @@ struct Params {
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
   vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  size_t spatialOrderMinPoints = 20000; // clouds with at least this many points are processed in a
+                                 // spatial order of the points (memory locality); the same mesh
   int threads = 0;                // threads for the per-box and per-point phases (0 = automatic, at
                                  // most the hardware's); the output is the same for any number
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all

@@ -358,6 +358,41 @@ TEST(BoxGrid, DeferredNormalsAreTheSame) {
   dropped.startNormals(2, Point3d(0, 0, 0));
 }
 
+// Points renumbered (the sphere packer's spatial order) with listOrder giving the original order:
+// the same boxes with the same ids, lists of the same points in the same order, the same normals.
+TEST(BoxGrid, ListOrderKeepsTheOriginalOrderOfRenumberedPoints) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Sphere;
+  spec.count = 15000;
+  spec.seed = 12;
+  auto c = growth::generateCloud(spec);
+  growth::Random rnd(13);
+  for (size_t i = 0; i < c.normals.size(); i += 5) c.normals[i] = (c.normals[i] + rnd.unitVector()).Normalize();
+  const size_t n = c.points.size();
+  std::vector<std::uint32_t> orig(n), rank(n); // new -> original, original -> new
+  for (size_t i = 0; i < n; ++i) orig[i] = std::uint32_t(i);
+  for (size_t i = n - 1; i > 0; --i) std::swap(orig[i], orig[size_t(rnd.uniform(0, double(i + 1))) % (i + 1)]);
+  for (size_t i = 0; i < n; ++i) rank[orig[i]] = std::uint32_t(i);
+  std::vector<Point3d> pts(n), nrm(n);
+  for (size_t i = 0; i < n; ++i) pts[i] = c.points[orig[i]], nrm[i] = c.normals[orig[i]];
+  const double d = 0.12;
+  BoxGrid a, b;
+  a.build(c.points, c.normals, d, nullptr, 2);
+  b.build(pts, nrm, d, nullptr, 2, false, &rank);
+  ASSERT_EQ(a.boxCount(), b.boxCount());
+  EXPECT_EQ(a.dTooLargeCount(), b.dTooLargeCount());
+  EXPECT_EQ(a.droppedByFilter(), b.droppedByFilter());
+  for (size_t i = 0; i < n; i += 7) {
+    const int box = a.boxOf(c.points[i]);
+    ASSERT_EQ(b.boxOf(c.points[i]), box);
+    std::vector<std::uint32_t> mapped;
+    for (const std::uint32_t* it = b.pointsBegin(box); it != b.pointsEnd(box); ++it) mapped.push_back(orig[*it]);
+    ASSERT_EQ(mapped, std::vector<std::uint32_t>(a.pointsBegin(box), a.pointsEnd(box)));
+    ASSERT_EQ(b.boxNormal(box), a.boxNormal(box));
+    ASSERT_EQ(b.boxMinDot(box), a.boxMinDot(box));
+  }
+}
+
 // Copies of a sampling share its tables and answer like it.
 TEST(SphereSampling, ACopyAnswersLikeTheOriginal) {
   const SphereSampling s(5);

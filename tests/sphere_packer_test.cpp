@@ -194,6 +194,41 @@ TEST(SpherePacker, SameOutputForAnyNumberOfThreads) {
   }
 }
 
+// Large clouds are processed in a spatial order of their points; every order the method depends
+// on stays that of the input, so the mesh is the same as without (forced on and off here).
+TEST(SpherePacker, SameOutputInSpatialOrder) {
+  for (growth::Shape shape : {growth::Shape::Torus, growth::Shape::Patch}) {
+    growth::CloudSpec spec;
+    spec.shape = shape;
+    spec.count = 20000;
+    spec.seed = 5;
+    spec.nonUniform = shape == growth::Shape::Patch;
+    spec.noiseBound = 0.005;
+    CMeshO cloud;
+    growth::toMesh(growth::generateCloud(spec), cloud);
+    sp::Params p;
+    p.spatialOrderMinPoints = size_t(1) << 40; // never
+    CMeshO plain, sorted;
+    sp::Stat st1, st2;
+    sp::build(cloud, plain, p, st1);
+    p.spatialOrderMinPoints = 0; // always
+    sp::build(cloud, sorted, p, st2);
+    ASSERT_GT(plain.face.size(), 1000u);
+    EXPECT_EQ(st2.meanSplatRadius, st1.meanSplatRadius);
+    EXPECT_EQ(st2.boxesDTooLarge, st1.boxesDTooLarge);
+    EXPECT_EQ(st2.unreachedPoints, st1.unreachedPoints);
+    ASSERT_EQ(sorted.vert.size(), plain.vert.size());
+    ASSERT_EQ(sorted.face.size(), plain.face.size());
+    for (size_t i = 0; i < plain.vert.size(); ++i) {
+      ASSERT_EQ(sorted.vert[i].cP(), plain.vert[i].cP());
+      ASSERT_EQ(sorted.vert[i].cN(), plain.vert[i].cN());
+    }
+    for (size_t i = 0; i < plain.face.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(vcg::tri::Index(sorted, sorted.face[i].cV(k)), vcg::tri::Index(plain, plain.face[i].cV(k)));
+  }
+}
+
 TEST(SpherePacker, ManifoldWithNoiseUpToAThirdOfD) {
   growth::CloudSpec spec = sphereSpec();
   spec.noiseBound = 0.3 * 0.1; // sec. 5.3: each point moved by a random vector of length <= ν

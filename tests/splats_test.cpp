@@ -191,6 +191,35 @@ TEST(SplatRadii, SameRadiiForAnyNumberOfThreads) {
   }
 }
 
+// Points renumbered with their original indices as rankIndex (and the box lists in the original
+// order): the same radius for every point.
+TEST(SplatRadii, RenumberedPointsGetTheSameRadii) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 12000;
+  spec.seed = 8;
+  spec.nonUniform = true;
+  const auto c = growth::generateCloud(spec);
+  const size_t n = c.points.size();
+  growth::Random rnd(3);
+  std::vector<std::uint32_t> orig(n), rank(n);
+  for (size_t i = 0; i < n; ++i) orig[i] = std::uint32_t(i);
+  for (size_t i = n - 1; i > 0; --i) std::swap(orig[i], orig[size_t(rnd.uniform(0, double(i + 1))) % (i + 1)]);
+  for (size_t i = 0; i < n; ++i) rank[orig[i]] = std::uint32_t(i);
+  std::vector<Point3d> pts(n), nrm(n);
+  for (size_t i = 0; i < n; ++i) pts[i] = c.points[orig[i]], nrm[i] = c.normals[orig[i]];
+  const double d = 0.25, s = 0.12;
+  growth::BoxGrid a, b;
+  a.build(c.points, c.normals, d, nullptr, 1);
+  b.build(pts, nrm, d, nullptr, 1, false, &rank);
+  growth::SplatSizeStats sa, sb;
+  const auto ra = growth::computeSplatRadii(c.points, c.normals, a, s, true, &sa, nullptr, 2);
+  const auto rb = growth::computeSplatRadii(pts, nrm, b, s, true, &sb, nullptr, 2, &orig);
+  for (size_t i = 0; i < n; ++i) ASSERT_EQ(rb[i], ra[orig[i]]) << i;
+  EXPECT_EQ(sb.unbounded, sa.unbounded);
+  EXPECT_EQ(sb.clamped, sa.clamped);
+}
+
 // The local splat radius as computed before the scratch arrays and the sort were rewritten for
 // speed (commit 7970b81, verbatim): the rewrite must give the same radius and the same fan, bit for
 // bit, on every kind of neighbourhood.

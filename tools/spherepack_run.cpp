@@ -5,6 +5,7 @@
 //                  [--outliers FRACTION] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
 //          --global-splats  --w W  --border B  --threads T (0 = automatic)
+//          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
 //          --repeat R (best of R runs; each phase time is that phase's best)
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
 //          -o out.ply (save the mesh)
@@ -31,6 +32,7 @@ static void usage() {
                "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch --points N [--seed S] [--nonuniform]\n"
                "                      [--noise NU] [--outliers FRACTION]\n"
                "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B] [--threads T]\n"
+               "       [--spatial-order-min N]\n"
                "       [--repeat R] [--measure] [--points-only] [-o out.ply]\n");
 }
 
@@ -68,6 +70,7 @@ int main(int argc, char** argv) {
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--threads") params.threads = std::atoi(value());
+      else if (a == "--spatial-order-min") params.spatialOrderMinPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
       else if (a == "--measure") measure = true;
       else if (a == "--points-only") pointsOnly = true;

@@ -350,7 +350,8 @@ void BoxGrid::finishNormals() {
 }
 
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
-                    Progress* progress, int threads, bool deferNormals) {
+                    Progress* progress, int threads, bool deferNormals,
+                    const std::vector<std::uint32_t>* listOrder) {
   stopNormals();
   start_.assign(1, 0);
   points_.clear();
@@ -424,10 +425,19 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // bits are the order x, y, z; kBeyond when the boxes in reach are not all in that block (rounding at a box face:
   // such points take the general path below). The same ranges, slab distances and tests as
   // forBoxesWithin.
+  // Both are stored at the point's position in the list order (passes 1 and 2 read them in that
+  // order, sequentially).
   constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
-  std::vector<std::uint32_t> mask(n);
+  std::vector<std::uint32_t> mask(n), listPos;
+  if (listOrder != nullptr) {
+    listPos.resize(n);
+    for (size_t t = 0; t < n; ++t) listPos[(*listOrder)[t]] = static_cast<std::uint32_t>(t);
+  }
+  std::vector<std::uint32_t> ownAt(listOrder != nullptr ? n : 0); // own box, by list position
   parallelChunks(n, parallelParts(n, threads, 8192), 1024, [&](size_t i0, size_t i1, int) {
     for (size_t i = i0; i < i1; ++i) {
+      const size_t at = listOrder != nullptr ? listPos[i] : i;
+      if (listOrder != nullptr) ownAt[at] = ownOf[i];
       const vcg::Point3d& p = pts[i];
       const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
       std::int64_t lo[3], hi[3];
@@ -445,7 +455,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
         }
       }
       if (!inBlock) {
-        mask[i] = kBeyond;
+        mask[at] = kBeyond;
         continue;
       }
       std::uint32_t m = 0;
@@ -457,13 +467,19 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
           for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
             if (!(sxy + sq[2][z - lo[2]] > d2)) m |= std::uint32_t(1) << (base + int(z));
         }
-      mask[i] = m;
+      mask[at] = m;
     }
   });
+  if (listOrder != nullptr) {
+    ownOf.swap(ownAt);
+    std::vector<std::uint32_t>().swap(ownAt);
+    std::vector<std::uint32_t>().swap(listPos);
+  }
 
-  // Pass 1 (in point order): box ids in order of first appearance (deterministic), reference
+  // Pass 1 (in list order): box ids in order of first appearance (deterministic), reference
   // counts per part of the points of pass 2. The ids of the 27 boxes around an own box are kept
   // (near), so the hash is asked once per own box and offset, not once per point.
+  auto listed = [&](size_t t) { return listOrder != nullptr ? size_t((*listOrder)[t]) : t; };
   const int fillParts = parallelParts(n, threads, 8192);
   std::vector<std::vector<std::uint32_t>> count(static_cast<size_t>(fillParts)); // [part][box]
   for (size_t i = 0; i < n; ++i) facePoints_ += (mask[i] & kBeyond) ? 1 : 0;
@@ -476,12 +492,12 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   hash_.reset(n / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
   for (int part = 0; part < fillParts; ++part) {
     std::vector<std::uint32_t>& cnt = count[size_t(part)];
-    for (size_t i = partBegin(n, fillParts, part), e = partBegin(n, fillParts, part + 1); i < e; ++i) {
-      const std::uint32_t o = ownOf[i];
+    for (size_t t = partBegin(n, fillParts, part), e = partBegin(n, fillParts, part + 1); t < e; ++t) {
+      const std::uint32_t o = ownOf[t];
       const std::int64_t* oc = &ownCoord[size_t(o) * 3];
       std::int32_t* slots = &near[size_t(o) * 27];
-      if (mask[i] & kBeyond) {
-        forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      if (mask[t] & kBeyond) {
+        forBoxesWithin(listed(t), [&](std::int64_t x, std::int64_t y, std::int64_t z) {
           const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
           std::int32_t* slot = nullptr;
           if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
@@ -494,14 +510,14 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
           ++count[size_t(part)][size_t(id)];
         });
       } else {
-        for (std::uint32_t m = mask[i]; m != 0; m &= m - 1) {
+        for (std::uint32_t m = mask[t]; m != 0; m &= m - 1) {
           const int bit = __builtin_ctz(m);
           int id = slots[bit];
           if (id < 0) id = slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
           ++cnt[size_t(id)];
         }
       }
-      if (progress != nullptr && (i & 16383) == 0) progress->advanceTo(0.3 * double(i) / double(n));
+      if (progress != nullptr && (t & 16383) == 0) progress->advanceTo(0.3 * double(t) / double(n));
     }
   }
   const size_t boxes = count[0].size();
@@ -516,16 +532,17 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     }
     start_[b + 1] = at;
   }
-  // Pass 2 (per part of the points, on threads): fill, points in increasing index order inside
-  // each box (the parts are in point order and write to consecutive ranges of each box).
+  // Pass 2 (per part of the points, on threads): fill, points in list order inside each box (the
+  // parts are in list order and write to consecutive ranges of each box).
   points_.assign(start_[boxes], 0);
-  parallelFor(n, fillParts, [&](size_t i0, size_t i1, int part) {
+  parallelFor(n, fillParts, [&](size_t t0, size_t t1, int part) {
     std::vector<std::uint32_t>& at = count[size_t(part)];
-    for (size_t i = i0; i < i1; ++i) {
-      const std::int32_t* slots = &near[size_t(ownOf[i]) * 27];
+    for (size_t t = t0; t < t1; ++t) {
+      const size_t i = listed(t);
+      const std::int32_t* slots = &near[size_t(ownOf[t]) * 27];
       const std::uint32_t value = static_cast<std::uint32_t>(i);
-      if (mask[i] & kBeyond) {
-        const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
+      if (mask[t] & kBeyond) {
+        const std::int64_t* oc = &ownCoord[size_t(ownOf[t]) * 3];
         forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
           const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
           const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
@@ -534,10 +551,10 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
           points_[at[size_t(id)]++] = value;
         });
       } else {
-        for (std::uint32_t m = mask[i]; m != 0; m &= m - 1) points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
+        for (std::uint32_t m = mask[t]; m != 0; m &= m - 1) points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
       }
-      if (part == 0 && progress != nullptr && ((i - i0) & 16383) == 0)
-        progress->advanceTo(0.3 + 0.3 * double(i - i0) / double(i1 - i0));
+      if (part == 0 && progress != nullptr && ((t - t0) & 16383) == 0)
+        progress->advanceTo(0.3 + 0.3 * double(t - t0) / double(t1 - t0));
     }
   });
   std::vector<std::uint32_t>().swap(ownOf);
@@ -552,6 +569,10 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
   // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
   // others are computed when first asked for (boxNormal()), with the same result.
+  // Deferring pays on small clouds, where the growth leaves the other core idle; on large ones the
+  // second thread's memory traffic slowed the growth down by more than it saved (a 1M-point torus:
+  // growth 1.8 -> 2.2-2.8 s, the box grid 0.1-0.4 s faster), so there they are computed here.
+  deferNormals = deferNormals && boxes <= kMaxDeferredBoxes;
   boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
   boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
   state_.reset(new std::atomic<std::uint8_t>[boxes]);

@@ -40,29 +40,29 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   origin_ = lo;
   for (int a = 0; a < 3; ++a) maxCell_[a] = std::min(coord(hi[a], lo[a]), kMaxCoord);
 
-  std::vector<Key> key(valid.size());
+  // Points ordered by cell key, stably (equal keys keep the input order, so queries visit points
+  // deterministically): an LSD radix sort on the key's bits that can differ (the cell coordinates
+  // are at most maxCell_), the order std::stable_sort gives. The keys are kept compact: each
+  // coordinate in its own width (the same order as the packed key).
+  auto bitsOf = [](std::int64_t v) {
+    int b = 0;
+    while (b < 63 && (std::int64_t(1) << b) <= v) ++b;
+    return b;
+  };
+  const int bx = bitsOf(maxCell_[0]), by = bitsOf(maxCell_[1]), bz = bitsOf(maxCell_[2]);
+  std::vector<std::uint64_t> compact(valid.size());
   for (size_t i = 0; i < valid.size(); ++i) {
     const Point& p = points[valid[i]];
-    key[i] = pack(std::min(coord(p[0], lo[0]), kMaxCoord), std::min(coord(p[1], lo[1]), kMaxCoord),
-                  std::min(coord(p[2], lo[2]), kMaxCoord));
+    compact[i] = (std::uint64_t(std::min(coord(p[0], lo[0]), kMaxCoord)) << (by + bz)) |
+                 (std::uint64_t(std::min(coord(p[1], lo[1]), kMaxCoord)) << bz) |
+                 std::uint64_t(std::min(coord(p[2], lo[2]), kMaxCoord));
   }
-  // Points ordered by key, stably (equal keys keep the input order, so queries visit points
-  // deterministically): an LSD radix sort on the key's bits that can differ (the cell coordinates
-  // are at most maxCell_), the order std::stable_sort gives.
+  const std::uint64_t yMask = (std::uint64_t(1) << by) - 1, zMask = (std::uint64_t(1) << bz) - 1;
+  auto keyOf = [&](std::uint64_t c) {
+    return pack(std::int64_t(c >> (by + bz)), std::int64_t((c >> bz) & yMask), std::int64_t(c & zMask));
+  };
   std::vector<std::uint32_t> order(valid.size());
   {
-    auto bitsOf = [](std::int64_t v) {
-      int b = 0;
-      while (b < 63 && (std::int64_t(1) << b) <= v) ++b;
-      return b;
-    };
-    const int bx = bitsOf(maxCell_[0]), by = bitsOf(maxCell_[1]), bz = bitsOf(maxCell_[2]);
-    // The key with each coordinate in its own width: the same order as the packed key.
-    std::vector<std::uint64_t> compact(key.size());
-    for (size_t i = 0; i < key.size(); ++i) {
-      const Key k = key[i];
-      compact[i] = ((k >> (2 * kBits)) << (by + bz)) | (((k >> kBits) & Key(kMaxCoord)) << bz) | (k & Key(kMaxCoord));
-    }
     const int total = bx + by + bz;
     constexpr int kDigit = 11;
     std::iota(order.begin(), order.end(), 0u);
@@ -89,8 +89,8 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
     const std::uint32_t j = order[i];
     sortedPoint_[i] = points[valid[j]];
     pointIndex_[i] = valid[j];
-    if (i == 0 || key[j] != key[order[i - 1]]) {
-      cellKey_.push_back(key[j]);
+    if (i == 0 || compact[j] != compact[order[i - 1]]) {
+      cellKey_.push_back(keyOf(compact[j]));
       cellStart_.push_back(static_cast<std::uint32_t>(i));
     }
   }

@@ -183,7 +183,7 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
 
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local, SplatSizeStats* stats,
-                                     Progress* progress, int threads) {
+                                     Progress* progress, int threads, const std::vector<std::uint32_t>* rankIndex) {
   std::vector<float> radius(points.size(), static_cast<float>(globalRadius));
   SplatSizeStats st;
   if (local) {
@@ -209,7 +209,7 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     const int workers = parallelParts(n, threads, 2048);
     struct Cand {
       double x, y, z;
-      std::uint32_t idx;
+      std::uint32_t idx, rank; // index, and the index it is ordered by among equal x
     };
     struct Worker {
       FanScratch scratch;
@@ -243,9 +243,10 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
           const double keep2 = reach2 * (1 + 1e-9);
           for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
             if (squaredDistanceToBox(points[*it], lo, ix.side()) <= keep2)
-              cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it});
+              cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it,
+                                  rankIndex != nullptr ? (*rankIndex)[*it] : *it});
         }
-        std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.idx < b.idx; });
+        std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.rank < b.rank; });
         for (; k < end; ++k) {
           const std::uint32_t i = order[k];
           const vcg::Point3d& p = points[i];

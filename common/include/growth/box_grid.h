@@ -229,9 +229,14 @@ public:
   // is the same for any number. `normals` must outlive the grid: the normals of the boxes that
   // hold no input point are computed from them when first asked for.
   // deferNormals: the normals of the boxes holding input points are left for startNormals() /
-  // finishNormals() (or first use) too, so that they can be computed while the caller works on.
+  // finishNormals() (or first use) too, so that they can be computed while the caller works on;
+  // ignored above kMaxDeferredBoxes boxes.
+  static constexpr size_t kMaxDeferredBoxes = 100000;
+  // listOrder (optional, a permutation of the point indices): the order of the points in every
+  // box's list (default: increasing index). Box ids are given in order of first appearance in it.
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
-             Progress* progress = nullptr, int threads = 0, bool deferNormals = false);
+             Progress* progress = nullptr, int threads = 0, bool deferNormals = false,
+             const std::vector<std::uint32_t>* listOrder = nullptr);
 
   BoxGrid() = default;
   BoxGrid(const BoxGrid&) = delete;
@@ -255,7 +260,7 @@ public:
     KeyHash::Key k;
     return index_.keyOf(p, k) ? hash_.find(k) : -1;
   }
-  // Points of a box (after the normal filter), in increasing index order.
+  // Points of a box (after the normal filter), in increasing index order (or build()'s listOrder).
   const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
   const std::uint32_t* pointsEnd(int box) const { return points_.data() + start_[size_t(box) + 1]; }
   size_t pointCount(int box) const { return start_[size_t(box) + 1] - start_[size_t(box)]; }

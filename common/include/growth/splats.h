@@ -79,10 +79,12 @@ struct SplatSizeStats {
 // localSplatRadius: a farther point can only be a Delaunay neighbour of p when p's Voronoi cell
 // reaches beyond s, and then the radius is clamped to s anyway; so the result is the same, at a
 // cost that does not grow with the box (d) but with s. Runs on `threads` threads (0 = automatic,
-// parallel.h); the radii are the same for any number.
+// parallel.h); the radii are the same for any number. The neighbours of a point are handed to
+// localSplatRadius by increasing x, equal x by increasing index, or by rankIndex[index] when
+// given (for points renumbered from an original order: the same order as there).
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
                                      const BoxGrid& grid, double globalRadius, bool local,
                                      SplatSizeStats* stats = nullptr, Progress* progress = nullptr,
-                                     int threads = 0);
+                                     int threads = 0, const std::vector<std::uint32_t>* rankIndex = nullptr);
 
 } // namespace growth
