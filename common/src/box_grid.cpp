@@ -570,8 +570,9 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
   // others are computed when first asked for (boxNormal()), with the same result.
   // Deferring pays on small clouds, where the growth leaves the other core idle; on large ones the
-  // second thread's memory traffic slowed the growth down by more than it saved (a 1M-point torus:
-  // growth 1.8 -> 2.2-2.8 s, the box grid 0.1-0.4 s faster), so there they are computed here.
+  // second thread's memory traffic slows the growth down about as much as it saves (a 1M-point
+  // torus, 277k boxes: box grid 0.2-0.3 s faster, growth 0.1-0.4 s slower), so there they are
+  // computed here.
   deferNormals = deferNormals && boxes <= kMaxDeferredBoxes;
   boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
   boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
