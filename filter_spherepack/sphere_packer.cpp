@@ -6,6 +6,7 @@
 #include <growth/candidates.h>
 #include <growth/crossing.h>
 #include <growth/error.h>
+#include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
 #include <growth/morton.h>
@@ -236,7 +237,7 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
   const size_t n = in.points.size();
   if (n < std::max<size_t>(minPoints, 2)) return r;
   // Box coordinates (at most 21 bits each, as the box grid's), interleaved.
-  std::vector<std::uint64_t> code(n);
+  HugeVector<std::uint64_t> code(n);
   std::uint64_t maxCode = 0;
   for (size_t i = 0; i < n; ++i) {
     std::uint64_t c[3];

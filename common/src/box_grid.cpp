@@ -428,7 +428,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // Both are stored at the point's position in the list order (passes 1 and 2 read them in that
   // order, sequentially).
   constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
-  std::vector<std::uint32_t> mask(n), listPos;
+  HugeVector<std::uint32_t> mask(n), listPos;
   if (listOrder != nullptr) {
     listPos.resize(n);
     for (size_t t = 0; t < n; ++t) listPos[(*listOrder)[t]] = static_cast<std::uint32_t>(t);
@@ -473,7 +473,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   if (listOrder != nullptr) {
     ownOf.swap(ownAt);
     std::vector<std::uint32_t>().swap(ownAt);
-    std::vector<std::uint32_t>().swap(listPos);
+    HugeVector<std::uint32_t>().swap(listPos);
   }
 
   // Pass 1 (in list order): box ids in order of first appearance (deterministic), reference
@@ -558,7 +558,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     }
   });
   std::vector<std::uint32_t>().swap(ownOf);
-  std::vector<std::uint32_t>().swap(mask);
+  HugeVector<std::uint32_t>().swap(mask);
   std::vector<std::vector<std::uint32_t>>().swap(count);
 
   // Normal filter and box normals, independent per box: the boxes are cut into one contiguous
@@ -569,11 +569,6 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
   // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
   // others are computed when first asked for (boxNormal()), with the same result.
-  // Deferring pays on small clouds, where the growth leaves the other core idle; on large ones the
-  // second thread's memory traffic slows the growth down about as much as it saves (a 1M-point
-  // torus, 277k boxes: box grid 0.2-0.3 s faster, growth 0.1-0.4 s slower), so there they are
-  // computed here.
-  deferNormals = deferNormals && boxes <= kMaxDeferredBoxes;
   boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
   boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
   state_.reset(new std::atomic<std::uint8_t>[boxes]);

@@ -20,7 +20,7 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   Point lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
            std::numeric_limits<double>::max());
   Point hi = -lo;
-  std::vector<std::uint32_t> valid;
+  HugeVector<std::uint32_t> valid;
   valid.reserve(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const Point& p = points[i];
@@ -50,7 +50,7 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
     return b;
   };
   const int bx = bitsOf(maxCell_[0]), by = bitsOf(maxCell_[1]), bz = bitsOf(maxCell_[2]);
-  std::vector<std::uint64_t> compact(valid.size());
+  HugeVector<std::uint64_t> compact(valid.size());
   for (size_t i = 0; i < valid.size(); ++i) {
     const Point& p = points[valid[i]];
     compact[i] = (std::uint64_t(std::min(coord(p[0], lo[0]), kMaxCoord)) << (by + bz)) |
@@ -61,12 +61,12 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   auto keyOf = [&](std::uint64_t c) {
     return pack(std::int64_t(c >> (by + bz)), std::int64_t((c >> bz) & yMask), std::int64_t(c & zMask));
   };
-  std::vector<std::uint32_t> order(valid.size());
+  HugeVector<std::uint32_t> order(valid.size());
   {
     const int total = bx + by + bz;
     constexpr int kDigit = 11;
     std::iota(order.begin(), order.end(), 0u);
-    std::vector<std::uint32_t> tmp(order.size());
+    HugeVector<std::uint32_t> tmp(order.size());
     std::vector<std::uint32_t> count(size_t(1) << kDigit);
     for (int shift = 0; shift < total; shift += kDigit) {
       std::fill(count.begin(), count.end(), 0u);

@@ -1,4 +1,5 @@
 #include <growth/box_grid.h>
+#include <growth/huge_pages.h>
 #include <growth/parallel.h>
 #include <growth/progress.h>
 #include <growth/splats.h>
@@ -190,15 +191,16 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     // Points grouped by the box containing them: they share that box's point list, gathered once
     // into contiguous memory.
     const size_t boxes = grid.boxCount();
-    std::vector<std::uint32_t> start(boxes + 2, 0), order(points.size());
-    std::vector<std::int32_t> own(points.size());
+    std::vector<std::uint32_t> start(boxes + 2, 0);
+    HugeVector<std::uint32_t> order(points.size());
+    HugeVector<std::int32_t> own(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
       own[i] = grid.boxOf(points[i]);
       ++start[size_t(own[i] + 1) + 1]; // slot 1 holds the points without a box (none in practice)
     }
     for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
     for (size_t i = 0; i < points.size(); ++i) order[start[size_t(own[i] + 1)]++] = static_cast<std::uint32_t>(i);
-    std::vector<std::int32_t>().swap(own);
+    HugeVector<std::int32_t>().swap(own);
     // start[g] is now the end of group g (group 0: no box; group b + 1: box b), and the groups
     // lie in order in `order`. The positions of `order` are handed out in chunks to the threads
     // (parallel.h); a chunk walks the groups it overlaps (a group cut in two is gathered for both

@@ -15,6 +15,8 @@
 //  3. a box whose best minimum is negative is one where "d is too large" for the cloud: its box
 //     normal has a negative scalar product with some point normal, so manifold output is no longer
 //     guaranteed. Such boxes are counted so that the caller can warn.
+#include <growth/huge_pages.h>
+
 #include <vcg/space/point3.h>
 
 #include <cmath>
@@ -229,9 +231,7 @@ public:
   // is the same for any number. `normals` must outlive the grid: the normals of the boxes that
   // hold no input point are computed from them when first asked for.
   // deferNormals: the normals of the boxes holding input points are left for startNormals() /
-  // finishNormals() (or first use) too, so that they can be computed while the caller works on;
-  // ignored above kMaxDeferredBoxes boxes.
-  static constexpr size_t kMaxDeferredBoxes = 100000;
+  // finishNormals() (or first use) too, so that they can be computed while the caller works on.
   // listOrder (optional, a permutation of the point indices): the order of the points in every
   // box's list (default: increasing index). Box ids are given in order of first appearance in it.
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
@@ -289,7 +289,7 @@ private:
   BoxIndexer index_;
   KeyHash hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
-  std::vector<std::uint32_t> points_;  // point indices per box
+  HugeVector<std::uint32_t> points_;   // point indices per box (about 21 per point: huge pages)
   // Box normal states: not computed, being computed (by the other thread), done.
   static constexpr std::uint8_t kNone = 0, kBusy = 1, kDone = 2;
   // Computes box's normal with `sampling` unless another thread claimed it (then waits for it).

@@ -6,6 +6,8 @@
 // contiguous memory. Memory grows with the number of points, never with the bounding box.
 // Robust G2S, sec. 3 step 2 ("an original hash table data structure ... for the search of the
 // nearest neighbourhoods"); the sphere packer uses the same hashing idea for its box grid.
+#include <growth/huge_pages.h>
+
 #include <vcg/space/point3.h>
 
 #include <cmath>
@@ -87,8 +89,9 @@ private:
   std::vector<std::int64_t> table_;    // open addressing: slot of a cell, -1 when free
   size_t mask_ = 0;
   int shift_ = 63;                     // 64 − log2(table size)
-  std::vector<Point> sortedPoint_;     // coordinates in cell order
-  std::vector<std::uint32_t> pointIndex_; // original index, in cell order
+  // Written once, point by point: huge pages (large clouds pay a page fault per 4 KiB otherwise).
+  HugeVector<Point> sortedPoint_;      // coordinates in cell order
+  HugeVector<std::uint32_t> pointIndex_; // original index, in cell order
 };
 
 template <class F>
