@@ -18,7 +18,10 @@ clock around applyFilter, the fastest of up to 5 repeats. Above that, our filter
 time in the log ("... time X s"), and MeshLab's are timed as the wall clock of the run minus the wall
 clock of the load+save-only run of the same cloud (0.01 s resolution: small beside their times there).
 Memory: peak resident set size of meshlabserver (/usr/bin/time -v) minus that of the
-load+save-only run, per input point: the filter's extra peak.
+load+save-only run, per input point: the filter's extra peak. Also minus that of a run applying a
+filter that does nothing (MeshLab's "Select None"): MeshLab's own cost of applying any filter, about
+5 MB, which no filter can avoid and which dominates on small clouds; and, per shape, the fitted
+per-point slope of the extra peak over the generated clouds' sizes.
 Needs numpy and matplotlib from Debian (/usr/bin/python3), installed by scripts/setup.sh.
 """
 import argparse
@@ -369,8 +372,63 @@ def load_save(ctx, path, work):
     return {"wall": best["wall"], "rss_kb": best["rss_kb"]}
 
 
+# A filter that does nothing to a cloud: its run's peak is MeshLab's floor for applying any filter.
+NOOP_MLX = """<!DOCTYPE FilterScript>
+<FilterScript>
+ <filter name="Select None">
+  <Param type="RichBool" value="true" name="allFaces" description="" tooltip=""/>
+  <Param type="RichBool" value="true" name="allVerts" description="" tooltip=""/>
+ </filter>
+</FilterScript>
+"""
+
+
+def noop_floor(ctx, path, work):
+    """Peak memory (kB, the smallest of the repeats) of a run that loads `path`, applies a filter that
+    does nothing ("Select None") and saves: MeshLab's cost of applying any filter (its filter
+    environment, the script's parsing), which every filter pays on top of the load+save run."""
+    os.makedirs(work, exist_ok=True)
+    script = os.path.join(work, "noop.mlx")
+    with open(script, "w") as f:
+        f.write(NOOP_MLX)
+    best = None
+    for _ in range(ctx.repeat):
+        r = run_meshlabserver(ctx, work, ["-i", path, "-o", "noop.ply", "-s", "noop.mlx"], ctx.timeout)
+        if r["rc"] != 0 or r["rss_kb"] is None:
+            log("  the no-op filter run failed on %s; see %s" % (path, work))
+            return None
+        best = r["rss_kb"] if best is None else min(best, r["rss_kb"])
+    return best
+
+
 def baseline(cloud, ctx):
-    return load_save(ctx, cloud["path"], os.path.join(ctx.out, "runs", cloud["name"], "_load_save"))
+    base = load_save(ctx, cloud["path"], os.path.join(ctx.out, "runs", cloud["name"], "_load_save"))
+    base["noop_rss_kb"] = noop_floor(ctx, cloud["path"], os.path.join(ctx.out, "runs", cloud["name"], "_noop"))
+    return base
+
+
+def measure_floors(rows, ctx, clouds=None):
+    """The no-op filter floor of every saved cloud (or of `clouds`), stored in all its rows."""
+    for name in sorted({r["cloud"] for r in rows}):
+        if clouds and name not in clouds:
+            continue
+        cloud = prepare_cloud(name, ctx)
+        if cloud is None:
+            continue
+        ctx.repeat = ctx.repeat_option if ctx.repeat_option > 0 else (3 if cloud["points"] <= 100000 else 1)
+        floor = noop_floor(ctx, cloud["path"], os.path.join(ctx.out, "runs", name, "_noop"))
+        log("%s: no-op filter peak %s kB" % (name, floor))
+        for r in rows:
+            if r["cloud"] == name and floor is not None:
+                r["noop_rss_kb"] = floor
+    return rows
+
+
+def extra_over_noop(r):
+    """Extra peak per input point over the no-op filter run, or None."""
+    if r.get("rss_kb") is None or r.get("noop_rss_kb") is None:
+        return None
+    return max(0, r["rss_kb"] - r["noop_rss_kb"]) * 1024.0 / r["points"]
 
 
 def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
@@ -384,7 +442,7 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
            "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
-           "base_rss_kb": base["rss_kb"], "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
+           "base_rss_kb": base["rss_kb"], "noop_rss_kb": base.get("noop_rss_kb"), "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
     if (method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["kind"] == "generated"
             and cloud["points"] > ctx.bpa_max_points):
         row["status"] = "skipped: generated cloud of more than %s points (--bpa-max-points)" % "{:,}".format(
@@ -558,7 +616,8 @@ def table(cloud_rows):
     ref = next((r for r in cloud_rows if r["method"] == REFERENCE and r.get("status") == "ok"), None)
     ref3 = next((r for r in cloud_rows if r["method"] == "bpa3" and r.get("status") == "ok"), None)
     head = ("| method | time [s] | speed-up vs BPA | vs BPA 3s | faces | triangles/s | E_avg | E_RMS % | Q_avg "
-            "| Q_RMS % | QF | μd % | non-manifold V / E | boundary edges | holes | extra peak [B/point] |")
+            "| Q_RMS % | QF | μd % | non-manifold V / E | boundary edges | holes "
+            "| extra peak [B/point]: over load+save / over no-op filter |")
     lines = [head, "|" + "---|" * 16]
     order = {m: i for i, m in enumerate(["bpa", "bpa3", "bpa_re", "spherepack", "g2s"])}
     for r in sorted(cloud_rows, key=lambda x: order.get(x["method"], 99)):
@@ -587,7 +646,8 @@ def table(cloud_rows):
             "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
             fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
             fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
-            m["boundary_edges"], m["boundary_loops"], fmt(r.get("extra_peak_bytes_per_point"), ".0f")))
+            m["boundary_edges"], m["boundary_loops"],
+            "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))))
     return "\n".join(lines)
 
 
@@ -713,7 +773,8 @@ EXPLANATION = (
     "iterations of Isotropic Explicit Remeshing at target length d, MeshLab's defaults otherwise). "
     "Speed-up = time of Ball Pivoting (auto radius, or r = 3 × mean spacing) / time of the row. Extra "
     "peak = peak resident memory (/usr/bin/time -v) of the run minus that of the load+save-only run, "
-    "per input point. μd % = mean distance of the input points to the mesh / their mean "
+    "per input point, and over that of a run applying a filter that does nothing (MeshLab's Select None: "
+    "MeshLab's own cost of applying any filter, about 5 MB, which dominates on small clouds). μd % = mean distance of the input points to the mesh / their mean "
     "nearest-neighbour spacing × 100. Holes = boundary loops (non-manifold vertices split into their "
     "fans). Measures by `build/mesh_measures` (common/include/growth/mesh_measures.h).")
 
@@ -775,7 +836,24 @@ def cloud_section(c, rows, level, image):
     return md
 
 
-def scaling_section(slopes, level, image):
+def memory_fits(rows):
+    """Per (shape, method), over the generated clouds of at least 3 sizes: the least-squares line
+    extra peak = F + b × points (extra peak over the load+save run, in bytes). Returns
+    {(shape, method): (b [B/point], F [bytes], sizes)}."""
+    import numpy as np
+    fits = {}
+    for s in SHAPES:
+        for meth in RUN_ORDER:
+            pts = sorted((r["points"], (r["rss_kb"] - r["base_rss_kb"]) * 1024.0) for r in rows
+                         if r.get("shape") == s and r["method"] == meth and r.get("status") == "ok"
+                         and r.get("rss_kb") is not None and r.get("base_rss_kb") is not None)
+            if len({n for n, _ in pts}) >= 3:
+                b, f = np.polyfit(np.array([n for n, _ in pts], float), np.array([e for _, e in pts], float), 1)
+                fits[(s, meth)] = (b, f, len(pts))
+    return fits
+
+
+def scaling_section(slopes, level, image, fits=None):
     md = ["%s Time against number of points (log–log, fitted slope)" % ("#" * level), ""]
     if image:
         md += ["![time against points](%s)" % image, ""]
@@ -786,6 +864,19 @@ def scaling_section(slopes, level, image):
             if any(k[0] == s for k in slopes):
                 md.append("| %s | " % s + " | ".join(
                     ("%.2f" % slopes[(s, m)]) if (s, m) in slopes else "—" for m in RUN_ORDER) + " |")
+        md.append("")
+    if fits:
+        md += ["%s Memory against number of points (fitted line)" % ("#" * level), "",
+               "Extra peak (over the load+save run) = F + b × points, least squares over the generated "
+               "clouds' sizes: b [B/point] (F [MB]). F holds MeshLab's own cost of applying a filter "
+               "(see the no-op column of the tables) and the filter's fixed costs.", "",
+               "| shape | " + " | ".join(METHODS[m][1] for m in RUN_ORDER) + " |",
+               "|---|" + "---|" * len(RUN_ORDER)]
+        for s in SHAPES:
+            if any(k[0] == s for k in fits):
+                md.append("| %s | " % s + " | ".join(
+                    ("%.0f (%.1f)" % (fits[(s, m)][0], fits[(s, m)][1] / 1e6)) if (s, m) in fits else "—"
+                    for m in RUN_ORDER) + " |")
         md.append("")
     return md
 
@@ -798,7 +889,8 @@ def report(rows, ctx, command):
         hp = os.path.join("plots", "%s_histograms.png" % c)
         md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
     if slopes or os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")):
-        md += scaling_section(slopes, 2, "plots/scaling.png" if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")) else None)
+        md += scaling_section(slopes, 2, "plots/scaling.png" if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")) else None,
+                              memory_fits(rows))
     path = os.path.join(ctx.out, "results.md")
     with open(path, "w") as f:
         f.write("\n".join(md))
@@ -840,7 +932,7 @@ def publish(rows, ctx, command, slopes):
     full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
     for c in clouds:
         full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
-    full += scaling_section(slopes, 2, image("scaling.png", docs))
+    full += scaling_section(slopes, 2, image("scaling.png", docs), memory_fits(rows))
     with open(os.path.join(docs, "results.md"), "w") as f:
         f.write("\n".join(full))
 
@@ -858,7 +950,7 @@ def publish(rows, ctx, command, slopes):
     summary += headline_section(clouds, rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
-    summary += scaling_section(slopes, 3, image("scaling.png", where))
+    summary += scaling_section(slopes, 3, image("scaling.png", where), memory_fits(rows))
     summary += ["Every cloud's table and histograms: [%s](%s)." % ("docs/benchmark/results.md",
                 os.path.relpath(os.path.join(docs, "results.md"), where)), ""]
     if into_readme:
@@ -910,6 +1002,9 @@ def main():
     ap.add_argument("--retime", action="store_true",
                     help="time the saved rows again in process (see --inproc-max-points), keeping meshes and "
                          "memory; restricted by --clouds and --methods when given")
+    ap.add_argument("--floors", action="store_true",
+                    help="measure the no-op filter floor (memory) of the saved rows' clouds again; restricted by "
+                         "--clouds when given")
     ap.add_argument("--publish", action="store_true",
                     help="copy the plots (< 200 KB) and tables to docs/benchmark/ and the summary into "
                          "README.md between its results markers")
@@ -939,7 +1034,7 @@ def main():
     results = os.path.join(ctx.out, "results.jsonl")
     rows = [] if a.fresh else load_rows(results)
 
-    if not a.report_only and not a.retime:
+    if not a.report_only and not a.retime and not a.floors:
         methods = [m.strip() for m in a.methods.split(",") if m.strip()]
         for m in methods:
             if m not in METHODS:
@@ -992,6 +1087,9 @@ def main():
         only_clouds = [c.strip() for c in a.clouds.split(",")] if a.clouds else None
         only_methods = [m.strip() for m in a.methods.split(",")] if a.methods != ",".join(RUN_ORDER) else None
         rows = retime(rows, ctx, only_clouds, only_methods)
+        save_rows(results, rows)
+    if a.floors:
+        rows = measure_floors(rows, ctx, [c.strip() for c in a.clouds.split(",")] if a.clouds else None)
         save_rows(results, rows)
     path, made, slopes = report(rows, ctx, a.command)
     log("tables: %s" % path)

@@ -12,6 +12,8 @@
 #                                        histogram ranges), keeping the timings
 #   scripts/benchmark.sh --retime [--clouds ..] [--methods ..]   time the saved rows of clouds up to
 #                                        100k points again, in process (build/plugin_time)
+#   scripts/benchmark.sh --floors [--clouds ..]   measure the no-op filter's memory (MeshLab's floor
+#                                        for applying any filter) of the saved rows' clouds again
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
