@@ -115,15 +115,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.faces = faces;
     if (faces > 0) {
       // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
-      reserveHuge(out.vert, stat.vertices);
+      reserveHuge(out.vert, stat.vertices, true);
       vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
       for (size_t i = 0; i < points; ++i)
         if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
       // Only outIndex is needed from here on.
       mesher.releaseOrder();
       decltype(input.vertexIndex)().swap(input.vertexIndex);
-      reserveHuge(out.face, faces);
       out.face.EnableQuality();
+      reserveHuge(out.face, faces, true); // (vcglib's reserve reserves the quality vector too)
+      prefault(out.face.QV.data(), faces * sizeof(out.face.QV[0]));
       // The faces are added a block at a time, and the block's triangles are given back (whole
       // pages, growth::discardPages) once it is written: the faces take four times the
       // triangles' memory, so the two would otherwise add up at the peak. Within the reserved

@@ -41,9 +41,10 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   inv_ = 1.0 / cell_;
   for (int a = 0; a < 3; ++a) maxCell_[a] = std::min(coord(box_.max[a], a), kMaxCoord);
 
-  // Cell keys, sorted with the point indices by a stable LSD radix sort on 16-bit digits (only
-  // over the digits the keys use): equal keys keep the input order, so the result is
-  // deterministic. Keys below 2^32 — every cloud whose box spans fewer than 2^10 cells per axis —
+  // Cell keys, sorted with the point indices by a stable LSD radix sort on 16-bit digits (8-bit
+  // digits below 2^17 points, where a 65536-entry count table would cost more than the passes;
+  // the sorted order is the same) and only over the digits the keys use: equal keys keep the
+  // input order, so the result is deterministic. Keys below 2^32 — every cloud whose box spans fewer than 2^10 cells per axis —
   // are packed with the index into one 64-bit word (half the memory of separate arrays).
   HugeVector<std::uint64_t> key;
   assignHuge(key, n, std::uint64_t(0));
@@ -56,15 +57,17 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
     maxKey = std::max(maxKey, key[i]);
   }
   assignHuge(order_, n, 0u);
-  std::vector<std::uint32_t> count(65537);
+  const int digit = n < (size_t(1) << 17) ? 8 : 16;
+  const size_t digits = size_t(1) << digit, mask = digits - 1;
+  std::vector<std::uint32_t> count(digits + 1);
   auto radix = [&](HugeVector<std::uint64_t>& v, int firstShift, int endShift, auto&& digitOf) {
     HugeVector<std::uint64_t> tmp;
     assignHuge(tmp, n, std::uint64_t(0));
-    for (int shift = firstShift; shift < endShift; shift += 16) {
+    for (int shift = firstShift; shift < endShift; shift += digit) {
       std::fill(count.begin(), count.end(), 0u);
       for (size_t i = 0; i < n; ++i) ++count[digitOf(v[i], shift) + 1];
       if (count[digitOf(v[0], shift) + 1] == n) continue; // every key has this digit: no-op pass
-      for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
+      for (size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
       for (size_t i = 0; i < n; ++i) tmp[count[digitOf(v[i], shift)]++] = v[i];
       v.swap(tmp);
     }
@@ -72,8 +75,8 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   if (maxKey < (std::uint64_t(1) << 32)) {
     for (size_t i = 0; i < n; ++i) key[i] = key[i] << 32 | i;
     int bits = 0;
-    while (bits < 32 && (maxKey >> bits) != 0) bits += 16;
-    radix(key, 32, 32 + bits, [](std::uint64_t k, int shift) { return size_t((k >> shift) & 0xffff); });
+    while (bits < 32 && (maxKey >> bits) != 0) bits += digit;
+    radix(key, 32, 32 + bits, [mask](std::uint64_t k, int shift) { return size_t((k >> shift) & mask); });
     for (size_t i = 0; i < n; ++i) {
       order_[i] = std::uint32_t(key[i]);
       key[i] >>= 32;
@@ -83,12 +86,12 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
     std::vector<std::uint32_t> idx(n), idxTmp(n);
     for (size_t i = 0; i < n; ++i) idx[i] = std::uint32_t(i);
     HugeVector<std::uint64_t> keyTmp(n);
-    for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += 16) {
+    for (int shift = 0; shift < 64 && (maxKey >> shift) != 0; shift += digit) {
       std::fill(count.begin(), count.end(), 0u);
-      for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & 0xffff) + 1];
-      for (size_t d = 0; d < 65536; ++d) count[d + 1] += count[d];
+      for (size_t i = 0; i < n; ++i) ++count[((key[i] >> shift) & mask) + 1];
+      for (size_t d = 0; d < digits; ++d) count[d + 1] += count[d];
       for (size_t i = 0; i < n; ++i) {
-        const std::uint32_t to = count[(key[i] >> shift) & 0xffff]++;
+        const std::uint32_t to = count[(key[i] >> shift) & mask]++;
         keyTmp[to] = key[i];
         idxTmp[to] = idx[i];
       }

@@ -7,6 +7,11 @@
 #include <string>
 #include <vector>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
 // The advice is only a hint: whatever the kernel does, contents and sizes must be as asked.
 TEST(HugePages, AssignAndReserveKeepTheVectorContract) {
   std::vector<std::uint32_t> v{1, 2, 3};
@@ -70,3 +75,44 @@ TEST(HugePages, DiscardPagesFreesOnlyWholePagesInsideTheRange) {
   growth::discardPages(v.data(), 100);    // no whole page: nothing happens
   EXPECT_EQ(v.back(), std::uint32_t(v.size()));
 }
+
+#if defined(__linux__)
+// prefault makes every whole page of the range resident before it is written (one madvise call
+// instead of a fault per page), leaves the contents as they were (zeros in a fresh mapping) and
+// touches nothing outside the range's whole pages.
+TEST(HugePages, PrefaultMakesTheWholePagesOfTheRangeResident) {
+  const size_t page = size_t(sysconf(_SC_PAGESIZE)), pages = 64;
+  void* raw = mmap(nullptr, pages * page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(raw, MAP_FAILED);
+  auto* bytes = static_cast<unsigned char*>(raw);
+  auto resident = [&]() {
+    std::vector<unsigned char> vec(pages);
+    EXPECT_EQ(mincore(raw, pages * page, vec.data()), 0);
+    std::string r;
+    for (unsigned char c : vec) r += (c & 1) ? '1' : '0';
+    return r;
+  };
+  ASSERT_EQ(resident(), std::string(pages, '0'));
+  // From the middle of page 8 to the middle of page 56: pages 9..55 are whole.
+  if (!growth::prefault(bytes + 8 * page + page / 2, 48 * page)) {
+    munmap(raw, pages * page);
+    GTEST_SKIP() << "MADV_POPULATE_WRITE is not available (Linux < 5.14): prefault is a no-op here";
+  }
+  EXPECT_EQ(resident(), std::string(9, '0') + std::string(47, '1') + std::string(8, '0'));
+  // Too small a range to be worth a call: nothing happens.
+  EXPECT_FALSE(growth::prefault(bytes, growth::kPrefaultMinBytes - 1));
+  EXPECT_EQ(resident(), std::string(9, '0') + std::string(47, '1') + std::string(8, '0'));
+  for (size_t i = 9 * page; i < 56 * page; i += 997) EXPECT_EQ(bytes[i], 0u);
+  munmap(raw, pages * page);
+}
+
+// reserveHuge with populate keeps the vector's contract: size and contents unchanged, room for n.
+TEST(HugePages, ReserveHugePopulatedKeepsTheContents) {
+  std::vector<std::uint32_t> v{7, 8, 9};
+  growth::reserveHuge(v, 1 << 20, /*populate=*/true);
+  EXPECT_EQ(v, (std::vector<std::uint32_t>{7, 8, 9}));
+  EXPECT_GE(v.capacity(), size_t(1) << 20);
+  growth::HugeVector<std::uint64_t> h(size_t(1) << 19, 5); // allocated populated (4 MiB)
+  EXPECT_EQ(std::accumulate(h.begin(), h.end(), std::uint64_t(0)), std::uint64_t(5) << 19);
+}
+#endif

@@ -37,9 +37,9 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   }
 
   size_t nonFinite = 0, badNormals = 0;
-  reserveHuge(c.points, static_cast<size_t>(mesh.vn));
-  reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn));
-  if (check.needNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn));
+  reserveHuge(c.points, static_cast<size_t>(mesh.vn), true);
+  reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn), true);
+  if (check.needNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn), true);
   for (size_t i = 0; i < mesh.vert.size(); ++i) {
     const auto& v = mesh.vert[i];
     if (v.IsD()) continue;

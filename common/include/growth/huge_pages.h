@@ -65,20 +65,53 @@ inline void discardPages(const void* data, size_t bytes) {
 #endif
 }
 
-// Makes room for n elements in v (without touching the new room) and advises huge pages for it.
-// Only reserve() is used, so containers deriving from std::vector with state of their own
-// (vcglib's vector_ocf, which reserves its optional components too) stay consistent.
-template <class V>
-void reserveHuge(V& v, size_t n) {
-  v.reserve(n);
-  adviseHugePages(v.data(), v.capacity() * sizeof(typename V::value_type));
+// Makes the pages of [data, data + bytes) resident at once (madvise MADV_POPULATE_WRITE, Linux
+// 5.14 and later), for memory about to be written from end to end. Faulting pages in one at a
+// time costs a trap per 4 KiB page; on the virtual machines this project is measured on a trap
+// costs about 12-14 µs (3-3.6 ms per MiB), populating the range in one call about 0.7 ms per MiB
+// (measured with a 64 MiB buffer). Below kPrefaultMinBytes the call costs more than it saves.
+// Elsewhere, or on older kernels (EINVAL), it does nothing: pages then fault in as they are written.
+// Returns whether the whole pages of the range were made resident.
+constexpr size_t kPrefaultMinBytes = size_t(32) << 10;
+
+inline bool prefault(void* data, size_t bytes) { // (not const: it writes the pages)
+#if defined(__linux__)
+#ifndef MADV_POPULATE_WRITE
+#define GROWTH_MADV_POPULATE_WRITE 23 // <linux/mman.h>; older C libraries lack the name
+#else
+#define GROWTH_MADV_POPULATE_WRITE MADV_POPULATE_WRITE
+#endif
+  static const size_t page = size_t(sysconf(_SC_PAGESIZE));
+  if (data == nullptr || bytes < kPrefaultMinBytes || page == 0) return false;
+  // Whole pages only: the partial pages at both ends may be shared with other blocks.
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(data) + page - 1) & ~(page - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(data) + bytes) & ~(page - 1);
+  return end > begin && madvise(reinterpret_cast<void*>(begin), end - begin, GROWTH_MADV_POPULATE_WRITE) == 0;
+#undef GROWTH_MADV_POPULATE_WRITE
+#else
+  (void)data;
+  (void)bytes;
+  return false;
+#endif
 }
 
-// v = n copies of x, with huge pages advised before the first touch.
+// Makes room for n elements in v and advises huge pages for it; with `populate`, also makes the
+// room for the n elements resident (prefault), for a v about to be filled with n elements. Only
+// reserve() is used, so containers deriving from std::vector with state of their own (vcglib's
+// vector_ocf, which reserves its optional components too) stay consistent.
+template <class V>
+void reserveHuge(V& v, size_t n, bool populate = false) {
+  v.reserve(n);
+  adviseHugePages(v.data(), v.capacity() * sizeof(typename V::value_type));
+  if (populate && n > v.size())
+    prefault(v.data() + v.size(), (n - v.size()) * sizeof(typename V::value_type));
+}
+
+// v = n copies of x, with huge pages advised and the pages made resident before the first write.
 template <class T, class A>
 void assignHuge(std::vector<T, A>& v, size_t n, const T& x) {
   if (v.capacity() < n) std::vector<T, A>().swap(v);
-  reserveHuge(v, n);
+  reserveHuge(v, n, /*populate=*/true);
   v.assign(n, x);
 }
 
@@ -88,7 +121,9 @@ void assignHuge(std::vector<T, A>& v, size_t n, const T& x) {
 // 16 bytes into a page, so advising it leaves up to 2 MiB of its head to 4 KiB pages; here only
 // the tail after the last whole 2 MiB page is.) The alignment costs address space only; the
 // mapping is rounded up to a whole huge page only when that adds at most an eighth to the
-// block. Smaller blocks come from malloc.
+// block. Smaller blocks come from malloc. Every block of kPrefaultMinBytes or more is made
+// resident when it is allocated (prefault): these arrays are written soon after, whole (a queue
+// level or an overflow pool growing by doubling touches at most twice what it holds).
 template <class T>
 struct HugeAllocator {
   using value_type = T;
@@ -117,11 +152,13 @@ struct HugeAllocator {
       const std::uintptr_t end = r + len + kHugePageBytes;
       if (end > a + len) munmap(reinterpret_cast<void*>(a + len), end - (a + len));
       adviseHugePages(reinterpret_cast<void*>(a), len);
+      prefault(reinterpret_cast<void*>(a), n * sizeof(T));
       return reinterpret_cast<T*>(a);
     }
 #endif
     void* p = std::malloc(n == 0 ? 1 : n * sizeof(T));
     if (p == nullptr) throw std::bad_alloc();
+    prefault(p, n * sizeof(T));
     return static_cast<T*>(p);
   }
   void deallocate(T* p, size_t n) noexcept {
