@@ -123,8 +123,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       mesher.releaseOrder();
       decltype(input.vertexIndex)().swap(input.vertexIndex);
       out.face.EnableQuality();
-      reserveHuge(out.face, faces, true); // (vcglib's reserve reserves the quality vector too)
-      prefault(out.face.QV.data(), faces * sizeof(out.face.QV[0]));
+      reserveHuge(out.face, faces); // (vcglib's reserve reserves the quality vector too)
       // The faces are added a block at a time, and the block's triangles are given back (whole
       // pages, growth::discardPages) once it is written: the faces take four times the
       // triangles' memory, so the two would otherwise add up at the peak. Within the reserved
@@ -132,6 +131,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       constexpr size_t kBlock = size_t(1) << 16;
       for (size_t first = 0; first < faces; first += kBlock) {
         const size_t last = std::min(faces, first + kBlock);
+        // The block's room made resident at once (within the reserved capacity), block by block
+        // so that the faces do not take their memory before the triangles give theirs back.
+        prefault(out.face.data() + first, (last - first) * sizeof(CFaceO));
+        prefault(out.face.QV.data() + first, (last - first) * sizeof(out.face.QV[0]));
         vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
         for (size_t f = first; f < last; ++f) {
           CFaceO& face = out.face[f];
