@@ -250,9 +250,12 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
   // Stable LSD radix sort on the code's bits.
   int bits = 0;
   while (bits < 64 && (maxCode >> bits) != 0) ++bits;
+  // The arrays here are written whole: made resident in one call each (huge_pages.h).
+  reserveHuge(r.orig, n, /*populate=*/true);
   r.orig.resize(n);
   for (size_t i = 0; i < n; ++i) r.orig[i] = static_cast<std::uint32_t>(i);
-  std::vector<std::uint32_t> tmp(n), count(size_t(1) << 11);
+  std::vector<std::uint32_t> tmp, count(size_t(1) << 11);
+  assignHuge(tmp, n, 0u);
   for (int shift = 0; shift < bits; shift += 11) {
     std::fill(count.begin(), count.end(), 0u);
     for (const std::uint32_t i : r.orig) ++count[size_t((code[i] >> shift) & 2047)];
@@ -265,6 +268,7 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
     for (const std::uint32_t i : r.orig) tmp[count[size_t((code[i] >> shift) & 2047)]++] = i;
     r.orig.swap(tmp);
   }
+  reserveHuge(r.rank, n, /*populate=*/true);
   r.rank.resize(n);
   for (size_t i = 0; i < n; ++i) r.rank[r.orig[i]] = static_cast<std::uint32_t>(i);
   // Permute the arrays in place, cycle by cycle (no second copy of them: the peak memory).
@@ -443,7 +447,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
     // in turn (isolated ones skipped: fewer than 3 other points within d), s1 on its own splat,
     // s2 the projection of a point 1.5·d away in s1's tangent plane, 12 directions tried.
-    std::vector<std::uint32_t> highest(in.points.size());
+    std::vector<std::uint32_t> highest;
+    reserveHuge(highest, in.points.size(), /*populate=*/true);
+    highest.resize(in.points.size());
     for (std::uint32_t i = 0; i < highest.size(); ++i) highest[i] = i;
     const size_t tries = std::min<size_t>(highest.size(), 64);
     std::partial_sort(highest.begin(), highest.begin() + std::ptrdiff_t(tries), highest.end(),
@@ -513,9 +519,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
 
   // Output: referenced vertices only, box normals, Q_t per face.
   progress.phase("Sphere packing: writing the mesh", 97, 100);
-  std::vector<std::int32_t> remap(g.vertexCount(), -1);
+  std::vector<std::int32_t> remap;
+  assignHuge(remap, g.vertexCount(), std::int32_t(-1));
   std::vector<std::uint32_t> used;
-  used.reserve(g.vertexCount());
+  reserveHuge(used, g.vertexCount(), /*populate=*/true); // all of it but unreferenced vertices
   for (const auto& f : faces)
     for (std::uint32_t v : f)
       if (remap[v] < 0) {
@@ -535,12 +542,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   }
 
   if (!faces.empty()) {
+    // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
+    reserveHuge(out.vert, used.size(), /*populate=*/true);
     auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
     for (size_t i = 0; i < used.size(); ++i, ++vi) {
       vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
       vi->N() = CMeshO::CoordType::Construct(g.normal(used[i]));
     }
     out.face.EnableQuality();
+    reserveHuge(out.face, faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
+    prefault(out.face.QV.data(), faces.size() * sizeof(out.face.QV[0]));
     auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, faces.size());
     double qsum = 0, minEdge = std::numeric_limits<double>::infinity();
     for (size_t k = 0; k < faces.size(); ++k, ++fi) {

@@ -20,8 +20,11 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
     tables->offset.push_back(total);
     total += size_t(6) << (2 * depth);
   }
+  // The tables are written whole: made resident in one call each (huge_pages.h).
+  reserveHuge(tables->cell, total, /*populate=*/true);
   tables->cell.resize(total);
   const std::uint32_t leaves = std::uint32_t(1) << level_;
+  reserveHuge(tables->leaf, size(), /*populate=*/true);
   tables->leaf.resize(size());
   for (int face = 0; face < 6; ++face)
     for (std::uint32_t row = 0; row < leaves; ++row)
@@ -383,7 +386,10 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // The boxes near a point are its own box and its 26 neighbours: their ids are looked up once per
   // own box (shared by the ~(d/spacing)² points in it), not once per point.
   KeyHash own(pts.size() / 16 + 16);
-  std::vector<std::uint32_t> ownOf(pts.size());
+  // The working arrays below are written whole soon after they are allocated: they are made
+  // resident in one call each (assignHuge, huge_pages.h), not page by page.
+  std::vector<std::uint32_t> ownOf;
+  assignHuge(ownOf, pts.size(), 0u);
   std::vector<std::int64_t> ownCoord; // 3 per own box
   for (size_t i = 0; i < pts.size(); ++i) {
     const std::int64_t x = index_.coord(pts[i][0], 0), y = index_.coord(pts[i][1], 1), z = index_.coord(pts[i][2], 2);
@@ -391,7 +397,8 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     if (size_t(id) * 3 == ownCoord.size()) ownCoord.insert(ownCoord.end(), {x, y, z});
     ownOf[i] = static_cast<std::uint32_t>(id);
   }
-  std::vector<std::int32_t> near(ownCoord.size() / 3 * 27, -1); // box ids of the 27 neighbours, lazily
+  std::vector<std::int32_t> near; // box ids of the 27 neighbours, lazily
+  assignHuge(near, ownCoord.size() / 3 * 27, std::int32_t(-1));
 
   // The boxes within distance `side` of point i: per axis the boxes within reach and the squared
   // distance of p to each slab (the terms of squaredDistanceToBox, in the same order, so the test
@@ -433,7 +440,8 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     listPos.resize(n);
     for (size_t t = 0; t < n; ++t) listPos[(*listOrder)[t]] = static_cast<std::uint32_t>(t);
   }
-  std::vector<std::uint32_t> ownAt(listOrder != nullptr ? n : 0); // own box, by list position
+  std::vector<std::uint32_t> ownAt; // own box, by list position
+  assignHuge(ownAt, listOrder != nullptr ? n : 0, 0u);
   parallelChunks(n, parallelParts(n, threads, 8192), 1024, [&](size_t i0, size_t i1, int) {
     for (size_t i = i0; i < i1; ++i) {
       const size_t at = listOrder != nullptr ? listPos[i] : i;
@@ -522,7 +530,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   }
   const size_t boxes = count[0].size();
   // CSR offsets; count[part][b] becomes where part `part` writes its first reference in box b.
-  start_.assign(boxes + 1, 0);
+  assignHuge(start_, boxes + 1, 0u);
   for (size_t b = 0; b < boxes; ++b) {
     std::uint32_t at = start_[b];
     for (auto& c : count) {
@@ -569,16 +577,20 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
   // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
   // others are computed when first asked for (boxNormal()), with the same result.
-  boxNormal_.assign(boxes, vcg::Point3d(0, 0, 0));
-  boxMinDot_.assign(boxes, std::numeric_limits<double>::quiet_NaN());
+  assignHuge(boxNormal_, boxes, vcg::Point3d(0, 0, 0));
+  assignHuge(boxMinDot_, boxes, std::numeric_limits<double>::quiet_NaN());
   state_.reset(new std::atomic<std::uint8_t>[boxes]);
+  prefault(state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
   for (size_t b = 0; b < boxes; ++b) state_[b].store(kNone, std::memory_order_relaxed);
-  counted_.assign(boxes, 0);
-  std::vector<std::uint8_t> eager(boxes, 0);
-  std::vector<std::int32_t> ownBox(ownCoord.size() / 3); // box id of each own box: offset (0, 0, 0)
+  assignHuge(counted_, boxes, std::uint8_t(0));
+  std::vector<std::uint8_t> eager;
+  assignHuge(eager, boxes, std::uint8_t(0));
+  std::vector<std::int32_t> ownBox; // box id of each own box: offset (0, 0, 0)
+  assignHuge(ownBox, ownCoord.size() / 3, 0);
   for (size_t o = 0; o < ownBox.size(); ++o) eager[size_t(ownBox[o] = near[o * 27 + 13])] = 1;
   std::vector<std::int32_t>().swap(near);
-  std::vector<std::uint32_t> kept(boxes);
+  std::vector<std::uint32_t> kept;
+  assignHuge(kept, boxes, 0u);
   // A box costs a few microseconds: below a few hundred boxes one thread is faster.
   const int workers = parallelParts(boxes, threads, 256);
   std::vector<size_t> workerDropped(size_t(workers), 0), workerTooLarge(size_t(workers), 0);
@@ -625,7 +637,8 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   points_.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
                      // references the filter dropped)
   if (deferNormals) {
-    std::vector<std::int32_t> ownOfBox(boxes, -1);
+    std::vector<std::int32_t> ownOfBox;
+    assignHuge(ownOfBox, boxes, std::int32_t(-1));
     for (size_t o = 0; o < ownCoord.size() / 3; ++o) ownOfBox[size_t(ownBox[o])] = static_cast<std::int32_t>(o);
     for (size_t b = 0; b < boxes; ++b)
       if (eager[b]) {

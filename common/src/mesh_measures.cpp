@@ -1,3 +1,4 @@
+#include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
 #include <growth/morton.h>
@@ -22,7 +23,12 @@ constexpr double kPi = 3.14159265358979323846;
 // Union–find with path halving and union by size.
 class DisjointSets {
 public:
-  explicit DisjointSets(size_t n) : parent_(n), size_(n, 1) { std::iota(parent_.begin(), parent_.end(), 0u); }
+  explicit DisjointSets(size_t n) {
+    reserveHuge(parent_, n, /*populate=*/true); // written whole: resident in one call each
+    parent_.resize(n);
+    std::iota(parent_.begin(), parent_.end(), 0u);
+    assignHuge(size_, n, 1u);
+  }
   std::uint32_t find(std::uint32_t x) {
     while (parent_[x] != x) {
       parent_[x] = parent_[parent_[x]];
@@ -53,14 +59,18 @@ struct Compact {
 
 Compact compact(const CMeshO& mesh) {
   Compact c;
-  std::vector<int> index(mesh.vert.size(), -1);
-  c.vert.reserve(static_cast<size_t>(std::max(mesh.vn, 0)));
+  // The arrays are written whole (all but deleted elements): made resident in one call each
+  // (huge_pages.h), not page by page.
+  std::vector<int> index;
+  assignHuge(index, mesh.vert.size(), -1);
+  reserveHuge(c.vert, static_cast<size_t>(std::max(mesh.vn, 0)), /*populate=*/true);
   for (size_t i = 0; i < mesh.vert.size(); ++i) {
     if (mesh.vert[i].IsD()) continue;
     index[i] = static_cast<int>(c.vert.size());
     c.vert.push_back(vcg::Point3d::Construct(mesh.vert[i].cP()));
   }
-  c.face.reserve(static_cast<size_t>(std::max(mesh.fn, 0)));
+  reserveHuge(c.face, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
+  reserveHuge(c.proper, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
   for (const auto& f : mesh.face) {
     if (f.IsD()) continue;
     std::array<int, 3> t;
@@ -99,7 +109,7 @@ Edges buildEdges(const Compact& c) {
     int u, v, h;
   };
   std::vector<Rec> recs;
-  recs.reserve(3 * c.face.size());
+  reserveHuge(recs, 3 * c.face.size(), /*populate=*/true); // (all but the few improper faces')
   for (size_t f = 0; f < c.face.size(); ++f) {
     if (!c.proper[f]) continue;
     for (int k = 0; k < 3; ++k) {
@@ -111,8 +121,13 @@ Edges buildEdges(const Compact& c) {
     return x.u != y.u ? x.u < y.u : x.v != y.v ? x.v < y.v : x.h < y.h;
   });
   Edges e;
-  e.heEdge.assign(3 * c.face.size(), -1);
-  e.he.reserve(recs.size());
+  assignHuge(e.heEdge, 3 * c.face.size(), -1);
+  reserveHuge(e.he, recs.size(), /*populate=*/true);
+  size_t edges = 0;
+  for (size_t i = 0; i < recs.size(); ++i)
+    edges += (i == 0 || recs[i].u != recs[i - 1].u || recs[i].v != recs[i - 1].v) ? 1 : 0;
+  reserveHuge(e.start, edges + 1, /*populate=*/true);
+  reserveHuge(e.ends, edges, /*populate=*/true);
   for (size_t i = 0; i < recs.size(); ++i) {
     if (i == 0 || recs[i].u != recs[i - 1].u || recs[i].v != recs[i - 1].v) {
       e.start.push_back(int(i));
@@ -146,7 +161,8 @@ MeshTopology topology(const Compact& c, const Edges& e) {
   t.edges = e.ends.size();
   const size_t nf = c.face.size();
 
-  std::vector<char> referenced(c.vert.size(), 0);
+  std::vector<char> referenced;
+  assignHuge(referenced, c.vert.size(), char(0));
   for (size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k)
       if (c.face[f][k] >= 0) referenced[size_t(c.face[f][k])] = 1;
@@ -154,7 +170,7 @@ MeshTopology topology(const Compact& c, const Edges& e) {
 
   // Degenerate and duplicate faces.
   std::vector<std::pair<std::array<int, 3>, size_t>> sorted;
-  sorted.reserve(nf);
+  reserveHuge(sorted, nf, /*populate=*/true);
   for (size_t f = 0; f < nf; ++f) {
     const auto& v = c.face[f];
     if (!c.proper[f] || zeroArea(c.vert[size_t(v[0])], c.vert[size_t(v[1])], c.vert[size_t(v[2])]))
@@ -183,7 +199,8 @@ MeshTopology topology(const Compact& c, const Edges& e) {
   }
   // A fan is a set of corners at one vertex joined across two-face edges (unions only ever join
   // corners of the same vertex), so the roots at a vertex count its fans.
-  std::vector<std::uint32_t> fans(c.vert.size(), 0);
+  std::vector<std::uint32_t> fans;
+  assignHuge(fans, c.vert.size(), 0u);
   for (size_t f = 0; f < nf; ++f) {
     if (!c.proper[f]) continue;
     if (faces.find(std::uint32_t(f)) == f) ++t.components;
@@ -195,11 +212,13 @@ MeshTopology topology(const Compact& c, const Edges& e) {
   // Boundary loops: from a boundary edge arriving at v, the next one is found by walking through
   // the faces around v across two-face edges (so the loops of a bow-tie stay apart). A walk that
   // meets a non-manifold edge ends the loop there.
-  std::vector<std::uint32_t> degree(c.vert.size(), 0);
+  std::vector<std::uint32_t> degree;
+  assignHuge(degree, c.vert.size(), 0u);
   for (size_t f = 0; f < nf; ++f)
     if (c.proper[f])
       for (int k = 0; k < 3; ++k) ++degree[size_t(c.face[f][k])];
-  std::vector<char> visited(e.ends.size(), 0);
+  std::vector<char> visited;
+  assignHuge(visited, e.ends.size(), char(0));
   for (size_t e0 = 0; e0 < e.ends.size(); ++e0) {
     if (e.faceCount(int(e0)) != 1 || visited[e0]) continue;
     ++t.boundaryLoops;

@@ -85,6 +85,14 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
 
   sortedPoint_.resize(valid.size());
   pointIndex_.resize(valid.size());
+  // The cells are counted first, so that their arrays are made resident in one call each
+  // (huge_pages.h) instead of page by page as they grow.
+  {
+    size_t cells = 0;
+    for (size_t i = 0; i < order.size(); ++i) cells += (i == 0 || compact[order[i]] != compact[order[i - 1]]) ? 1 : 0;
+    reserveHuge(cellKey_, cells, /*populate=*/true);
+    reserveHuge(cellStart_, cells + 1, /*populate=*/true);
+  }
   for (size_t i = 0; i < order.size(); ++i) {
     const std::uint32_t j = order[i];
     sortedPoint_[i] = points[valid[j]];
@@ -100,7 +108,7 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   shift_ = 60;
   while (cap < 2 * cellKey_.size()) cap *= 2, --shift_;
   mask_ = cap - 1;
-  table_.assign(cap, -1);
+  assignHuge(table_, cap, std::int64_t(-1));
   for (size_t s = 0; s < cellKey_.size(); ++s) {
     size_t h = hash(cellKey_[s]);
     while (table_[h] >= 0) h = (h + 1) & mask_;

@@ -40,8 +40,9 @@ public:
   void reset(size_t expected) {
     size_t cap = 16;
     while (cap < 2 * expected) cap *= 2;
-    keys_.assign(cap, 0);
-    vals_.assign(cap, -1);
+    // Written whole here: made resident in one call (huge_pages.h), not page by page.
+    assignHuge(keys_, cap, Key(0));
+    assignHuge(vals_, cap, -1);
     mask_ = cap - 1;
     shift_ = 64;
     for (size_t c = cap; c > 1; c >>= 1) --shift_;

@@ -20,6 +20,7 @@
 #include <vcg/space/point3.h>
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -102,15 +103,24 @@ inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p
 // Sec. 4.4: for every splat, the vertices within distance d of it, as linked entries (8 bytes per
 // entry, 4 per splat; no per-splat vector) in fixed-size blocks, so growing never copies nor
 // doubles the pool. Iteration visits the newest first.
+// The entries are written in order: the pages of a block are made resident a chunk of 64 KiB
+// ahead of the writes (one call per chunk instead of a fault per 4 KiB page, huge_pages.h), so at
+// most one chunk is resident unused.
 class SplatVertexLists {
 public:
   void reset(size_t splats) {
-    head_.assign(splats, -1);
+    assignHuge(head_, splats, std::int32_t(-1));
     blocks_.clear();
     size_ = 0;
   }
   void add(std::uint32_t splat, std::uint32_t vertex) {
-    if ((size_ & kBlockMask) == 0) blocks_.emplace_back(new Entry[kBlockSize]);
+    if ((size_ & kChunkMask) == 0) {
+      if ((size_ & kBlockMask) == 0) blocks_.emplace_back(new Entry[kBlockSize]);
+      // The chunk and the page after it (a block need not start on a page: the chunk's last,
+      // partial page is then covered here too), within the block.
+      const size_t left = kBlockSize - (size_ & kBlockMask);
+      prefault(&entry(size_), std::min(kChunkSize + kPageEntries, left) * sizeof(Entry));
+    }
     entry(size_) = Entry{vertex, head_[splat]};
     head_[splat] = static_cast<std::int32_t>(size_);
     ++size_;
@@ -133,6 +143,8 @@ private:
     std::int32_t next;
   };
   static constexpr size_t kBlockBits = 16, kBlockSize = size_t(1) << kBlockBits, kBlockMask = kBlockSize - 1;
+  static constexpr size_t kChunkSize = size_t(8192), kChunkMask = kChunkSize - 1; // 64 KiB of entries
+  static constexpr size_t kPageEntries = 4096 / sizeof(Entry);
   Entry& entry(size_t i) { return blocks_[i >> kBlockBits][i & kBlockMask]; }
   const Entry& entry(size_t i) const { return blocks_[i >> kBlockBits][i & kBlockMask]; }
   std::vector<std::int32_t> head_;
