@@ -23,13 +23,6 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
   // The tables are written whole: made resident in one call each (huge_pages.h).
   reserveHuge(tables->cell, total, /*populate=*/true);
   tables->cell.resize(total);
-  const std::uint32_t leaves = std::uint32_t(1) << level_;
-  reserveHuge(tables->leaf, size(), /*populate=*/true);
-  tables->leaf.resize(size());
-  for (int face = 0; face < 6; ++face)
-    for (std::uint32_t row = 0; row < leaves; ++row)
-      for (std::uint32_t col = 0; col < leaves; ++col)
-        tables->leaf[(size_t(face) << (2 * level_)) | (size_t(row) << level_) | col] = computeLeafCentre(face, col, row);
   tables_ = tables; // cellIndex() reads the offsets
   for (int depth = 0; depth < level_; ++depth) {
     const std::uint32_t m = std::uint32_t(1) << depth;
@@ -60,7 +53,7 @@ vcg::Point3d SphereSampling::faceDirection(int face, double u, double v) const {
   return d / d.Norm();
 }
 
-vcg::Point3d SphereSampling::computeLeafCentre(int face, std::uint32_t col, std::uint32_t row) const {
+vcg::Point3d SphereSampling::leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
   const double m = double(std::uint32_t(1) << level_);
   return faceDirection(face, -1.0 + (2.0 * double(col) + 1.0) / m, -1.0 + (2.0 * double(row) + 1.0) / m);
 }

@@ -183,11 +183,10 @@ private:
   vcg::Point3d branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
                               double* minDot, const vcg::Point3d* warm) const;
   vcg::Point3d faceDirection(int face, double u, double v) const;
-  // A direction of S_F: the centre of a leaf cell (from the table of them).
-  const vcg::Point3d& leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
-    return tables_->leaf[(size_t(face) << (2 * level_)) | (size_t(row) << level_) | col];
-  }
-  vcg::Point3d computeLeafCentre(int face, std::uint32_t col, std::uint32_t row) const;
+  // A direction of S_F: the centre of a leaf cell, computed when needed (a normalisation; the
+  // search visits a few leaves per box, each then costing a pass over the box's normals). A table
+  // of all 24,576 would hold 590 KB for the whole session, most of the filter's fixed memory.
+  vcg::Point3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const;
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
     return tables_->offset[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
   }
@@ -202,7 +201,6 @@ private:
   struct Tables {
     std::vector<size_t> offset;
     std::vector<CellInfo> cell;
-    std::vector<vcg::Point3d> leaf; // computeLeafCentre() of every leaf, index (face, row, col)
   };
   std::shared_ptr<const Tables> tables_;
   // Scratch of the searches: an instance is not meant to be shared between threads, but a copy
