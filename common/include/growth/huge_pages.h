@@ -1,8 +1,9 @@
 #pragma once
 // Large arrays that are written once from end to end (point coordinates, edge maps, triangle
 // lists, the output mesh's vectors) pay one page fault per 4 KiB page on first touch; on the
-// virtual machines this project is measured on a fault costs about 16 µs, which for the 361k-point
-// bunny adds up to a third of the run. Transparent huge pages cut the number of faults by 512.
+// virtual machines this project is measured on a fault costs 12-16 µs, which for the 361k-point
+// bunny once added up to a third of the run. Transparent huge pages cut the number of faults by
+// 512; prefault (below) makes a range resident in one call, huge pages or not.
 //
 // adviseHugePages asks Linux (madvise MADV_HUGEPAGE) to back the 2 MiB-aligned part of a range
 // with huge pages; it must be called before the range is first written. Elsewhere, or when the
