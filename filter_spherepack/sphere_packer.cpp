@@ -11,6 +11,7 @@
 #include <growth/mesh_measures.h>
 #include <growth/morton.h>
 #include <growth/progress.h>
+#include <growth/radix_order.h>
 #include <growth/region_triangulation.h>
 #include <growth/splats.h>
 #include <growth/stopwatch.h>
@@ -247,27 +248,11 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
     code[i] = mortonCode(c[0], c[1], c[2]);
     maxCode = std::max(maxCode, code[i]);
   }
-  // Stable LSD radix sort on the code's bits.
+  // Stable order of the codes (equal codes in input order).
   int bits = 0;
   while (bits < 64 && (maxCode >> bits) != 0) ++bits;
-  // The arrays here are written whole: made resident in one call each (huge_pages.h).
-  reserveHuge(r.orig, n, /*populate=*/true);
-  r.orig.resize(n);
-  for (size_t i = 0; i < n; ++i) r.orig[i] = static_cast<std::uint32_t>(i);
-  std::vector<std::uint32_t> tmp, count(size_t(1) << 11);
-  assignHuge(tmp, n, 0u);
-  for (int shift = 0; shift < bits; shift += 11) {
-    std::fill(count.begin(), count.end(), 0u);
-    for (const std::uint32_t i : r.orig) ++count[size_t((code[i] >> shift) & 2047)];
-    std::uint32_t at = 0;
-    for (auto& c : count) {
-      const std::uint32_t k = c;
-      c = at;
-      at += k;
-    }
-    for (const std::uint32_t i : r.orig) tmp[count[size_t((code[i] >> shift) & 2047)]++] = i;
-    r.orig.swap(tmp);
-  }
+  reserveHuge(r.orig, n, /*populate=*/true); // written whole: resident in one call (huge_pages.h)
+  stableRadixOrder(code.data(), n, bits, r.orig);
   reserveHuge(r.rank, n, /*populate=*/true);
   r.rank.resize(n);
   for (size_t i = 0; i < n; ++i) r.rank[r.orig[i]] = static_cast<std::uint32_t>(i);

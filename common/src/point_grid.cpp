@@ -1,5 +1,6 @@
 #include <growth/parallel.h>
 #include <growth/point_grid.h>
+#include <growth/radix_order.h>
 
 #include <algorithm>
 #include <limits>
@@ -61,27 +62,8 @@ void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   auto keyOf = [&](std::uint64_t c) {
     return pack(std::int64_t(c >> (by + bz)), std::int64_t((c >> bz) & yMask), std::int64_t(c & zMask));
   };
-  HugeVector<std::uint32_t> order(valid.size());
-  {
-    const int total = bx + by + bz;
-    constexpr int kDigit = 11;
-    std::iota(order.begin(), order.end(), 0u);
-    HugeVector<std::uint32_t> tmp(order.size());
-    std::vector<std::uint32_t> count(size_t(1) << kDigit);
-    for (int shift = 0; shift < total; shift += kDigit) {
-      std::fill(count.begin(), count.end(), 0u);
-      const std::uint64_t digitMask = (std::uint64_t(1) << kDigit) - 1;
-      for (const std::uint32_t j : order) ++count[size_t((compact[j] >> shift) & digitMask)];
-      std::uint32_t at = 0;
-      for (auto& c : count) {
-        const std::uint32_t k = c;
-        c = at;
-        at += k;
-      }
-      for (const std::uint32_t j : order) tmp[count[size_t((compact[j] >> shift) & digitMask)]++] = j;
-      order.swap(tmp);
-    }
-  }
+  HugeVector<std::uint32_t> order;
+  stableRadixOrder(compact.data(), compact.size(), bx + by + bz, order);
 
   sortedPoint_.resize(valid.size());
   pointIndex_.resize(valid.size());
@@ -265,14 +247,18 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
           found = true;
         }
         if (!(found && best <= slack * slack)) {
+          // The points of the spans but q itself, into best.
+          auto scan = [&](const Span* spans, int count) {
+            for (int s = 0; s < count; ++s)
+              for (size_t i = spans[s].b; i < spans[s].e; ++i) {
+                if (i == q) continue;
+                const double d2 = (sortedPoint_[i] - c).SquaredNorm();
+                if (d2 < best) best = d2;
+                found = true;
+              }
+          };
           // Ring 1: the 3×3×3 block (the cell's own points again: the same minimum).
-          for (int s = 0; s < nInner; ++s)
-            for (size_t i = inner[s].b; i < inner[s].e; ++i) {
-              if (i == q) continue;
-              const double d2 = (sortedPoint_[i] - c).SquaredNorm();
-              if (d2 < best) best = d2;
-              found = true;
-            }
+          scan(inner, nInner);
           const double reach1 = cell_ + slack; // nearest(): double(ring − 1)·cell + slack, ring 2
           if (!(found && best <= reach1 * reach1)) {
             bool done = false;
@@ -286,13 +272,7 @@ void PointGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>&
                   if (f < t) outer[nOuter++] = Span{cellStart_[f], cellStart_[t]};
                 }
               }
-              for (int s = 0; s < nOuter; ++s)
-                for (size_t i = outer[s].b; i < outer[s].e; ++i) {
-                  if (i == q) continue;
-                  const double d2 = (sortedPoint_[i] - c).SquaredNorm();
-                  if (d2 < best) best = d2;
-                  found = true;
-                }
+              scan(outer, nOuter);
               const double reach2 = 2.0 * cell_ + slack; // ring 3
               done = found && best <= reach2 * reach2;
             }
