@@ -397,10 +397,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   // distance of p to each slab (the terms of squaredDistanceToBox, in the same order, so the test
   // is the same to the last bit), then every box of the block whose distance is within `side`,
   // in the order x, y, z. Calls f(x, y, z) for each (at most 27).
-  auto forBoxesWithin = [&](size_t i, auto&& f) {
-    const vcg::Point3d& p = pts[i];
-    std::int64_t lo[3], hi[3];
-    double sq[3][8];
+  auto slabs = [&](const vcg::Point3d& p, std::int64_t lo[3], std::int64_t hi[3], double sq[3][8]) {
     for (int a = 0; a < 3; ++a) {
       lo[a] = index_.coord(p[a] - side, a);
       hi[a] = std::min(index_.coord(p[a] + side, a), lo[a] + 7);
@@ -410,6 +407,11 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
         sq[a][c - lo[a]] = v * v;
       }
     }
+  };
+  auto forBoxesWithin = [&](size_t i, auto&& f) {
+    std::int64_t lo[3], hi[3];
+    double sq[3][8];
+    slabs(pts[i], lo, hi, sq);
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
         const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
@@ -422,9 +424,9 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
 
   // Pass 0 (per point, on threads taking chunks): the boxes within reach as a mask of the 27
   // offsets -1..1 from the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing
-  // bits are the order x, y, z; kBeyond when the boxes in reach are not all in that block (rounding at a box face:
-  // such points take the general path below). The same ranges, slab distances and tests as
-  // forBoxesWithin.
+  // bits are the order x, y, z; kBeyond when the boxes in reach are not all in that block
+  // (rounding at a box face: such points take the general path below). The same slabs and tests
+  // as forBoxesWithin.
   // Both are stored at the point's position in the list order (passes 1 and 2 read them in that
   // order, sequentially).
   constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
@@ -439,22 +441,12 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
     for (size_t i = i0; i < i1; ++i) {
       const size_t at = listOrder != nullptr ? listPos[i] : i;
       if (listOrder != nullptr) ownAt[at] = ownOf[i];
-      const vcg::Point3d& p = pts[i];
       const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
       std::int64_t lo[3], hi[3];
-      double sq[3][3];
+      double sq[3][8];
+      slabs(pts[i], lo, hi, sq);
       bool inBlock = true;
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = index_.coord(p[a] - side, a);
-        hi[a] = std::min(index_.coord(p[a] + side, a), lo[a] + 7);
-        inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
-        if (!inBlock) break;
-        for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
-          const double l = index_.origin()[a] + double(c) * side;
-          const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
-          sq[a][c - lo[a]] = v * v;
-        }
-      }
+      for (int a = 0; a < 3; ++a) inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
       if (!inBlock) {
         mask[at] = kBeyond;
         continue;

@@ -48,14 +48,17 @@ inline ParentCircle parentCircle(const vcg::Point3d& a, const vcg::Point3d& b, d
   return c;
 }
 
-// One of the (at most two) points where the circle meets the plane through p with unit normal n:
-// root 0 or 1. False when the circle misses the plane (or lies in it, or is parallel to it), or
-// when the point is farther than s from p (outside the splat's disk).
+// Where the circle meets the plane through p with unit normal n (sec. 4.4, fig. 4c).
 // In the circle's plane (orthogonal to the axis u), with w = n − <n,u>u, the line of the splat
 // plane is {y : <y, w> = −<centre − p, n>}; its points at distance r from the centre are
-// y = α ŵ ± t (u × ŵ), α = −<centre − p, n>/|w|, t = sqrt(r² − α²). Root 0 takes −t.
-inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s, int root,
-                             vcg::Point3d& out) {
+// y = α ŵ ± t (u × ŵ), α = −<centre − p, n>/|w|, t = sqrt(r² − α²): base ± t·v. False when the
+// circle misses the plane (or lies in it, or is parallel to it).
+struct CirclePlaneMeet {
+  vcg::Point3d base, v;
+  double t = 0;
+  vcg::Point3d root(int r) const { return base + v * (r == 0 ? -t : t); } // root 0 takes −t
+};
+inline bool circleMeetsPlane(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, CirclePlaneMeet& m) {
   if (!c.valid) return false;
   const vcg::Point3d w = n - c.axis * (n * c.axis);
   const double wlen = w.Norm();
@@ -64,33 +67,33 @@ inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const
   const double alpha = -((c.centre - p) * n) / wlen;
   const double t2 = c.radius * c.radius - alpha * alpha;
   if (t2 < 0) return false;
-  const double t = std::sqrt(t2);
-  const vcg::Point3d v = c.axis ^ wh;
-  out = c.centre + wh * alpha + v * (root == 0 ? -t : t);
+  m.t = std::sqrt(t2);
+  m.v = c.axis ^ wh;
+  m.base = c.centre + wh * alpha;
+  return true;
+}
+
+// One of the (at most two) points where the circle meets the plane through p with unit normal n:
+// root 0 or 1. False when there is none, or when the point is farther than s from p (outside the
+// splat's disk).
+inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s, int root,
+                             vcg::Point3d& out) {
+  CirclePlaneMeet m;
+  if (!circleMeetsPlane(c, p, n, m)) return false;
+  out = m.root(root);
   return (out - p).SquaredNorm() <= s * s;
 }
 
 // Both roots; returns how many lie in the disk (written to out/rootOut in root order). A tangent
-// circle (t = 0) gives one point.
-// The same values as circleSplatPoint() for root 0 and 1 (the same expressions), the parts common
-// to both roots computed once.
+// circle (t = 0) gives one point. The same values as circleSplatPoint() for root 0 and 1.
 inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s,
                                     vcg::Point3d out[2], int rootOut[2]) {
-  if (!c.valid) return 0;
-  const vcg::Point3d w = n - c.axis * (n * c.axis);
-  const double wlen = w.Norm();
-  if (!(wlen > 1e-12)) return 0;
-  const vcg::Point3d wh = w / wlen;
-  const double alpha = -((c.centre - p) * n) / wlen;
-  const double t2 = c.radius * c.radius - alpha * alpha;
-  if (t2 < 0) return 0;
-  const double t = std::sqrt(t2);
-  const vcg::Point3d v = c.axis ^ wh;
-  const vcg::Point3d base = c.centre + wh * alpha;
+  CirclePlaneMeet m;
+  if (!circleMeetsPlane(c, p, n, m)) return 0;
   const double s2 = s * s;
   int k = 0;
   for (int root = 0; root < 2; ++root) {
-    const vcg::Point3d x = base + v * (root == 0 ? -t : t);
+    const vcg::Point3d x = m.root(root);
     if (!((x - p).SquaredNorm() <= s2)) continue;
     if (k == 1 && root == 1 && (x - out[0]).SquaredNorm() == 0) break; // tangent: one point
     out[k] = x;
