@@ -1,8 +1,8 @@
 #pragma once
 // Large arrays that are written once from end to end (point coordinates, edge maps, triangle
 // lists, the output mesh's vectors) pay one page fault per 4 KiB page on first touch; on the
-// virtual machines this project is measured on a fault costs 12-16 µs, which for the 361k-point
-// bunny once added up to a third of the run. Transparent huge pages cut the number of faults by
+// virtual machines this project is measured on a fault costs about 12 µs (tools/fault_cost.cpp),
+// which for the 361k-point bunny once added up to a third of the run. Transparent huge pages cut the number of faults by
 // 512; prefault (below) makes a range resident in one call, huge pages or not.
 //
 // adviseHugePages asks Linux (madvise MADV_HUGEPAGE) to back the 2 MiB-aligned part of a range
@@ -69,8 +69,8 @@ inline void discardPages(const void* data, size_t bytes) {
 // Makes the pages of [data, data + bytes) resident at once (madvise MADV_POPULATE_WRITE, Linux
 // 5.14 and later), for memory about to be written from end to end. Faulting pages in one at a
 // time costs a trap per 4 KiB page; on the virtual machines this project is measured on a trap
-// costs about 12-14 µs (3-3.6 ms per MiB), populating the range in one call about 0.7 ms per MiB
-// (measured with a 64 MiB buffer). Below kPrefaultMinBytes the call costs more than it saves.
+// costs about 12 µs (3.0-3.1 ms per MiB), populating the range in one call about 0.8 ms per MiB
+// (tools/fault_cost.cpp: a fresh 64 MiB mapping, fastest of 3). Below kPrefaultMinBytes the call costs more than it saves.
 // Elsewhere, or on older kernels (EINVAL), it does nothing: pages then fault in as they are written.
 // Returns whether the whole pages of the range were made resident.
 constexpr size_t kPrefaultMinBytes = size_t(32) << 10;
