@@ -359,16 +359,29 @@ def ply_face_count(path):
     return int(m.group(1)) if m else 0
 
 
+def repeated_runs(ctx, work, args):
+    """ctx.repeat meshlabserver runs with `args` in `work`; None as soon as one fails."""
+    runs = []
+    for _ in range(ctx.repeat):
+        r = run_meshlabserver(ctx, work, args, ctx.timeout)
+        if r["rc"] != 0 or r["wall"] is None or r["rss_kb"] is None:
+            return None
+        runs.append(r)
+    return runs
+
+
+def repeats_for(ctx, cloud):
+    """--repeat, or by default 3 runs on clouds up to 100k points and 1 above."""
+    return ctx.repeat_option if ctx.repeat_option > 0 else (3 if cloud["points"] <= 100000 else 1)
+
+
 def load_save(ctx, path, work):
     """A load+save-only run of `path`: its wall clock and peak memory are subtracted from the runs
     that load the same file."""
-    best = None
-    for _ in range(ctx.repeat):
-        r = run_meshlabserver(ctx, work, ["-i", path, "-o", "loaded.ply", "-m", "fq"], ctx.timeout)
-        if r["rc"] != 0 or r["wall"] is None:
-            raise SystemExit("meshlabserver cannot even load and save %s; see %s" % (path, work))
-        if best is None or r["wall"] < best["wall"]:
-            best = r
+    runs = repeated_runs(ctx, work, ["-i", path, "-o", "loaded.ply", "-m", "fq"])
+    if runs is None:
+        raise SystemExit("meshlabserver cannot even load and save %s; see %s" % (path, work))
+    best = min(runs, key=lambda r: r["wall"])
     return {"wall": best["wall"], "rss_kb": best["rss_kb"]}
 
 
@@ -391,14 +404,11 @@ def noop_floor(ctx, path, work):
     script = os.path.join(work, "noop.mlx")
     with open(script, "w") as f:
         f.write(NOOP_MLX)
-    best = None
-    for _ in range(ctx.repeat):
-        r = run_meshlabserver(ctx, work, ["-i", path, "-o", "noop.ply", "-s", "noop.mlx"], ctx.timeout)
-        if r["rc"] != 0 or r["rss_kb"] is None:
-            log("  the no-op filter run failed on %s; see %s" % (path, work))
-            return None
-        best = r["rss_kb"] if best is None else min(best, r["rss_kb"])
-    return best
+    runs = repeated_runs(ctx, work, ["-i", path, "-o", "noop.ply", "-s", "noop.mlx"])
+    if runs is None:
+        log("  the no-op filter run failed on %s; see %s" % (path, work))
+        return None
+    return min(r["rss_kb"] for r in runs)
 
 
 def baseline(cloud, ctx):
@@ -415,7 +425,7 @@ def measure_floors(rows, ctx, clouds=None):
         cloud = prepare_cloud(name, ctx)
         if cloud is None:
             continue
-        ctx.repeat = ctx.repeat_option if ctx.repeat_option > 0 else (3 if cloud["points"] <= 100000 else 1)
+        ctx.repeat = repeats_for(ctx, cloud)
         floor = noop_floor(ctx, cloud["path"], os.path.join(ctx.out, "runs", name, "_noop"))
         log("%s: no-op filter peak %s kB" % (name, floor))
         for r in rows:
@@ -1053,7 +1063,7 @@ def main():
             if cloud is None:
                 log("%s: not in %s, skipped" % (spec, ctx.data_dir))
                 continue
-            ctx.repeat = ctx.repeat_option if ctx.repeat_option > 0 else (3 if cloud["points"] <= 100000 else 1)
+            ctx.repeat = repeats_for(ctx, cloud)
             log("%s: %d points, mean spacing %.4g — load+save baseline" % (cloud["name"], cloud["points"], cloud["spacing"]))
             base = baseline(cloud, ctx)
             # The remeshing target: the sphere packer's d from this run, else from an earlier row,

@@ -30,4 +30,14 @@ if bad:
     sys.exit("not timed in process: %s" % bad)
 PY
 echo "$bpa" | grep -q '| ×1.00 |' || fail "Ball Pivoting's speed-up against itself is not x1.00: $bpa"
+# Memory: every row carries the no-op filter floor of its cloud (MeshLab's cost of applying any
+# filter), and the table shows the extra peak over load+save and over that floor.
+python3 - "$work/out/results.jsonl" <<'PY' || fail "rows without the no-op filter floor"
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+bad = [r["method"] for r in rows if not (r.get("noop_rss_kb") or 0) > 0]
+if bad:
+    sys.exit("no noop_rss_kb: %s" % bad)
+PY
+echo "$bpa" | grep -Eq '\| [0-9]+ / [0-9]+ \|$' || fail "no 'over load+save / over no-op' memory column: $bpa"
 echo "ok: $bpa"
