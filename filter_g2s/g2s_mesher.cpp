@@ -267,12 +267,6 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     size_t count = 0;
     const P3 AB = A - B;
     const double collinear = 1e-20 * edge2;
-    // The hits' exact coordinates and mesh state are read below in a data-dependent order; their
-    // loads are issued up front so that their cache misses overlap.
-    for (size_t h = 0; h < hits; ++h) {
-      __builtin_prefetch(&pts_[near_.hit[h]]);
-      __builtin_prefetch(&edgeCount_[near_.hit[h]]);
-    }
     for (size_t h = 0; h < hits; ++h) {
       const std::uint32_t id = near_.hit[h];
       const P3& q = pts_[id];
