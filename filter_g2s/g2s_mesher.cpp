@@ -601,17 +601,14 @@ void Mesher::orientComponents() {
     volume[k] += a * (b ^ c);
   }
   if (std::none_of(volume.begin(), volume.end(), [](double x) { return x < 0; })) return; // nothing to flip
-  // All flipped triangles leave the map before any comes back (an edge shared by two of them
-  // keeps its direction only once both are flipped). Two passes instead of a list of the flipped
-  // faces, which on an inward closed surface would be a word per face at the memory peak.
-  auto flips = [&](size_t f) { return alive_[f] && volume[component(tri_[f][0])] < 0; };
+  // The flipped components' triangles, then their half-edges in the point–edge map: every edge at
+  // a vertex of a flipped component is one of that component's (its triangles are all flipped),
+  // so reversing each such vertex's entries records the flip. A vertex with an edge carrying a
+  // triangle lies on a live triangle, so it has a component.
   for (size_t f = 0; f < tri_.size(); ++f)
-    if (flips(f)) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
-  for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!flips(f)) continue; // tri_[f][0] is kept by the flip, so is its component
-    std::swap(tri_[f][1], tri_[f][2]);
-    pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
-  }
+    if (alive_[f] && volume[component(tri_[f][0])] < 0) std::swap(tri_[f][1], tri_[f][2]);
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (pem_.degree(v) > 0 && volume[component(v)] < 0) pem_.reverseAt(v);
 }
 
 void Mesher::releaseGrowthState() {

@@ -257,6 +257,40 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   EXPECT_TRUE(m.alive().empty());
 }
 
+// After orientComponents the point–edge map records the live triangles as they now are: every
+// half-edge of a live triangle used, and no other. Checked on clouds where components get flipped
+// (an open patch has no inside, so its sign is arbitrary; a noisy torus grows from many seeds).
+TEST(G2SBuild, OrientComponentsKeepsThePointEdgeMapInStep) {
+  size_t flippedClouds = 0;
+  for (const CloudSpec& spec : {noisy(Shape::Patch, 10000, 0.0), noisy(Shape::Torus, 20000, 0.25, 0.05),
+                                noisy(Shape::Sphere, 10000, 0.1)}) {
+    const Mesh cloud = cloudMesh(spec);
+    growth::CloudCheck check;
+    check.minPoints = 3;
+    g2s::Mesher m(growth::readCloud(*cloud, check).points, defaults());
+    m.meshAll();
+    m.removeNonManifoldVertices();
+    const std::vector<growth::Triangle> before = m.triangles();
+    m.orientComponents();
+    const std::vector<growth::Triangle>& tri = m.triangles();
+    ASSERT_EQ(tri.size(), before.size());
+    bool flipped = false;
+    size_t liveHalfEdges = 0;
+    for (size_t f = 0; f < tri.size(); ++f) {
+      if (!m.alive()[f]) continue;
+      flipped = flipped || tri[f] != before[f];
+      for (int k = 0; k < 3; ++k) ASSERT_TRUE(m.edges().used(tri[f][k], tri[f][(k + 1) % 3])) << f;
+      liveHalfEdges += 3;
+    }
+    size_t usedHalfEdges = 0;
+    for (std::uint32_t v = 0; v < m.size(); ++v)
+      m.edges().forEachEdge(v, [&](std::uint32_t, bool out, bool) { usedHalfEdges += out; });
+    EXPECT_EQ(usedHalfEdges, liveHalfEdges);
+    flippedClouds += flipped;
+  }
+  EXPECT_GT(flippedClouds, 0u); // the flip itself was exercised
+}
+
 TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {
   growth::Random rng(4);
   std::vector<vcg::Point3d> pts;

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <set>
+#include <vector>
 #include <stdexcept>
 
 using growth::PointEdgeMap;
@@ -106,6 +108,35 @@ TEST(PointEdgeMap, RemoveTriangleMakesItsHalfEdgesFreeAgain) {
   EXPECT_TRUE(m.canAddTriangle(0, 1, 2));
   // A re-added edge after removal counts as new again.
   EXPECT_EQ(m.addTriangle(0, 1, 2) & 6u, 6u);
+}
+
+// reverseAt on every vertex of a set of triangles is the same as removing them and adding them
+// again flipped: here a closed fan of 12 around point 0 (its centre has more entries than one
+// inline block holds) plus a triangle on its rim, flipped as one component, and a separate
+// triangle left alone.
+TEST(PointEdgeMap, ReverseAtEveryVertexFlipsAComponent) {
+  const std::uint32_t rim = 12;
+  std::vector<std::array<std::uint32_t, 3>> comp;
+  for (std::uint32_t k = 0; k < rim; ++k) comp.push_back({0, 1 + k, 1 + (k + 1) % rim});
+  comp.push_back({2, 1, 13}); // outside the fan, on the rim edge 1–2
+  PointEdgeMap flipped(17), expected(17);
+  for (const auto& t : comp) {
+    flipped.addTriangle(t[0], t[1], t[2]);
+    expected.addTriangle(t[0], t[2], t[1]);
+  }
+  flipped.addTriangle(14, 15, 16);
+  expected.addTriangle(14, 15, 16);
+  flipped.setMark(0, 1, true); // marks are kept
+  for (std::uint32_t v = 0; v <= 13; ++v) flipped.reverseAt(v);
+  for (std::uint32_t v = 0; v < 17; ++v)
+    for (std::uint32_t w = 0; w < 17; ++w) {
+      EXPECT_EQ(flipped.used(v, w), expected.used(v, w)) << v << "->" << w;
+      EXPECT_EQ(flipped.triangles(v, w), expected.triangles(v, w)) << v << "-" << w;
+    }
+  EXPECT_TRUE(flipped.marked(0, 1));
+  EXPECT_TRUE(flipped.closed(0));
+  EXPECT_FALSE(flipped.used(1, 13)); // was 1→13 (triangle 2, 1, 13), now 13→1
+  EXPECT_TRUE(flipped.used(13, 1));
 }
 
 TEST(PointEdgeMap, MarksAreSetPerHalfEdgeAndCleared) {
