@@ -4,8 +4,6 @@
 
 #include <growth/error.h>
 
-#include <vcg/complex/algorithms/update/bounding.h>
-#include <vcg/complex/algorithms/update/normal.h>
 
 #include <new>
 
@@ -124,11 +122,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
     Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
     return false;
   }
-  md.setCurrentMesh(out->id());
-  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
-  vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
-  vcg::tri::UpdateNormal<CMeshO>::PerVertexAngleWeighted(out->cm);
-  vcg::tri::UpdateNormal<CMeshO>::NormalizePerVertex(out->cm);
+  md.setCurrentMesh(out->id()); // (build() gave it its bounding box and normals)
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
   Log("Robust G2S: %zu points (%zu duplicates dropped), mean spacing %g, maximum search radius %.2f x local spacing",

@@ -6,10 +6,12 @@
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/mesh_normals.h>
 #include <growth/progress.h>
 #include <growth/stopwatch.h>
 
 #include <common/ml_mesh_type.h>
+#include <vcg/complex/algorithms/update/bounding.h>
 
 #include <algorithm>
 #include <cmath>
@@ -148,6 +150,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
         progress.update(double(last) / double(faces));
       }
       std::vector<Triangle>().swap(tri);
+      // What MeshLab expects of a new layer (its creation filters call UpdateBoxAndNormals): the
+      // bounding box, and face and angle-weighted vertex normals. Part of the filter's time.
+      vcg::tri::UpdateBounding<CMeshO>::Box(out);
+      updateNormals(out);
       progress.update(1.0);
     } else {
       stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "

@@ -46,7 +46,7 @@ struct Stat {
   double secondsSetup = 0;                // reading, checks, spacing, spatial order, grid
   double secondsGrowth = 0;               // seeds and front growth
   double secondsCleanup = 0;              // sec. 4.2, boundary and hole counts, orientation
-  double secondsOutput = 0;               // filling the output mesh
+  double secondsOutput = 0;               // filling the output mesh, its bounding box and normals
   std::vector<std::string> warnings;
 };
 
@@ -56,7 +56,8 @@ Params suggestParams(const CMeshO& cloud);
 // Triangulates the live vertices of `cloud` into `out` (cleared first): out's vertices are copies
 // of the input points that the faces use, bit for bit (unused points are left out), in a
 // spatially coherent (Morton) order; faces consistently oriented (closed components outwards),
-// with per-face quality Q_t. A cloud where no seed triangle exists gives an
+// with per-face quality Q_t, face and vertex normals (growth::updateNormals) and the bounding
+// box. A cloud where no seed triangle exists gives an
 // empty `out` and a warning. Throws growth::Error on bad input or parameters and
 // growth::Cancelled on cancel (out is then empty).
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
