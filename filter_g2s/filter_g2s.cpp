@@ -4,7 +4,6 @@
 
 #include <growth/error.h>
 
-
 #include <new>
 
 FilterG2SPlugin::FilterG2SPlugin() {
