@@ -105,6 +105,20 @@ void expectClosedManifoldMesh(const Run& r, int euler) {
   EXPECT_LE(worst, 0.01);
 }
 
+// The same mesh, bit for bit: vertices (positions, normals), faces (quality, vertex indices).
+void expectSameMesh(const CMeshO& a, const CMeshO& b) {
+  ASSERT_EQ(a.vert.size(), b.vert.size());
+  ASSERT_EQ(a.face.size(), b.face.size());
+  for (size_t i = 0; i < a.vert.size(); ++i) {
+    ASSERT_EQ(a.vert[i].cP(), b.vert[i].cP());
+    ASSERT_EQ(a.vert[i].cN(), b.vert[i].cN());
+  }
+  for (size_t i = 0; i < a.face.size(); ++i) {
+    ASSERT_EQ(a.face[i].cQ(), b.face[i].cQ());
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(vcg::tri::Index(a, a.face[i].cV(k)), vcg::tri::Index(b, b.face[i].cV(k)));
+  }
+}
+
 } // namespace
 
 TEST(SpherePacker, UnitSphereOfSection52) {
@@ -180,17 +194,7 @@ TEST(SpherePacker, SameOutputForAnyNumberOfThreads) {
     EXPECT_EQ(st.splatSize, st1.splatSize);
     EXPECT_EQ(st.meanSplatRadius, st1.meanSplatRadius);
     EXPECT_EQ(st.boxes, st1.boxes);
-    ASSERT_EQ(mesh.vert.size(), one.vert.size());
-    ASSERT_EQ(mesh.face.size(), one.face.size());
-    for (size_t i = 0; i < mesh.vert.size(); ++i) {
-      ASSERT_EQ(mesh.vert[i].cP(), one.vert[i].cP());
-      ASSERT_EQ(mesh.vert[i].cN(), one.vert[i].cN());
-    }
-    for (size_t i = 0; i < mesh.face.size(); ++i) {
-      ASSERT_EQ(mesh.face[i].cQ(), one.face[i].cQ());
-      for (int k = 0; k < 3; ++k)
-        ASSERT_EQ(vcg::tri::Index(mesh, mesh.face[i].cV(k)), vcg::tri::Index(one, one.face[i].cV(k)));
-    }
+    ASSERT_NO_FATAL_FAILURE(expectSameMesh(mesh, one)) << threads << " threads";
   }
 }
 
@@ -217,15 +221,7 @@ TEST(SpherePacker, SameOutputInSpatialOrder) {
     EXPECT_EQ(st2.meanSplatRadius, st1.meanSplatRadius);
     EXPECT_EQ(st2.boxesDTooLarge, st1.boxesDTooLarge);
     EXPECT_EQ(st2.unreachedPoints, st1.unreachedPoints);
-    ASSERT_EQ(sorted.vert.size(), plain.vert.size());
-    ASSERT_EQ(sorted.face.size(), plain.face.size());
-    for (size_t i = 0; i < plain.vert.size(); ++i) {
-      ASSERT_EQ(sorted.vert[i].cP(), plain.vert[i].cP());
-      ASSERT_EQ(sorted.vert[i].cN(), plain.vert[i].cN());
-    }
-    for (size_t i = 0; i < plain.face.size(); ++i)
-      for (int k = 0; k < 3; ++k)
-        ASSERT_EQ(vcg::tri::Index(sorted, sorted.face[i].cV(k)), vcg::tri::Index(plain, plain.face[i].cV(k)));
+    ASSERT_NO_FATAL_FAILURE(expectSameMesh(sorted, plain));
   }
 }
 
