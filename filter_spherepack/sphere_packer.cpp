@@ -31,6 +31,12 @@ namespace spherepack {
 
 namespace {
 
+// First neighbourhood of the local splat radii (splats.h): twice a typical Voronoi radius.
+constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
+// Splats with a radius above this many d are referred to by the boxes their disk comes near
+// (BoxGrid::build's extraReach); smaller ones by the boxes their centre is within d of, as in the
+// paper (a location on the surface is nearly always covered by a nearby point's splat as well).
+constexpr double kLargeSplatPerD = 1.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
 
 // Surface area of a cloud, estimated from the cells of side `cell` that hold points: a plane cuts
@@ -67,6 +73,7 @@ struct Candidate {
 // The disk growing of sec. 3.3–3.6 on prepared splats and box grid.
 class Growth {
 public:
+  static constexpr std::uint32_t kNoVertex = 0xffffffffu;
   Growth(const InputCloud& in, const BoxGrid& grid, const std::vector<float>& radius, double d, const Params& p,
          Stat& st, Progress& progress, size_t expectedVertices)
       : in_(in), grid_(grid), radius_(radius), d_(d), d2_(d * d), w_(p.windowSize), params_(p), st_(st),
@@ -83,6 +90,9 @@ public:
   }
 
   const BorderGraph& graph() const { return graph_; }
+  bool anyVertexCloserThan(const vcg::Point3d& x, double r) const {
+    return vgrid_.anyCloserThan(x, r, graph_.positions(), kNoVertex, kNoVertex);
+  }
   const SplatVertexLists& lists() const { return lists_; }
 
   // Sec. 3.3: the two starting vertices (already projected onto their splats).
@@ -231,6 +241,7 @@ struct Renumbering {
   std::vector<std::uint32_t> orig; // new index -> input index (until the starting vertices)
   std::vector<std::uint32_t> rank; // input index -> new index (for the box grid)
   std::uint32_t origOf(std::uint32_t i) const { return orig.empty() ? i : orig[i]; }
+  std::uint32_t rankOf(std::uint32_t k) const { return rank.empty() ? k : rank[k]; }
 };
 
 Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
@@ -278,9 +289,10 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
 
 // Closest splat to x (smallest distance to its disk) and the projection of x onto it (sec. 3.3).
 // The splats of the box containing x (all points within d of it) are searched; when x is farther
-// than d from every point, all splats are.
+// than d from every point, all splats are when `searchAll` (user-given points), none otherwise.
 bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
-                             const BoxGrid& grid, const Renumbering& order, vcg::Point3d& proj, std::uint32_t& splat) {
+                             const BoxGrid& grid, const Renumbering& order, bool searchAll, vcg::Point3d& proj,
+                             std::uint32_t& splat) {
   double best = std::numeric_limits<double>::infinity();
   std::int64_t bestIdx = -1;
   auto consider = [&](std::uint32_t i) {
@@ -291,7 +303,7 @@ bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const 
   if (box >= 0) {
     for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) consider(*it);
   }
-  if (bestIdx < 0) // all points: of equally close ones, the first in input order
+  if (bestIdx < 0 && searchAll) // all points: of equally close ones, the first in input order
     for (std::uint32_t i = 0; i < in.points.size(); ++i) {
       const double dd = squaredDistanceToDisk(x, in.points[i], in.normals[i], radius[i]);
       if (dd < best || (dd == best && bestIdx >= 0 && order.origOf(i) < order.origOf(std::uint32_t(bestIdx))))
@@ -301,6 +313,43 @@ bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const 
   splat = static_cast<std::uint32_t>(bestIdx);
   proj = projectOntoDisk(x, in.points[splat], in.normals[splat], radius[splat]);
   return true;
+}
+
+// A starting pair (sec. 3.3): two positions on splats, between d and 2d apart.
+struct StartPair {
+  vcg::Point3d s1, s2;
+  std::uint32_t splat1 = 0, splat2 = 0;
+};
+
+// Sec. 3.3 at input point i: s1 = p_i on its own splat, s2 the projection onto the closest splat
+// of a point 1.5·d away in p_i's tangent plane (12 directions tried in turn), between d and 2d
+// from s1. Both must pass `free` (no vertex closer than d). False when p_i is isolated (fewer
+// than 3 other points within d: no part that can hold a triangle) or no direction works.
+template <class Free>
+bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
+                 const Renumbering& order, double d, Free&& free, StartPair& out) {
+  const vcg::Point3d& p = in.points[i];
+  const int box = grid.boxOf(p);
+  if (box < 0) return false;
+  int around = 0;
+  for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box) && around < 4; ++it)
+    around += (in.points[*it] - p).SquaredNorm() <= d * d ? 1 : 0;
+  if (around < 4 || !free(p)) return false;
+  vcg::Point3d e1, e2;
+  tangentFrame(in.normals[i], e1, e2);
+  for (int k = 0; k < 12; ++k) {
+    const double phi = 2 * 3.14159265358979323846 * k / 12;
+    const vcg::Point3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+    vcg::Point3d q;
+    std::uint32_t sq = 0;
+    if (!projectOntoClosestSplat(target, in, radius, grid, order, false, q, sq)) continue;
+    const double dist = (q - p).Norm();
+    if (dist >= d && dist <= 2 * d && free(q)) {
+      out = StartPair{p, q, i, sq};
+      return true;
+    }
+  }
+  return false;
 }
 
 } // namespace
@@ -320,7 +369,7 @@ double defaultDiameter(const CloudScale& scale) { return kDefaultDiameterPerSpac
 
 double defaultSplatSize(const CloudScale& scale, double d) {
   const double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
-  return s > 0 ? std::min(s, d) : d;
+  return s > 0 ? s : d;
 }
 
 Params suggestParams(const CMeshO& cloud) {
@@ -390,48 +439,62 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   std::vector<int>().swap(in.vertexIndex); // not needed here
   Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
 
-  // Sec. 4.1: box grid, normal filter, box normals.
-  progress.phase("Sphere packing: box grid", 2, 12);
+  // Sec. 4.3: splat radii (from the points' own neighbourhoods, independent of d).
+  progress.phase("Sphere packing: splat sizes", 2, 10);
   st.secondsInput = watch.lap();
-  // The normals of the boxes holding input points are deferred: computed on another thread while
-  // the growth (one thread) runs, which asks for them as it goes.
-  BoxGrid grid;
-  grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
-             order.rank.empty() ? nullptr : &order.rank);
-  st.boxes = grid.boxCount();
-  std::vector<std::uint32_t>().swap(order.rank);
-  st.secondsBoxGrid = watch.lap();
-
-  // Sec. 4.3: splat radii.
-  progress.phase("Sphere packing: splat sizes", 12, 20);
   SplatSizeStats splatStats;
   const std::vector<float> radius =
-      computeSplatRadii(in.points, in.normals, grid, s, params.localSplatSizes, &splatStats, &progress,
-                        params.threads, order.orig.empty() ? nullptr : &order.orig);
+      computeSplatRadii(in.points, in.normals, s, kSplatFirstReachPerAreaSpacing * scale.areaSpacing,
+                        params.localSplatSizes, &splatStats, &progress, params.threads,
+                        order.orig.empty() ? nullptr : &order.orig);
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
   st.secondsSplats = watch.lap();
 
+  // Sec. 4.1: box grid, normal filter, box normals. A splat larger than d is referred to by every
+  // box it comes within d of (sec. 4.4 needs all splats within d of a vertex), not only by those
+  // its centre is within d of.
+  progress.phase("Sphere packing: box grid", 10, 20);
+  std::vector<float> extraReach;
+  {
+    size_t large = 0;
+    for (float r : radius) large += r > kLargeSplatPerD * d ? 1 : 0;
+    if (large > 0) {
+      extraReach.assign(radius.size(), 0.0f);
+      for (size_t i = 0; i < radius.size(); ++i)
+        if (radius[i] > kLargeSplatPerD * d) extraReach[i] = radius[i];
+    }
+  }
+  // The normals of the boxes holding input points are deferred: computed on another thread while
+  // the growth (one thread) runs, which asks for them as it goes.
+  BoxGrid grid;
+  grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
+             order.rank.empty() ? nullptr : &order.rank, extraReach.empty() ? nullptr : &extraReach);
+  std::vector<float>().swap(extraReach);
+  st.boxes = grid.boxCount();
+  st.secondsBoxGrid = watch.lap();
+
   // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
   progress.phase("Sphere packing: starting vertices", 20, 21);
-  vcg::Point3d s1, s2;
-  std::uint32_t splat1 = 0, splat2 = 0;
+  StartPair first;
+  bool haveFirst = false;
+  auto noVertexYet = [](const vcg::Point3d&) { return true; };
   if (params.useStartPoints) {
     for (const auto& q : params.startPoint)
       if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
         throw Error("The starting points must have finite coordinates.");
-    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, s1, splat1);
-    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, s2, splat2);
-    const double dist = (s1 - s2).Norm();
+    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, true, first.s1, first.splat1);
+    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, true, first.s2, first.splat2);
+    const double dist = (first.s1 - first.s2).Norm();
     if (dist < d || dist > 2 * d)
       throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
                   " apart; they must be between d = " + fmt(d) + " and 2d = " + fmt(2 * d) +
                   " apart (paper, section 3.3). Move them, or let the filter choose them.");
+    haveFirst = true;
   } else {
     // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
-    // in turn (isolated ones skipped: fewer than 3 other points within d), s1 on its own splat,
-    // s2 the projection of a point 1.5·d away in s1's tangent plane, 12 directions tried.
+    // in turn; when none of the 64 highest can start, the first usable point in input order.
     std::vector<std::uint32_t> highest;
     reserveHuge(highest, in.points.size(), /*populate=*/true);
     highest.resize(in.points.size());
@@ -442,48 +505,41 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                         return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2]
                                                                   : order.origOf(a) < order.origOf(b);
                       });
-    bool found = false;
-    for (size_t t = 0; t < tries && !found; ++t) {
-      const std::uint32_t i = highest[t];
-      int around = 0;
-      const int box = grid.boxOf(in.points[i]);
-      if (box < 0) continue;
-      for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-        around += (in.points[*it] - in.points[i]).SquaredNorm() <= d * d ? 1 : 0;
-      if (around < 4) continue;
-      vcg::Point3d e1, e2;
-      tangentFrame(in.normals[i], e1, e2);
-      for (int k = 0; k < 12 && !found; ++k) {
-        const double phi = 2 * 3.14159265358979323846 * k / 12;
-        const vcg::Point3d target = in.points[i] + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
-        vcg::Point3d q;
-        std::uint32_t sq = 0;
-        if (!projectOntoClosestSplat(target, in, radius, grid, order, q, sq)) continue;
-        const double dist = (q - in.points[i]).Norm();
-        if (dist >= d && dist <= 2 * d) {
-          s1 = in.points[i];
-          splat1 = i;
-          s2 = q;
-          splat2 = sq;
-          found = true;
-        }
-      }
-    }
-    if (!found)
-      throw Error("Could not place two starting vertices between d and 2d apart near the top of the cloud: d = " +
-                  fmt(d) + " is probably too large or the splats too small (s = " + fmt(s) +
-                  "). Give the starting points by hand or change d.");
+    for (size_t t = 0; t < tries && !haveFirst; ++t)
+      haveFirst = startPairAt(highest[t], in, radius, grid, order, d, noVertexYet, first);
+    for (std::uint32_t k = 0; k < in.points.size() && !haveFirst; ++k)
+      haveFirst = startPairAt(order.rankOf(k), in, radius, grid, order, d, noVertexYet, first);
+    if (!haveFirst)
+      throw Error("Could not place two starting vertices between d and 2d apart anywhere on the cloud: d = " +
+                  fmt(d) + " is probably too large for it, or the splats too small (s = " + fmt(s) +
+                  "). Try the default d, or give the starting points by hand.");
   }
-
-  std::vector<std::uint32_t>().swap(order.orig);
 
   // Sec. 3.4–3.6: disk growing; meanwhile the deferred box normals on another thread, those near
   // the start first (the growth spreads from there).
-  grid.startNormals(params.threads, s1);
+  grid.startNormals(params.threads, first.s1);
   progress.phase("Sphere packing: growing", 21, 92);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
-  growth.start(s1, splat1, s2, splat2);
+  growth.start(first.s1, first.splat1, first.s2, first.splat2);
   growth.run();
+  st.componentsStarted = 1;
+  // Every further part of the cloud (sec. 3.3 again): when the growth has stopped and points are
+  // left that no vertex reached, a new starting pair on the first of them in input order (every
+  // point is tried once, so the scan is linear), at least d from every vertex placed so far.
+  {
+    auto farFromVertices = [&](const vcg::Point3d& x) { return !growth.anyVertexCloserThan(x, d); };
+    for (std::uint32_t k = 0; k < in.points.size(); ++k) {
+      const std::uint32_t i = order.rankOf(k);
+      if (!growth.lists().empty(i)) continue;
+      StartPair pair;
+      if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) continue;
+      growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
+      growth.run();
+      ++st.componentsStarted;
+    }
+  }
+  std::vector<std::uint32_t>().swap(order.orig);
+  std::vector<std::uint32_t>().swap(order.rank);
   const BorderGraph& g = growth.graph();
   grid.finishNormals();
   st.boxesDTooLarge = grid.dTooLargeCount();

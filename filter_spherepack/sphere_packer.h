@@ -55,7 +55,7 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0);
 // of the points have that area; random samplings need ~2.6 spacings, scans ~1.9), small enough
 // that disks tilted by noisy normals do not reach far off the surface (sec. 4.3, 5.2).
 constexpr double kDefaultDiameterPerSpacing = 7.0;
-constexpr double kDefaultSplatPerAreaSpacing = 1.3;
+constexpr double kDefaultSplatPerAreaSpacing = 2.5;
 double defaultDiameter(const CloudScale& scale);
 double defaultSplatSize(const CloudScale& scale, double d);
 
@@ -81,6 +81,8 @@ struct Stat {
   size_t rejectedCrossing = 0;   // candidates whose edges crossed existing edges (sec. 3.6, fig. 4b)
   size_t rejectedInconsistent = 0; // candidates whose edges fall into other corners seen along n
   size_t unreachedPoints = 0;    // input points with no vertex within d of their splat
+  size_t componentsStarted = 0;  // starting pairs placed (sec. 3.3): the first, and one for each
+                                 // part of the cloud the growth had not reached when it stopped
   size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan
   size_t nonManifoldEdges = 0;   // output edges with more than two faces
   size_t boundaryLoops = 0;      // boundary loops of the output (holes, including the ∂max ones)

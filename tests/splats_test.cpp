@@ -129,20 +129,16 @@ growth::Cloud sphereCloud(size_t n) {
 
 TEST(SplatRadii, GlobalSizeWhenLocalIsOff) {
   const auto c = sphereCloud(2000);
-  growth::BoxGrid g;
-  g.build(c.points, c.normals, 0.1);
-  const auto r = growth::computeSplatRadii(c.points, c.normals, g, 0.07, false);
+  const auto r = growth::computeSplatRadii(c.points, c.normals, 0.07, 0.0, false);
   ASSERT_EQ(r.size(), c.points.size());
   for (float x : r) EXPECT_EQ(x, 0.07f);
 }
 
 TEST(SplatRadii, LocalSizesAreSmallerAndStillCoverTheSphere) {
   const auto c = sphereCloud(10000);
-  const double d = 0.1, s = 0.1;
-  growth::BoxGrid g;
-  g.build(c.points, c.normals, d);
+  const double s = 0.1;
   growth::SplatSizeStats st;
-  const auto r = growth::computeSplatRadii(c.points, c.normals, g, s, true, &st);
+  const auto r = growth::computeSplatRadii(c.points, c.normals, s, 0.05, true, &st);
   EXPECT_EQ(st.unbounded, 0u); // a closed, densely sampled surface: every fan closes
   EXPECT_LT(st.meanRadius, 0.6 * s);
   for (float x : r) EXPECT_LE(x, float(s));
@@ -174,16 +170,14 @@ TEST(SplatRadii, SameRadiiForAnyNumberOfThreads) {
   spec.seed = 6;
   spec.nonUniform = true;
   const auto c = growth::generateCloud(spec);
-  growth::BoxGrid g;
-  g.build(c.points, c.normals, 0.1, nullptr, 1);
   const double s = 0.03;
   growth::SplatSizeStats one;
-  const auto r1 = growth::computeSplatRadii(c.points, c.normals, g, s, true, &one, nullptr, 1);
+  const auto r1 = growth::computeSplatRadii(c.points, c.normals, s, 0.05, true, &one, nullptr, 1);
   EXPECT_GT(one.unbounded, 0u);
   EXPECT_GT(one.clamped, 0u);
   for (int threads : {2, 3, 7}) {
     growth::SplatSizeStats st;
-    const auto r = growth::computeSplatRadii(c.points, c.normals, g, s, true, &st, nullptr, threads);
+    const auto r = growth::computeSplatRadii(c.points, c.normals, s, 0.05, true, &st, nullptr, threads);
     ASSERT_EQ(r, r1) << threads << " threads";
     EXPECT_EQ(st.unbounded, one.unbounded);
     EXPECT_EQ(st.clamped, one.clamped);
@@ -191,8 +185,31 @@ TEST(SplatRadii, SameRadiiForAnyNumberOfThreads) {
   }
 }
 
-// Points renumbered with their original indices as rankIndex (and the box lists in the original
-// order): the same radius for every point.
+// The neighbourhood grows until it holds every Delaunay neighbour (within 2r): the radii do not
+// depend on the first reach, from a fraction of the spacing to the largest one (2s), and the
+// largest takes every point that can matter.
+TEST(SplatRadii, RadiiDoNotDependOnTheFirstReach) {
+  growth::CloudSpec spec;
+  spec.shape = growth::Shape::Torus;
+  spec.count = 8000;
+  spec.seed = 12;
+  spec.nonUniform = true;
+  const auto c = growth::generateCloud(spec);
+  const double s = 0.3; // about 5 spacings
+  growth::SplatSizeStats ref;
+  const auto r0 = growth::computeSplatRadii(c.points, c.normals, s, 2 * s, true, &ref, nullptr, 1);
+  EXPECT_EQ(ref.unbounded, 0u);
+  size_t local = 0;
+  for (float r : r0) local += r < float(s) ? 1 : 0;
+  EXPECT_EQ(local, c.points.size());
+  for (double reach : {0.005, 0.03, 0.1}) {
+    growth::SplatSizeStats st;
+    const auto r = growth::computeSplatRadii(c.points, c.normals, s, reach, true, &st, nullptr, 2);
+    ASSERT_EQ(r, r0) << "first reach " << reach;
+  }
+}
+
+// Points renumbered with their original indices as rankIndex: the same radius for every point.
 TEST(SplatRadii, RenumberedPointsGetTheSameRadii) {
   growth::CloudSpec spec;
   spec.shape = growth::Shape::Torus;
@@ -208,13 +225,10 @@ TEST(SplatRadii, RenumberedPointsGetTheSameRadii) {
   for (size_t i = 0; i < n; ++i) rank[orig[i]] = std::uint32_t(i);
   std::vector<Point3d> pts(n), nrm(n);
   for (size_t i = 0; i < n; ++i) pts[i] = c.points[orig[i]], nrm[i] = c.normals[orig[i]];
-  const double d = 0.25, s = 0.12;
-  growth::BoxGrid a, b;
-  a.build(c.points, c.normals, d, nullptr, 1);
-  b.build(pts, nrm, d, nullptr, 1, false, &rank);
+  const double s = 0.12;
   growth::SplatSizeStats sa, sb;
-  const auto ra = growth::computeSplatRadii(c.points, c.normals, a, s, true, &sa, nullptr, 2);
-  const auto rb = growth::computeSplatRadii(pts, nrm, b, s, true, &sb, nullptr, 2, &orig);
+  const auto ra = growth::computeSplatRadii(c.points, c.normals, s, 0.05, true, &sa, nullptr, 2);
+  const auto rb = growth::computeSplatRadii(pts, nrm, s, 0.05, true, &sb, nullptr, 2, &orig);
   for (size_t i = 0; i < n; ++i) ASSERT_EQ(rb[i], ra[orig[i]]) << i;
   EXPECT_EQ(sb.unbounded, sa.unbounded);
   EXPECT_EQ(sb.clamped, sa.clamped);

@@ -347,7 +347,7 @@ void BoxGrid::finishNormals() {
 
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
                     Progress* progress, int threads, bool deferNormals,
-                    const std::vector<std::uint32_t>* listOrder) {
+                    const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach) {
   stopNormals();
   start_.assign(1, 0);
   points_.clear();
@@ -393,14 +393,19 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   std::vector<std::int32_t> near; // box ids of the 27 neighbours, lazily
   assignHuge(near, ownCoord.size() / 3 * 27, std::int32_t(-1));
 
-  // The boxes within distance `side` of point i: per axis the boxes within reach and the squared
-  // distance of p to each slab (the terms of squaredDistanceToBox, in the same order, so the test
-  // is the same to the last bit), then every box of the block whose distance is within `side`,
-  // in the order x, y, z. Calls f(x, y, z) for each (at most 27).
-  auto slabs = [&](const vcg::Point3d& p, std::int64_t lo[3], std::int64_t hi[3], double sq[3][8]) {
+  // The boxes within distance `reach` (side, or side + extraReach[i]) of point i: per axis the
+  // boxes within reach and the squared distance of p to each slab (the terms of
+  // squaredDistanceToBox, in the same order, so the test is the same to the last bit), then every
+  // box of the block whose distance is within reach, in the order x, y, z. Calls f(x, y, z) for
+  // each (at most 27 for reach = side).
+  auto reachOf = [&](size_t i) {
+    if (extraReach == nullptr || !((*extraReach)[i] > 0)) return side;
+    return side + std::min(double((*extraReach)[i]), kMaxExtraReach * side);
+  };
+  auto slabs = [&](const vcg::Point3d& p, double reach, std::int64_t lo[3], std::int64_t hi[3], double sq[3][kSpan]) {
     for (int a = 0; a < 3; ++a) {
-      lo[a] = index_.coord(p[a] - side, a);
-      hi[a] = std::min(index_.coord(p[a] + side, a), lo[a] + 7);
+      lo[a] = index_.coord(p[a] - reach, a);
+      hi[a] = std::min(index_.coord(p[a] + reach, a), lo[a] + kSpan - 1);
       for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
         const double l = index_.origin()[a] + double(c) * side;
         const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
@@ -410,14 +415,15 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   };
   auto forBoxesWithin = [&](size_t i, auto&& f) {
     std::int64_t lo[3], hi[3];
-    double sq[3][8];
-    slabs(pts[i], lo, hi, sq);
+    double sq[3][kSpan];
+    const double reach = reachOf(i), r2 = reach == side ? d2 : reach * reach;
+    slabs(pts[i], reach, lo, hi, sq);
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
         const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
-        if (sxy > d2) continue;
+        if (sxy > r2) continue;
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-          if (!(sxy + sq[2][z - lo[2]] > d2)) f(x, y, z);
+          if (!(sxy + sq[2][z - lo[2]] > r2)) f(x, y, z);
       }
   };
   const size_t n = pts.size();
@@ -442,9 +448,13 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
       const size_t at = listOrder != nullptr ? listPos[i] : i;
       if (listOrder != nullptr) ownAt[at] = ownOf[i];
       const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
+      if (reachOf(i) != side) { // a large splat: the general path
+        mask[at] = kBeyond;
+        continue;
+      }
       std::int64_t lo[3], hi[3];
-      double sq[3][8];
-      slabs(pts[i], lo, hi, sq);
+      double sq[3][kSpan];
+      slabs(pts[i], side, lo, hi, sq);
       bool inBlock = true;
       for (int a = 0; a < 3; ++a) inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
       if (!inBlock) {

@@ -1,5 +1,4 @@
-#include <growth/box_grid.h>
-#include <growth/huge_pages.h>
+#include <growth/point_grid.h>
 #include <growth/parallel.h>
 #include <growth/progress.h>
 #include <growth/splats.h>
@@ -183,92 +182,70 @@ double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std:
 }
 
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
-                                     const BoxGrid& grid, double globalRadius, bool local, SplatSizeStats* stats,
+                                     double capRadius, double firstReach, bool local, SplatSizeStats* stats,
                                      Progress* progress, int threads, const std::vector<std::uint32_t>* rankIndex) {
-  std::vector<float> radius(points.size(), static_cast<float>(globalRadius));
+  std::vector<float> radius(points.size(), static_cast<float>(capRadius));
   SplatSizeStats st;
-  if (local) {
-    // Points grouped by the box containing them: they share that box's point list, gathered once
-    // into contiguous memory.
-    const size_t boxes = grid.boxCount();
-    std::vector<std::uint32_t> start(boxes + 2, 0);
-    HugeVector<std::uint32_t> order(points.size());
-    HugeVector<std::int32_t> own(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
-      own[i] = grid.boxOf(points[i]);
-      ++start[size_t(own[i] + 1) + 1]; // slot 1 holds the points without a box (none in practice)
-    }
-    for (size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-    for (size_t i = 0; i < points.size(); ++i) order[start[size_t(own[i] + 1)]++] = static_cast<std::uint32_t>(i);
-    HugeVector<std::int32_t>().swap(own);
-    // start[g] is now the end of group g (group 0: no box; group b + 1: box b), and the groups
-    // lie in order in `order`. The positions of `order` are handed out in chunks to the threads
-    // (parallel.h); a chunk walks the groups it overlaps (a group cut in two is gathered for both
-    // chunks, in the same order, so every point gets the same neighbour list). Each point's radius
-    // goes to its own slot and the counters are integers summed per thread: the result is the
-    // same for any number of threads and any scheduling.
+  if (local && !points.empty() && capRadius > 0) {
+    // The first neighbourhood: `firstReach`, at most the largest one ever needed (2·cap).
+    const double reach0 = std::min(2 * capRadius, firstReach > 0 ? firstReach : 2 * capRadius);
+    // Cells of side reach0 for the first neighbourhood; the larger ones (up to 2·cap) from cells of
+    // a third of their largest radius when that is much larger (a query then visits at most 7³
+    // cells, whatever the ratio of cap to reach0).
+    PointGrid grid, wide;
+    grid.build(points, reach0);
+    const bool useWide = 2 * capRadius > 3 * reach0;
+    if (useWide) wide.build(points, 2 * capRadius / 3);
     const size_t n = points.size();
     const int workers = parallelParts(n, threads, 2048);
-    struct Cand {
-      double x, y, z;
-      std::uint32_t idx, rank; // index, and the index it is ordered by among equal x
+    struct Near {
+      std::uint32_t rank, idx;
     };
     struct Worker {
       FanScratch scratch;
-      std::vector<Cand> cand;
+      std::vector<Near> near;
       std::vector<vcg::Point3d> nb;
       SplatSizeStats stats;
       char pad[64]; // no cache line shared with the next thread's state
     };
     std::vector<Worker> state(static_cast<size_t>(workers));
+    // Each point's radius goes to its own slot and the counters are integers summed per thread:
+    // the result is the same for any number of threads and any scheduling.
     parallelChunks(n, workers, 1024, [&](size_t k0, size_t k1, int worker) {
-      FanScratch& scratch = state[size_t(worker)].scratch;
-      std::vector<Cand>& cand = state[size_t(worker)].cand;
-      std::vector<vcg::Point3d>& nb = state[size_t(worker)].nb;
-      SplatSizeStats& pst = state[size_t(worker)].stats;
-      const double reach = 2 * globalRadius, reach2 = reach * reach;
-      size_t k = k0;
-      size_t group = size_t(std::upper_bound(start.begin(), start.begin() + std::ptrdiff_t(boxes + 1),
-                                             static_cast<std::uint32_t>(k0)) - start.begin());
-      for (; k < k1; ++group) {
-        const size_t end = std::min<size_t>(start[group], k1);
-        const int box = static_cast<int>(group) - 1;
-        if (k >= end) continue;
-        // The box's points sorted by x: each point of the group scans only the slice within reach.
-        // Only the box's points within reach of the box itself can be within reach of a point
-        // in it (the margin keeps every point the exact test below could accept).
-        cand.clear();
-        if (box >= 0) {
-          const BoxIndexer& ix = grid.indexer();
-          const vcg::Point3d& q = points[order[k]];
-          const vcg::Point3d lo = ix.corner(ix.coord(q[0], 0), ix.coord(q[1], 1), ix.coord(q[2], 2));
-          const double keep2 = reach2 * (1 + 1e-9);
-          for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it)
-            if (squaredDistanceToBox(points[*it], lo, ix.side()) <= keep2)
-              cand.push_back(Cand{points[*it][0], points[*it][1], points[*it][2], *it,
-                                  rankIndex != nullptr ? (*rankIndex)[*it] : *it});
+      Worker& w = state[size_t(worker)];
+      for (size_t i = k0; i < k1; ++i) {
+        const vcg::Point3d& p = points[i];
+        const vcg::Point3d& np = normals[i];
+        // The neighbours within `reach` on p's side of the surface (normals not opposed to n_p:
+        // the paper's normal filter, sec. 4.1), in a fixed order (by rank): the same fan for any
+        // numbering of the points.
+        auto fanWithin = [&](double reach) {
+          w.near.clear();
+          (reach > 3 * reach0 && useWide ? wide : grid).forEachInBall(p, reach, [&](int j, double) {
+            if (size_t(j) != i && normals[size_t(j)] * np >= 0)
+              w.near.push_back(Near{rankIndex != nullptr ? (*rankIndex)[size_t(j)] : std::uint32_t(j), std::uint32_t(j)});
+          });
+          std::sort(w.near.begin(), w.near.end(), [](const Near& a, const Near& b) { return a.rank < b.rank; });
+          w.nb.clear();
+          for (const Near& q : w.near) w.nb.push_back(points[q.idx]);
+          return fanRadius(p, np, w.nb, nullptr, w.scratch);
+        };
+        double reach = reach0;
+        double r = fanWithin(reach);
+        // Every Delaunay triangle of p has its circumcircle through p, of radius at most r (fewer
+        // points can only make p's Voronoi cell larger): all Delaunay neighbours of p lie within
+        // 2r. So the fan is exact when 2r <= reach; otherwise gather again within 2r (an open fan:
+        // within the largest reach), up to 2·cap, beyond which the radius is clamped anyway.
+        if ((r < 0 || 2 * r > reach) && reach < 2 * capRadius) {
+          reach = r < 0 ? 2 * capRadius : std::min(2 * r, 2 * capRadius);
+          r = fanWithin(reach);
         }
-        std::sort(cand.begin(), cand.end(), [](const Cand& a, const Cand& b) { return a.x != b.x ? a.x < b.x : a.rank < b.rank; });
-        for (; k < end; ++k) {
-          const std::uint32_t i = order[k];
-          const vcg::Point3d& p = points[i];
-          double r = -1;
-          if (box >= 0) {
-            nb.clear();
-            auto j = std::lower_bound(cand.begin(), cand.end(), p[0] - reach, [](const Cand& c, double x) { return c.x < x; });
-            for (; j != cand.end() && j->x <= p[0] + reach; ++j) {
-              const double dx = j->x - p[0], dy = j->y - p[1], dz = j->z - p[2];
-              if (dx * dx + dy * dy + dz * dz <= reach2 && j->idx != i) nb.emplace_back(j->x, j->y, j->z);
-            }
-            r = fanRadius(p, normals[i], nb, nullptr, scratch);
-          }
-          if (r < 0) {
-            ++pst.unbounded;
-          } else if (r > globalRadius) {
-            ++pst.clamped;
-          } else {
-            radius[i] = static_cast<float>(r);
-          }
+        if (r < 0) {
+          ++w.stats.unbounded;
+        } else if (r > capRadius) {
+          ++w.stats.clamped;
+        } else {
+          radius[i] = static_cast<float>(r);
         }
       }
       if (worker == 0 && progress != nullptr) progress->advanceTo(double(k1) / double(n));

@@ -233,9 +233,14 @@ public:
   // finishNormals() (or first use) too, so that they can be computed while the caller works on.
   // listOrder (optional, a permutation of the point indices): the order of the points in every
   // box's list (default: increasing index). Box ids are given in order of first appearance in it.
+  // extraReach (optional, one value per point): a point with extraReach[i] > 0 is referred to by
+  // the boxes within side + extraReach[i] (at most side + kMaxExtraReach·side) instead of side:
+  // the boxes its splat (a disk of that radius) comes within d of, so that a vertex anywhere within
+  // d of the disk finds it (sec. 4.4), also where the splats are larger than d.
+  static constexpr double kMaxExtraReach = 6;
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
              Progress* progress = nullptr, int threads = 0, bool deferNormals = false,
-             const std::vector<std::uint32_t>* listOrder = nullptr);
+             const std::vector<std::uint32_t>* listOrder = nullptr, const std::vector<float>* extraReach = nullptr);
 
   BoxGrid() = default;
   BoxGrid(const BoxGrid&) = delete;
@@ -285,6 +290,7 @@ public:
   size_t memoryBytes() const;
 
 private:
+  static constexpr int kSpan = 16; // boxes per axis within the largest reach (2·7 + 2)
   BoxIndexer index_;
   KeyHash hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1

@@ -4,17 +4,18 @@
 // Every input point p carries a splat S_p: the disk centred at p, orthogonal to its normal n_p,
 // of radius s_p. Vertices of the mesh are placed on splats, so the splats must cover the surface.
 // The radius is either the global size s, or the local size of sec. 4.3:
-//   - the points of the box containing p (sec. 4.1) are rotated about p, in the plane through p,
-//     p_i and n_p, onto the tangent plane T_p (distances to p are kept);
+//   - the points near p (the paper takes those of the box containing p, sec. 4.1) are rotated
+//     about p, in the plane through p, p_i and n_p, onto the tangent plane T_p (distances kept);
 //   - sorted cyclically around p they form a central (fan) triangulation;
 //   - a central edge p–p_i that is not locally Delaunay is flipped, and p_i is dropped from the
 //     fan, until all central edges are locally Delaunay;
 //   - s_p is the distance from p to the farthest vertex of p's Voronoi cell among the remaining
 //     neighbours, i.e. the largest circumradius of the fan triangles.
-// Where the paper is silent we choose, for the coverage guarantee: a fan with an angular gap of
-// at least π (a boundary point, or a point with too few neighbours) has an unbounded Voronoi cell
-// and keeps the global s; and local sizes never exceed s (sec. 4.3 introduces them as "individual,
-// smaller splat sizes").
+// Where the paper is silent we choose, for the coverage guarantee: the neighbours are all points
+// near p on its side of the surface (not only those of p's box: at d of one or two point spacings
+// a box holds too few of them to close a fan); a fan with an angular gap of at least π (a boundary
+// point, or a point with too few neighbours) has an unbounded Voronoi cell and keeps the global s;
+// and local sizes never exceed s (sec. 4.3 introduces them as "individual, smaller splat sizes").
 #include <vcg/space/point3.h>
 
 #include <algorithm>
@@ -25,7 +26,6 @@
 
 namespace growth {
 
-class BoxGrid;
 class Progress;
 
 // An orthonormal tangent frame (e1, e2) of a unit normal n, a fixed function of n (so the same
@@ -74,16 +74,20 @@ struct SplatSizeStats {
   double meanRadius = 0;  // mean of the final radii
 };
 
-// Splat radius of every point: the global s, or (local) min(s, local Voronoi radius) from the
-// points of the box containing each point. Of those, only the points within 2s of p are handed to
-// localSplatRadius: a farther point can only be a Delaunay neighbour of p when p's Voronoi cell
-// reaches beyond s, and then the radius is clamped to s anyway; so the result is the same, at a
-// cost that does not grow with the box (d) but with s. Runs on `threads` threads (0 = automatic,
-// parallel.h); the radii are the same for any number. The neighbours of a point are handed to
-// localSplatRadius by increasing x, equal x by increasing index, or by rankIndex[index] when
-// given (for points renumbered from an original order: the same order as there).
+// Splat radius of every point: the global s (`capRadius`), or (local) the sec. 4.3 radius among
+// the point's neighbours, at most s. The neighbours are the points within a reach of p (found
+// through a PointGrid over the points, independent of the box grid and so of d) whose normals are
+// not opposed to n_p. The reach starts at `firstReach` (about twice the typical Voronoi radius:
+// a few point spacings) and grows to 2r when the radius r found needs it (all Delaunay neighbours
+// of p lie within 2r), or to 2s for an open fan; beyond 2s the radius would be clamped anyway. So
+// the radius is the exact Voronoi radius of p's neighbourhood, whatever d is.
+// A point whose fan stays open (a boundary point, or too few neighbours) keeps s: where the
+// paper is silent, we choose coverage. Runs on `threads` threads (0 = automatic, parallel.h); the
+// radii are the same for any number. Neighbours are handed to localSplatRadius by increasing
+// index, or by rankIndex[index] when given (for points renumbered from an original order: the
+// same order, so the same radii, as there).
 std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
-                                     const BoxGrid& grid, double globalRadius, bool local,
+                                     double capRadius, double firstReach, bool local,
                                      SplatSizeStats* stats = nullptr, Progress* progress = nullptr,
                                      int threads = 0, const std::vector<std::uint32_t>* rankIndex = nullptr);
 
