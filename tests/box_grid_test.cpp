@@ -206,6 +206,24 @@ TEST(BoxGrid, PointsOnBoxFacesAreReferredToExactly) {
   }
 }
 
+// Sec. 4.1 before the filter: a thin plate whose sides hold 2:1 points (its normals then sum to
+// the denser side, and the filter alone would hide the other) is flagged where d sees both sides,
+// not where d is below the plate's thickness.
+TEST(BoxGrid, ThinPlateWithTwoToOneSidesIsFlagged) {
+  std::vector<Point3d> p, n;
+  growth::Random rnd(4);
+  for (int i = 0; i < 6000; ++i) {
+    const bool top = i % 3 != 0;
+    p.emplace_back(rnd.uniform(0, 1), rnd.uniform(0, 1), top ? 0.02 : -0.02);
+    n.emplace_back(0, 0, top ? 1 : -1);
+  }
+  BoxGrid coarse, fine;
+  coarse.build(p, n, 0.1);
+  fine.build(p, n, 0.01);
+  EXPECT_GT(coarse.dTooLargeCount(), coarse.boxCount() / 2);
+  EXPECT_EQ(fine.dTooLargeCount(), 0u);
+}
+
 TEST(BoxGrid, FilterDropsFlippedNormalsOnAPlane) {
   std::vector<Point3d> p, n;
   growth::Random rnd(2);
@@ -292,8 +310,9 @@ TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
   ASSERT_GT(one.boxCount(), 3 * 256u); // enough for 3 parts (parallelParts: 256 boxes at least per part)
   EXPECT_GT(one.droppedByFilter(), 0u);
   EXPECT_GT(one.dTooLargeCount(), 0u);
-  // Box normals (computed by build() or on first use): those of the sampling on the box's points,
-  // and the flagged boxes are exactly those with a negative minimum.
+  // Box normals (computed by build() or on first use): those of the sampling on the box's points;
+  // the flagged boxes are those with a negative minimum and those where the filter dropped a
+  // share of the points (the plate's).
   {
     BoxGrid g;
     g.build(c.points, c.normals, d, nullptr, 1);
@@ -304,7 +323,10 @@ TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
       const Point3d n = sampling.maxMinDirection(c.normals, g.pointsBegin(b), g.pointCount(b), &minDot);
       ASSERT_EQ(g.boxNormal(b), n);
       ASSERT_EQ(g.boxMinDot(b), minDot);
-      flagged += minDot < 0 ? 1 : 0;
+      if (minDot < 0) {
+        EXPECT_TRUE(g.dTooLarge(b));
+      }
+      flagged += g.dTooLarge(b) ? 1 : 0;
     }
     EXPECT_EQ(g.dTooLargeCount(), flagged);
   }

@@ -304,7 +304,7 @@ void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
   std::uint8_t expected = kNone;
   if (state_[b].compare_exchange_strong(expected, kBusy, std::memory_order_acq_rel)) {
     boxNormal_[b] = sampling.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &boxMinDot_[b]);
-    if (counted_[b] && boxMinDot_[b] < 0) ++dTooLargeCount_;
+    if (counted_[b] && !opposed_[b] && boxMinDot_[b] < 0) ++dTooLargeCount_;
     state_[b].store(kDone, std::memory_order_release);
     return;
   }
@@ -355,6 +355,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   boxMinDot_.clear();
   state_.reset();
   counted_.clear();
+  opposed_.clear();
   pending_.clear();
   pendingCorner_.clear();
   normals_ = &normals;
@@ -578,6 +579,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   prefault(state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
   for (size_t b = 0; b < boxes; ++b) state_[b].store(kNone, std::memory_order_relaxed);
   assignHuge(counted_, boxes, std::uint8_t(0));
+  assignHuge(opposed_, boxes, std::uint8_t(0));
   std::vector<std::uint8_t> eager;
   assignHuge(eager, boxes, std::uint8_t(0));
   std::vector<std::int32_t> ownBox; // box id of each own box: offset (0, 0, 0)
@@ -604,6 +606,17 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
       const size_t k = filterBoxNormals(normals, idx, n);
       kept[b] = static_cast<std::uint32_t>(k);
       dropped += n - k;
+      // Sec. 4.1's check is on every point registered in the box: a point the filter dropped has
+      // a normal against the box's summed normal, hence (the box normal is taken from the points
+      // kept) almost surely against the box normal too. When they are a real share of the box
+      // (kOpposedShare, at least four points), the box sees two sides of the surface: d is too
+      // large there (thin parts, folds, a region of flipped normals), counted once here. A lone
+      // flipped normal among many, which estimated normals of real scans show in most boxes
+      // somewhere, is what the filter is for and does not count.
+      if (n - k >= 4 && double(n - k) >= kOpposedShare * double(n)) {
+        opposed_[b] = 1;
+        ++tooLarge;
+      }
       // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
       // maxMinDirection is at least that (up to rounding, hence the margin).
       if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
@@ -611,7 +624,7 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
         if (eager[b] && deferNormals) continue; // computed later, on the compacted lists
         boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
         state_[b].store(kDone, std::memory_order_relaxed);
-        if (boxMinDot_[b] < 0) ++tooLarge;
+        if (boxMinDot_[b] < 0 && !opposed_[b]) ++tooLarge;
       }
     }
     workerDropped[size_t(worker)] += dropped;
