@@ -144,3 +144,68 @@ TEST(CloudGenerator, ToMeshCopiesPointsAndNormals) {
   EXPECT_FALSE(m.bbox.IsNull());
   EXPECT_FLOAT_EQ(m.vert[7].N()[2], float(cloud.normals[7][2]));
 }
+
+TEST(CloudGenerator, ExistingCloudsAreUnchanged) {
+  // Tests and benchmarks depend on the seeded clouds: first, second and last point (exact, as
+  // printed with %.17g) and the coordinate sums of six specs, recorded from main at d4b9873 before
+  // CloudSpec grew new members and shapes.
+  struct Ref {
+    Shape shape;
+    bool nonUniform;
+    double noise, gauss, outliers;
+    std::uint64_t seed;
+    size_t size;
+    double first[3], second[3], last[3], sum[3];
+  };
+  const Ref refs[] = {
+      {Shape::Sphere, false, 0, 0, 0, 1, 1000,
+       {-0.90641814728350978, -0.11703444272920763, 0.40584366631770097},
+       {-0.76723920696330838, 0.62400110592583202, 0.148211400039445},
+       {-0.58776622379294552, -0.78972563189031686, 0.17568236252857239},
+       {12.869797186342847, -18.779392124066536, -14.575823792809611}},
+      {Shape::Torus, false, 0, 0, 0, 7, 1000,
+       {2.977229798405574, -0.3552671297571427, -0.057395003303710689},
+       {2.5913497315565204, 1.0401794643034719, 0.61010207651690729},
+       {1.4347165301760527, 1.4058646245078044, 0.99996217339470561},
+       {17.154046313705553, -112.64386892557421, 12.516264838971692}},
+      {Shape::Patch, false, 0, 0, 0, 3, 1000,
+       {0.38127659023557592, 0.2811620134709214, 0.076609218473403476},
+       {0.067923253000907513, -0.15080874427413993, 0.015007161814070026},
+       {-0.42092984588385884, 0.9252617309390192, -0.03934572273218441},
+       {1.2789037636855278, 36.170677565587887, 0.66374508499047669}},
+      {Shape::Sphere, true, 0, 0, 0, 5, 1000,
+       {-0.76156294614610942, -0.08027207567395353, 0.64310051541283442},
+       {0.36028181993086106, -0.93281106762639587, 0.0077796105950131977},
+       {-0.16992153001768565, 0.16274454636513014, 0.97192637903539625},
+       {2.3952996376655946, 26.37216047192107, 208.71410784104808}},
+      {Shape::Torus, true, 0.01, 0, 0.02, 11, 1020,
+       {0.47287499260583199, 2.8130567570160308, 0.51937319882579913},
+       {1.3286269649133982, -0.033026574521413408, -0.73262341627601479},
+       {-0.71382162093874557, -1.0004148006343816, 0.789734668143665},
+       {19.96144856976624, -53.626390356584508, 305.38095235552134}},
+      {Shape::Patch, true, 0, 0.003, 0.05, 2, 1050,
+       {0.37485216841613589, -0.52944040354670163, 0.06403550845848574},
+       {0.9929181884996422, -0.79835689164875878, 0.084057502477251883},
+       {0.52892359170629466, -1.0885706343510286, -0.11112156330758319},
+       {201.15536920950473, 9.0259960328593642, 29.883902832803745}},
+  };
+  for (const Ref& r : refs) {
+    CloudSpec c = spec(r.shape, 1000, r.seed);
+    c.nonUniform = r.nonUniform;
+    c.noiseBound = r.noise;
+    c.gaussianSigma = r.gauss;
+    c.outlierFraction = r.outliers;
+    const auto cloud = growth::generateCloud(c);
+    ASSERT_EQ(cloud.points.size(), r.size);
+    const std::string what = std::string(growth::shapeName(r.shape)) + (r.nonUniform ? " non-uniform" : "");
+    double sum[3] = {0, 0, 0};
+    for (const auto& p : cloud.points)
+      for (int a = 0; a < 3; ++a) sum[a] += p[a];
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(cloud.points[0][a], r.first[a]) << what;
+      EXPECT_EQ(cloud.points[1][a], r.second[a]) << what;
+      EXPECT_EQ(cloud.points.back()[a], r.last[a]) << what;
+      EXPECT_NEAR(sum[a], r.sum[a], 1e-9) << what;
+    }
+  }
+}
