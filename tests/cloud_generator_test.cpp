@@ -209,3 +209,36 @@ TEST(CloudGenerator, ExistingCloudsAreUnchanged) {
     }
   }
 }
+
+namespace {
+// Density at the top over density at the bottom of a non-uniform sphere: counts in 10 bands of
+// equal area (z is uniform on the sphere), a least-squares line through them, its value at the
+// top over its value at the bottom.
+double sphereDensityRatio(const growth::Cloud& c) {
+  const int bins = 10;
+  double count[bins] = {};
+  for (const auto& p : c.points) count[std::min(bins - 1, int((p[2] + 1.0) * 0.5 * bins))] += 1;
+  double st = 0, sc = 0, stt = 0, stc = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double t = (b + 0.5) / bins;
+    st += t, sc += count[b], stt += t * t, stc += t * count[b];
+  }
+  const double slope = (bins * stc - st * sc) / (bins * stt - st * st), at0 = (sc - slope * st) / bins;
+  return (at0 + slope) / at0;
+}
+} // namespace
+
+TEST(CloudGenerator, DensityRatioIsTheAskedOne) {
+  CloudSpec c = spec(Shape::Sphere, 200000, 3);
+  c.nonUniform = true;
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 4.0, 0.2); // the default
+  c.densityRatio = 5.0;
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 5.0, 0.25);
+  c.densityRatio = 1.0; // uniform
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 1.0, 0.05);
+  c.densityRatio = 0.5;
+  EXPECT_THROW(growth::generateCloud(c), growth::Error);
+  c.densityRatio = 5.0;
+  c.nonUniform = false; // the ratio is only used by non-uniform clouds
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 1.0, 0.05);
+}

@@ -1,5 +1,5 @@
 // make_cloud: writes a seeded point cloud with exact normals as binary PLY.
-//   make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform]
+//   make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform [--density-ratio R]]
 //              [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -11,7 +11,7 @@
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform]\n"
+               "usage: make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform [--density-ratio R]]\n"
                "                  [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply\n");
 }
 
@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
       else if (a == "--points") spec.count = std::strtoull(value(), nullptr, 10);
       else if (a == "--seed") spec.seed = std::strtoull(value(), nullptr, 10);
       else if (a == "--nonuniform") spec.nonUniform = true;
+      else if (a == "--density-ratio") spec.densityRatio = std::atof(value());
       else if (a == "--noise") spec.noiseBound = std::atof(value());
       else if (a == "--gauss") spec.gaussianSigma = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());

@@ -122,12 +122,16 @@ Cloud generateCloud(const CloudSpec& spec) {
   c.normals.reserve(spec.count + outliers);
   double zmin = 0;
   const double zspan = zRange(spec, zmin);
+  if (spec.nonUniform && !(spec.densityRatio >= 1.0 && std::isfinite(spec.densityRatio)))
+    throw Error("the density ratio of a non-uniform cloud must be a finite number >= 1");
+  // Accepted with probability 1/ratio at the bottom rising linearly to 1 at the top: for the
+  // default ratio 4 exactly 0.25 + 0.75 t, as before densityRatio existed (the same clouds).
+  const double bottom = 1.0 / spec.densityRatio, rise = 1.0 - bottom;
   while (c.points.size() < spec.count) {
     Sample s = sampleSurface(spec, rng);
     if (spec.nonUniform) {
-      // Density 4:1 from the top to the bottom of the shape.
       const double t = (s.p[2] - zmin) / zspan;
-      if (rng.uniform() > 0.25 + 0.75 * t) continue;
+      if (rng.uniform() > bottom + rise * t) continue;
     }
     if (spec.noiseBound > 0) s.p += rng.inBall(spec.noiseBound);
     if (spec.gaussianSigma > 0)

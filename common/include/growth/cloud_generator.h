@@ -3,7 +3,7 @@
 //
 // Shapes: the unit sphere, the torus (tube radius r swept around a circle of radius R, sphere-packing
 // paper sec. 5.2 uses R = 2, r = 1) and an open, gently curved height-field patch. Sampling is
-// uniform by area, or non-uniform with a 4:1 density ratio along z. Perturbations follow the two
+// uniform by area, or non-uniform with a density ratio (4:1 unless asked otherwise) along z. Perturbations follow the two
 // papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
 // <= nu, sphere packing sec. 5.3), Gaussian noise (Robust G2S sec. 5.2) and uniformly scattered
 // outliers. Normals are always those of the exact surface at the unperturbed sample.
@@ -25,7 +25,8 @@ struct CloudSpec {
   Shape shape = Shape::Sphere;
   size_t count = 10000;         // points on the surface (outliers come on top)
   std::uint64_t seed = 1;
-  bool nonUniform = false;      // density varies 4:1 along z
+  bool nonUniform = false;      // density varies along z, densityRatio:1 from the top to the bottom
+  double densityRatio = 4.0;    // with nonUniform: density at the top / density at the bottom (>= 1)
   double noiseBound = 0.0;      // nu: each point moves by a uniform random vector of length <= nu
   double gaussianSigma = 0.0;   // standard deviation of isotropic Gaussian noise (absolute units)
   double outlierFraction = 0.0; // outliers added, as a fraction of count, uniform in the enlarged box
