@@ -1,13 +1,16 @@
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
+#include <growth/point_grid.h>
 
 #include <common/ml_mesh_type.h>
 #include <wrap/io_trimesh/import_ply.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 using growth::CloudSpec;
 using growth::Shape;
@@ -23,7 +26,7 @@ CloudSpec spec(Shape s, size_t n, std::uint64_t seed = 1) {
 } // namespace
 
 TEST(CloudGenerator, PointsLieOnTheShapeWithUnitNormals) {
-  for (Shape s : {Shape::Sphere, Shape::Torus, Shape::Patch}) {
+  for (Shape s : {Shape::Sphere, Shape::Torus, Shape::Patch, Shape::Genus2}) {
     const CloudSpec c = spec(s, 2000);
     const auto cloud = growth::generateCloud(c);
     ASSERT_EQ(cloud.points.size(), 2000u);
@@ -115,6 +118,8 @@ TEST(CloudGenerator, RejectsEmptyAndUnknownShape) {
   EXPECT_THROW(growth::generateCloud(spec(Shape::Sphere, 0)), growth::Error);
   EXPECT_THROW(growth::parseShape("cube"), growth::Error);
   EXPECT_EQ(growth::parseShape("torus"), Shape::Torus);
+  EXPECT_EQ(growth::parseShape("genus2"), Shape::Genus2);
+  EXPECT_STREQ(growth::shapeName(Shape::Genus2), "genus2");
 }
 
 TEST(CloudGenerator, PlyRoundTripThroughVcglib) {
@@ -241,4 +246,141 @@ TEST(CloudGenerator, DensityRatioIsTheAskedOne) {
   c.densityRatio = 5.0;
   c.nonUniform = false; // the ratio is only used by non-uniform clouds
   EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 1.0, 0.05);
+}
+
+TEST(CloudGenerator, ShapeAreas) {
+  EXPECT_DOUBLE_EQ(growth::shapeArea(spec(Shape::Sphere, 1)), 4 * M_PI);
+  EXPECT_DOUBLE_EQ(growth::shapeArea(spec(Shape::Torus, 1)), 4 * M_PI * M_PI * 2.0);
+  // The patch: between the flat square and the square times the largest area element.
+  const double patch = growth::shapeArea(spec(Shape::Patch, 1));
+  EXPECT_GT(patch, 4.0 * 1.01);
+  EXPECT_LT(patch, 4.0 * std::sqrt(1.0 + 2 * 0.225 * 0.225));
+  // A midpoint sum on a 2000 x 2000 grid (its own error ~1e-7).
+  double sum = 0;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -1 + (i + 0.5) * 2.0 / n, y = -1 + (j + 0.5) * 2.0 / n;
+      const double hx = 0.225 * std::cos(1.5 * x) * std::cos(1.2 * y), hy = -0.18 * std::sin(1.5 * x) * std::sin(1.2 * y);
+      sum += std::sqrt(1 + hx * hx + hy * hy);
+    }
+  EXPECT_NEAR(patch, sum * 4.0 / (double(n) * n), 1e-6);
+  // Genus 2: two tori R = 1.2, r = 0.6 (28.42 each) lose their overlap; the far halves x < -c and
+  // x > c are plain half tori (14.21 each).
+  const double g = growth::shapeArea(spec(Shape::Genus2, 1));
+  EXPECT_GT(g, 2 * 2 * M_PI * M_PI * growth::kGenus2Major * growth::kGenus2Minor);
+  EXPECT_LT(g, 2 * 4 * M_PI * M_PI * growth::kGenus2Major * growth::kGenus2Minor);
+}
+
+TEST(CloudGenerator, Genus2NormalsAreTheGradientOutwardAndOrthogonal) {
+  const CloudSpec c = spec(Shape::Genus2, 3000, 4);
+  const auto cloud = growth::generateCloud(c);
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    const vcg::Point3d& p = cloud.points[i];
+    const vcg::Point3d& n = cloud.normals[i];
+    EXPECT_LT(std::abs(growth::genus2Function(p)), 1e-12);
+    // The gradient by central differences.
+    const double e = 1e-6;
+    vcg::Point3d fd;
+    for (int a = 0; a < 3; ++a) {
+      vcg::Point3d dp(0, 0, 0);
+      dp[a] = e;
+      fd[a] = (growth::genus2Function(p + dp) - growth::genus2Function(p - dp)) / (2 * e);
+    }
+    vcg::Point3d g;
+    growth::genus2Function(p, &g);
+    EXPECT_LT((g - fd).Norm(), 1e-7 * fd.Norm());
+    EXPECT_LT((n - fd / fd.Norm()).Norm(), 1e-7);
+    // Outward, and orthogonal: a step along the normal moves away from the surface at unit rate.
+    EXPECT_GT(growth::genus2Function(p + n * 0.01), 0.0);
+    EXPECT_LT(growth::genus2Function(p - n * 0.01), 0.0);
+    EXPECT_NEAR(growth::distanceToShape(c, p + n * 0.01), 0.01, 1e-6);
+    EXPECT_NEAR(growth::distanceToShape(c, p - n * 0.01), 0.01, 1e-6);
+  }
+}
+
+TEST(CloudGenerator, Genus2IsUniformByArea) {
+  const size_t n = 200000;
+  const CloudSpec c = spec(Shape::Genus2, n, 6);
+  const auto cloud = growth::generateCloud(c);
+  const double R = growth::kGenus2Major, r = growth::kGenus2Minor, cx = growth::kGenus2Offset;
+  // The far halves x < -c and x > c are plain half tori: area 2 pi^2 R r each, the rest is the
+  // middle with the blend. Counts in proportion to the areas (sigma of a fraction ~0.001).
+  const double total = growth::shapeArea(c), half = 2 * M_PI * M_PI * R * r;
+  size_t left = 0, right = 0;
+  for (const auto& p : cloud.points) left += p[0] < -cx, right += p[0] > cx;
+  EXPECT_NEAR(double(left) / n, half / total, 0.004);
+  EXPECT_NEAR(double(right) / n, half / total, 0.004);
+  EXPECT_NEAR(double(n - left - right) / n, (total - 2 * half) / total, 0.005);
+  // Local density: points within eps of probe points (another seed) on the blend (|x| < 0.5)
+  // and on the plain tori (|x| > 2), over the ball's area pi eps^2 on the surface. The far
+  // probes' density must be n / total, the blend's the same: a sampler that followed the
+  // triangulation or the tori instead of the area would be off there.
+  const auto probes = growth::generateCloud(spec(Shape::Genus2, 4000, 7));
+  const double eps = 0.12;
+  double blendCount = 0, farCount = 0;
+  int blendProbes = 0, farProbes = 0;
+  for (const auto& q : probes.points) {
+    const bool blend = std::abs(q[0]) < 0.5, far = std::abs(q[0]) > 2.0;
+    if (!(blend && blendProbes < 150) && !(far && farProbes < 150)) continue;
+    size_t k = 0;
+    for (const auto& p : cloud.points) k += (p - q).SquaredNorm() <= eps * eps;
+    (blend ? blendCount : farCount) += double(k);
+    ++(blend ? blendProbes : farProbes);
+  }
+  ASSERT_EQ(blendProbes, 150);
+  ASSERT_EQ(farProbes, 150);
+  const double want = double(n) / total * M_PI * eps * eps;
+  EXPECT_NEAR(farCount / farProbes / want, 1.0, 0.03);
+  EXPECT_NEAR(blendCount / blendProbes / want, 1.0, 0.03);
+}
+
+TEST(CloudGenerator, Genus2IsOnePieceWithTwoOpenHoles) {
+  const CloudSpec c = spec(Shape::Genus2, 20000, 8);
+  const auto cloud = growth::generateCloud(c);
+  const size_t n = cloud.points.size();
+  // Connected: points closer than 0.15 (about 4 mean spacings) joined, one component.
+  growth::PointGrid grid;
+  grid.build(cloud.points, 0.15);
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+    return i;
+  };
+  for (size_t i = 0; i < n; ++i)
+    grid.forEachInBall(cloud.points[i], 0.15, [&](int j, double) { parent[size_t(find(int(i)))] = find(j); });
+  size_t roots = 0;
+  for (size_t i = 0; i < n; ++i) roots += find(int(i)) == int(i);
+  EXPECT_EQ(roots, 1u);
+  // Two holes: no point nearer to the tori's axes than R - r, the middle of the shape is solid
+  // (points on both sides of the xy plane around the origin).
+  double nearAxis = 1e300;
+  size_t above = 0, below = 0;
+  for (const auto& p : cloud.points) {
+    for (double cx : {-growth::kGenus2Offset, growth::kGenus2Offset})
+      nearAxis = std::min(nearAxis, std::hypot(p[0] - cx, p[1]));
+    if (std::hypot(p[0], p[1]) < 0.1) (p[2] > 0 ? above : below) += 1;
+  }
+  EXPECT_NEAR(nearAxis, growth::kGenus2Major - growth::kGenus2Minor, 0.01);
+  EXPECT_GT(above, 0u);
+  EXPECT_GT(below, 0u);
+}
+
+TEST(CloudGenerator, Genus2IsReproducibleAndTakesTheOptions) {
+  CloudSpec c = spec(Shape::Genus2, 2000, 9);
+  EXPECT_EQ(growth::generateCloud(c).points, growth::generateCloud(c).points);
+  c.nonUniform = true;
+  c.densityRatio = 5;
+  c.noiseBound = 0.02;
+  c.outlierFraction = 0.01;
+  const auto cloud = growth::generateCloud(c);
+  ASSERT_EQ(cloud.points.size(), 2020u);
+  size_t up = 0;
+  for (size_t i = 0; i < 2000; ++i) {
+    EXPECT_LE(growth::distanceToShape(c, cloud.points[i]), 0.02 + 1e-12);
+    up += cloud.points[i][2] > 0;
+  }
+  // Density 0.2 + 0.8 t along z: the upper half holds clearly more (0.5 for a uniform cloud).
+  EXPECT_GT(double(up) / 2000, 0.6);
 }
