@@ -261,7 +261,8 @@ TEST(CloudGenerator, ShapeAreas) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const double x = -1 + (i + 0.5) * 2.0 / n, y = -1 + (j + 0.5) * 2.0 / n;
-      const double hx = 0.225 * std::cos(1.5 * x) * std::cos(1.2 * y), hy = -0.18 * std::sin(1.5 * x) * std::sin(1.2 * y);
+      const double hx = 0.225 * std::cos(1.5 * x) * std::cos(1.2 * y);
+      const double hy = -0.18 * std::sin(1.5 * x) * std::sin(1.2 * y);
       sum += std::sqrt(1 + hx * hx + hy * hy);
     }
   EXPECT_NEAR(patch, sum * 4.0 / (double(n) * n), 1e-6);

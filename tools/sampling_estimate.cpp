@@ -8,10 +8,10 @@
 // options: --k K (neighbours)  --threads T  --repeat R (best of R runs)
 // --noise and --gauss are in units of the clean cloud's estimated spacing (computed first);
 // --far appends one point 10^4 times the cloud's size away.
-// Prints one "key: value" per line; times are the fastest of the repeats, wall clock (ms) and process
-// CPU time (cpu_ms, less sensitive to other load on the machine); *_ratio lines compare with the expected values: the area per
-// point with area / points, the spacing with the Poisson median 0.4697 sqrt(area / points), the
-// noise with the generator's bound (nu) or sigma.
+// Prints one "key: value" per line; times are the fastest of the repeats, wall clock (ms) and
+// process CPU time (cpu_ms, less sensitive to other load on the machine); *_ratio lines compare
+// with the expected values: the area per point with area / points, the spacing with the Poisson
+// median 0.4697 sqrt(area / points), the noise with the generator's bound (nu) or sigma.
 #include <growth/cloud_generator.h>
 #include <growth/cloud_scale.h>
 #include <growth/error.h>

@@ -45,7 +45,8 @@ double occupancy(const std::vector<Point>& pts, const Point& origin, double h, s
   for (const Point& p : pts) {
     std::uint64_t k = 0;
     for (int a = 0; a < 3; ++a) {
-      const std::int64_t c = std::min(maxCoord, std::max<std::int64_t>(0, std::int64_t(std::floor((p[a] - origin[a]) * inv))));
+      const std::int64_t c =
+          std::min(maxCoord, std::max<std::int64_t>(0, std::int64_t(std::floor((p[a] - origin[a]) * inv))));
       k = (k << 21) | std::uint64_t(c);
     }
     keys.push_back(k);
@@ -238,7 +239,8 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
   }
   for (int a = 0; a < 3; ++a) lo[a] -= extent, hi[a] += extent;
   auto inBox = [&](const Point& p) {
-    return finite(p) && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2];
+    return finite(p) && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] &&
+           p[2] <= hi[2];
   };
 
   // The points the search sees (the input itself when all are inside the box, else a copy of
@@ -316,8 +318,9 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
     search.grid = &grid;
     search.start = 1.3 * kth;
     search.cap = 4 * kth;
-    const size_t noiseStride = (samples.size() + options.maxNoiseSamples - 1) / std::max<size_t>(options.maxNoiseSamples, 1);
-    local = measureSamples(kept, samples, search, lo, kth, k, std::max<size_t>(noiseStride, 1), threads);
+    const size_t maxNoise = std::max<size_t>(options.maxNoiseSamples, 1);
+    const size_t noiseStride = std::max<size_t>(1, (samples.size() + maxNoise - 1) / maxNoise);
+    local = measureSamples(kept, samples, search, lo, kth, k, noiseStride, threads);
     size_t found = 0;
     for (const Local& l : local) found += l.kth2 >= 0;
     const double measured = std::sqrt(medianKth2(local));

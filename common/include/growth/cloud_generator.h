@@ -3,9 +3,9 @@
 //
 // Shapes: the unit sphere, the torus (tube radius r swept around a circle of radius R, sphere-packing
 // paper sec. 5.2 uses R = 2, r = 1), an open, gently curved height-field patch and a closed genus-2
-// surface (two tori joined by a smooth blend, genus2Function below). Sampling is
-// uniform by area, or non-uniform with a density ratio (4:1 unless asked otherwise) along z. Perturbations follow the two
-// papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
+// surface (two tori joined by a smooth blend, genus2Function below). Sampling is uniform by area,
+// or non-uniform with a density ratio (4:1 unless asked otherwise) along z. Perturbations follow
+// the two papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
 // <= nu, sphere packing sec. 5.3), Gaussian noise (Robust G2S sec. 5.2) and uniformly scattered
 // outliers. Normals are always those of the exact surface at the unperturbed sample.
 // The same spec gives the same cloud on every machine (own random number transforms, not the
