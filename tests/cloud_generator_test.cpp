@@ -1,13 +1,16 @@
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
+#include <growth/point_grid.h>
 
 #include <common/ml_mesh_type.h>
 #include <wrap/io_trimesh/import_ply.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 
 using growth::CloudSpec;
 using growth::Shape;
@@ -23,7 +26,7 @@ CloudSpec spec(Shape s, size_t n, std::uint64_t seed = 1) {
 } // namespace
 
 TEST(CloudGenerator, PointsLieOnTheShapeWithUnitNormals) {
-  for (Shape s : {Shape::Sphere, Shape::Torus, Shape::Patch}) {
+  for (Shape s : {Shape::Sphere, Shape::Torus, Shape::Patch, Shape::Genus2}) {
     const CloudSpec c = spec(s, 2000);
     const auto cloud = growth::generateCloud(c);
     ASSERT_EQ(cloud.points.size(), 2000u);
@@ -115,6 +118,8 @@ TEST(CloudGenerator, RejectsEmptyAndUnknownShape) {
   EXPECT_THROW(growth::generateCloud(spec(Shape::Sphere, 0)), growth::Error);
   EXPECT_THROW(growth::parseShape("cube"), growth::Error);
   EXPECT_EQ(growth::parseShape("torus"), Shape::Torus);
+  EXPECT_EQ(growth::parseShape("genus2"), Shape::Genus2);
+  EXPECT_STREQ(growth::shapeName(Shape::Genus2), "genus2");
 }
 
 TEST(CloudGenerator, PlyRoundTripThroughVcglib) {
@@ -143,4 +148,240 @@ TEST(CloudGenerator, ToMeshCopiesPointsAndNormals) {
   EXPECT_EQ(m.fn, 0);
   EXPECT_FALSE(m.bbox.IsNull());
   EXPECT_FLOAT_EQ(m.vert[7].N()[2], float(cloud.normals[7][2]));
+}
+
+TEST(CloudGenerator, ExistingCloudsAreUnchanged) {
+  // Tests and benchmarks depend on the seeded clouds: first, second and last point (exact, as
+  // printed with %.17g) and the coordinate sums of six specs, recorded from main at d4b9873 before
+  // CloudSpec grew new members and shapes.
+  struct Ref {
+    Shape shape;
+    bool nonUniform;
+    double noise, gauss, outliers;
+    std::uint64_t seed;
+    size_t size;
+    double first[3], second[3], last[3], sum[3];
+  };
+  const Ref refs[] = {
+      {Shape::Sphere, false, 0, 0, 0, 1, 1000,
+       {-0.90641814728350978, -0.11703444272920763, 0.40584366631770097},
+       {-0.76723920696330838, 0.62400110592583202, 0.148211400039445},
+       {-0.58776622379294552, -0.78972563189031686, 0.17568236252857239},
+       {12.869797186342847, -18.779392124066536, -14.575823792809611}},
+      {Shape::Torus, false, 0, 0, 0, 7, 1000,
+       {2.977229798405574, -0.3552671297571427, -0.057395003303710689},
+       {2.5913497315565204, 1.0401794643034719, 0.61010207651690729},
+       {1.4347165301760527, 1.4058646245078044, 0.99996217339470561},
+       {17.154046313705553, -112.64386892557421, 12.516264838971692}},
+      {Shape::Patch, false, 0, 0, 0, 3, 1000,
+       {0.38127659023557592, 0.2811620134709214, 0.076609218473403476},
+       {0.067923253000907513, -0.15080874427413993, 0.015007161814070026},
+       {-0.42092984588385884, 0.9252617309390192, -0.03934572273218441},
+       {1.2789037636855278, 36.170677565587887, 0.66374508499047669}},
+      {Shape::Sphere, true, 0, 0, 0, 5, 1000,
+       {-0.76156294614610942, -0.08027207567395353, 0.64310051541283442},
+       {0.36028181993086106, -0.93281106762639587, 0.0077796105950131977},
+       {-0.16992153001768565, 0.16274454636513014, 0.97192637903539625},
+       {2.3952996376655946, 26.37216047192107, 208.71410784104808}},
+      {Shape::Torus, true, 0.01, 0, 0.02, 11, 1020,
+       {0.47287499260583199, 2.8130567570160308, 0.51937319882579913},
+       {1.3286269649133982, -0.033026574521413408, -0.73262341627601479},
+       {-0.71382162093874557, -1.0004148006343816, 0.789734668143665},
+       {19.96144856976624, -53.626390356584508, 305.38095235552134}},
+      {Shape::Patch, true, 0, 0.003, 0.05, 2, 1050,
+       {0.37485216841613589, -0.52944040354670163, 0.06403550845848574},
+       {0.9929181884996422, -0.79835689164875878, 0.084057502477251883},
+       {0.52892359170629466, -1.0885706343510286, -0.11112156330758319},
+       {201.15536920950473, 9.0259960328593642, 29.883902832803745}},
+  };
+  for (const Ref& r : refs) {
+    CloudSpec c = spec(r.shape, 1000, r.seed);
+    c.nonUniform = r.nonUniform;
+    c.noiseBound = r.noise;
+    c.gaussianSigma = r.gauss;
+    c.outlierFraction = r.outliers;
+    const auto cloud = growth::generateCloud(c);
+    ASSERT_EQ(cloud.points.size(), r.size);
+    const std::string what = std::string(growth::shapeName(r.shape)) + (r.nonUniform ? " non-uniform" : "");
+    double sum[3] = {0, 0, 0};
+    for (const auto& p : cloud.points)
+      for (int a = 0; a < 3; ++a) sum[a] += p[a];
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_EQ(cloud.points[0][a], r.first[a]) << what;
+      EXPECT_EQ(cloud.points[1][a], r.second[a]) << what;
+      EXPECT_EQ(cloud.points.back()[a], r.last[a]) << what;
+      EXPECT_NEAR(sum[a], r.sum[a], 1e-9) << what;
+    }
+  }
+}
+
+namespace {
+// Density at the top over density at the bottom of a non-uniform sphere: counts in 10 bands of
+// equal area (z is uniform on the sphere), a least-squares line through them, its value at the
+// top over its value at the bottom.
+double sphereDensityRatio(const growth::Cloud& c) {
+  const int bins = 10;
+  double count[bins] = {};
+  for (const auto& p : c.points) count[std::min(bins - 1, int((p[2] + 1.0) * 0.5 * bins))] += 1;
+  double st = 0, sc = 0, stt = 0, stc = 0;
+  for (int b = 0; b < bins; ++b) {
+    const double t = (b + 0.5) / bins;
+    st += t, sc += count[b], stt += t * t, stc += t * count[b];
+  }
+  const double slope = (bins * stc - st * sc) / (bins * stt - st * st), at0 = (sc - slope * st) / bins;
+  return (at0 + slope) / at0;
+}
+} // namespace
+
+TEST(CloudGenerator, DensityRatioIsTheAskedOne) {
+  CloudSpec c = spec(Shape::Sphere, 200000, 3);
+  c.nonUniform = true;
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 4.0, 0.2); // the default
+  c.densityRatio = 5.0;
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 5.0, 0.25);
+  c.densityRatio = 1.0; // uniform
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 1.0, 0.05);
+  c.densityRatio = 0.5;
+  EXPECT_THROW(growth::generateCloud(c), growth::Error);
+  c.densityRatio = 5.0;
+  c.nonUniform = false; // the ratio is only used by non-uniform clouds
+  EXPECT_NEAR(sphereDensityRatio(growth::generateCloud(c)), 1.0, 0.05);
+}
+
+TEST(CloudGenerator, ShapeAreas) {
+  EXPECT_DOUBLE_EQ(growth::shapeArea(spec(Shape::Sphere, 1)), 4 * M_PI);
+  EXPECT_DOUBLE_EQ(growth::shapeArea(spec(Shape::Torus, 1)), 4 * M_PI * M_PI * 2.0);
+  // The patch: between the flat square and the square times the largest area element.
+  const double patch = growth::shapeArea(spec(Shape::Patch, 1));
+  EXPECT_GT(patch, 4.0 * 1.01);
+  EXPECT_LT(patch, 4.0 * std::sqrt(1.0 + 2 * 0.225 * 0.225));
+  // A midpoint sum on a 2000 x 2000 grid (its own error ~1e-7).
+  double sum = 0;
+  const int n = 2000;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -1 + (i + 0.5) * 2.0 / n, y = -1 + (j + 0.5) * 2.0 / n;
+      const double hx = 0.225 * std::cos(1.5 * x) * std::cos(1.2 * y);
+      const double hy = -0.18 * std::sin(1.5 * x) * std::sin(1.2 * y);
+      sum += std::sqrt(1 + hx * hx + hy * hy);
+    }
+  EXPECT_NEAR(patch, sum * 4.0 / (double(n) * n), 1e-6);
+  // Genus 2: two tori R = 1.2, r = 0.6 (28.42 each) lose their overlap; the far halves x < -c and
+  // x > c are plain half tori (14.21 each).
+  const double g = growth::shapeArea(spec(Shape::Genus2, 1));
+  EXPECT_GT(g, 2 * 2 * M_PI * M_PI * growth::kGenus2Major * growth::kGenus2Minor);
+  EXPECT_LT(g, 2 * 4 * M_PI * M_PI * growth::kGenus2Major * growth::kGenus2Minor);
+}
+
+TEST(CloudGenerator, Genus2NormalsAreTheGradientOutwardAndOrthogonal) {
+  const CloudSpec c = spec(Shape::Genus2, 3000, 4);
+  const auto cloud = growth::generateCloud(c);
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    const vcg::Point3d& p = cloud.points[i];
+    const vcg::Point3d& n = cloud.normals[i];
+    EXPECT_LT(std::abs(growth::genus2Function(p)), 1e-12);
+    // The gradient by central differences.
+    const double e = 1e-6;
+    vcg::Point3d fd;
+    for (int a = 0; a < 3; ++a) {
+      vcg::Point3d dp(0, 0, 0);
+      dp[a] = e;
+      fd[a] = (growth::genus2Function(p + dp) - growth::genus2Function(p - dp)) / (2 * e);
+    }
+    vcg::Point3d g;
+    growth::genus2Function(p, &g);
+    EXPECT_LT((g - fd).Norm(), 1e-7 * fd.Norm());
+    EXPECT_LT((n - fd / fd.Norm()).Norm(), 1e-7);
+    // Outward, and orthogonal: a step along the normal moves away from the surface at unit rate.
+    EXPECT_GT(growth::genus2Function(p + n * 0.01), 0.0);
+    EXPECT_LT(growth::genus2Function(p - n * 0.01), 0.0);
+    EXPECT_NEAR(growth::distanceToShape(c, p + n * 0.01), 0.01, 1e-6);
+    EXPECT_NEAR(growth::distanceToShape(c, p - n * 0.01), 0.01, 1e-6);
+  }
+}
+
+TEST(CloudGenerator, Genus2IsUniformByArea) {
+  const size_t n = 200000;
+  const CloudSpec c = spec(Shape::Genus2, n, 6);
+  const auto cloud = growth::generateCloud(c);
+  const double R = growth::kGenus2Major, r = growth::kGenus2Minor, cx = growth::kGenus2Offset;
+  // The far halves x < -c and x > c are plain half tori: area 2 pi^2 R r each, the rest is the
+  // middle with the blend. Counts in proportion to the areas (sigma of a fraction ~0.001).
+  const double total = growth::shapeArea(c), half = 2 * M_PI * M_PI * R * r;
+  size_t left = 0, right = 0;
+  for (const auto& p : cloud.points) left += p[0] < -cx, right += p[0] > cx;
+  EXPECT_NEAR(double(left) / n, half / total, 0.004);
+  EXPECT_NEAR(double(right) / n, half / total, 0.004);
+  EXPECT_NEAR(double(n - left - right) / n, (total - 2 * half) / total, 0.005);
+  // Local density: points within eps of probe points (another seed) on the blend (|x| < 0.5)
+  // and on the plain tori (|x| > 2), over the ball's area pi eps^2 on the surface. The far
+  // probes' density must be n / total, the blend's the same: a sampler that followed the
+  // triangulation or the tori instead of the area would be off there.
+  const auto probes = growth::generateCloud(spec(Shape::Genus2, 4000, 7));
+  const double eps = 0.12;
+  double blendCount = 0, farCount = 0;
+  int blendProbes = 0, farProbes = 0;
+  for (const auto& q : probes.points) {
+    const bool blend = std::abs(q[0]) < 0.5, far = std::abs(q[0]) > 2.0;
+    if (!(blend && blendProbes < 150) && !(far && farProbes < 150)) continue;
+    size_t k = 0;
+    for (const auto& p : cloud.points) k += (p - q).SquaredNorm() <= eps * eps;
+    (blend ? blendCount : farCount) += double(k);
+    ++(blend ? blendProbes : farProbes);
+  }
+  ASSERT_EQ(blendProbes, 150);
+  ASSERT_EQ(farProbes, 150);
+  const double want = double(n) / total * M_PI * eps * eps;
+  EXPECT_NEAR(farCount / farProbes / want, 1.0, 0.03);
+  EXPECT_NEAR(blendCount / blendProbes / want, 1.0, 0.03);
+}
+
+TEST(CloudGenerator, Genus2IsOnePieceWithTwoOpenHoles) {
+  const CloudSpec c = spec(Shape::Genus2, 20000, 8);
+  const auto cloud = growth::generateCloud(c);
+  const size_t n = cloud.points.size();
+  // Connected: points closer than 0.15 (about 4 mean spacings) joined, one component.
+  growth::PointGrid grid;
+  grid.build(cloud.points, 0.15);
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int i) {
+    while (parent[size_t(i)] != i) i = parent[size_t(i)] = parent[size_t(parent[size_t(i)])];
+    return i;
+  };
+  for (size_t i = 0; i < n; ++i)
+    grid.forEachInBall(cloud.points[i], 0.15, [&](int j, double) { parent[size_t(find(int(i)))] = find(j); });
+  size_t roots = 0;
+  for (size_t i = 0; i < n; ++i) roots += find(int(i)) == int(i);
+  EXPECT_EQ(roots, 1u);
+  // Two holes: no point nearer to the tori's axes than R - r, the middle of the shape is solid
+  // (points on both sides of the xy plane around the origin).
+  double nearAxis = 1e300;
+  size_t above = 0, below = 0;
+  for (const auto& p : cloud.points) {
+    for (double cx : {-growth::kGenus2Offset, growth::kGenus2Offset})
+      nearAxis = std::min(nearAxis, std::hypot(p[0] - cx, p[1]));
+    if (std::hypot(p[0], p[1]) < 0.1) (p[2] > 0 ? above : below) += 1;
+  }
+  EXPECT_NEAR(nearAxis, growth::kGenus2Major - growth::kGenus2Minor, 0.01);
+  EXPECT_GT(above, 0u);
+  EXPECT_GT(below, 0u);
+}
+
+TEST(CloudGenerator, Genus2IsReproducibleAndTakesTheOptions) {
+  CloudSpec c = spec(Shape::Genus2, 2000, 9);
+  EXPECT_EQ(growth::generateCloud(c).points, growth::generateCloud(c).points);
+  c.nonUniform = true;
+  c.densityRatio = 5;
+  c.noiseBound = 0.02;
+  c.outlierFraction = 0.01;
+  const auto cloud = growth::generateCloud(c);
+  ASSERT_EQ(cloud.points.size(), 2020u);
+  size_t up = 0;
+  for (size_t i = 0; i < 2000; ++i) {
+    EXPECT_LE(growth::distanceToShape(c, cloud.points[i]), 0.02 + 1e-12);
+    up += cloud.points[i][2] > 0;
+  }
+  // Density 0.2 + 0.8 t along z: the upper half holds clearly more (0.5 for a uniform cloud).
+  EXPECT_GT(double(up) / 2000, 0.6);
 }

@@ -99,6 +99,26 @@ TEST(PointGrid, BallQueryMatchesBruteForce) {
   }
 }
 
+TEST(PointGrid, BallQueryStopsWhenAsked) {
+  std::vector<Point3d> pts;
+  for (int i = 0; i < 1000; ++i) pts.emplace_back(0, 0, 0); // one dense cluster
+  pts.emplace_back(0.5, 0, 0);
+  PointGrid g;
+  g.build(pts, 0.1);
+  std::vector<int> all, first;
+  EXPECT_TRUE(g.forEachInBallWhile(Point3d(0, 0, 0), 1.0, [&](int i, double) {
+    all.push_back(i);
+    return true;
+  }));
+  EXPECT_EQ(all.size(), 1001u);
+  EXPECT_FALSE(g.forEachInBallWhile(Point3d(0, 0, 0), 1.0, [&](int i, double) {
+    first.push_back(i);
+    return first.size() < 10;
+  }));
+  ASSERT_EQ(first.size(), 10u);
+  EXPECT_TRUE(std::equal(first.begin(), first.end(), all.begin())); // the same order, cut short
+}
+
 TEST(PointGrid, NearestRespectsMaxRadius) {
   PointGrid g;
   std::vector<Point3d> pts{Point3d(0, 0, 0), Point3d(1, 0, 0)};

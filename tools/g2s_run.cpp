@@ -1,7 +1,7 @@
 // g2s_run: runs the Robust G2S engine outside MeshLab and prints faces, defects, time and rate.
 //
 //   g2s_run cloud.ply [options]                      a PLY point cloud (binary or ASCII)
-//   g2s_run --shape sphere|torus|patch --points N [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS]
+//   g2s_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS]
 //           [--outliers FRACTION] [options]         a generated cloud
 // options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --random-seed S
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
@@ -32,7 +32,7 @@
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: g2s_run <cloud.ply> | --shape sphere|torus|patch --points N [--seed S] [--nonuniform]\n"
+               "usage: g2s_run <cloud.ply> | --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform]\n"
                "               [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
                "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--random-seed S]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");

@@ -1,6 +1,6 @@
 // make_cloud: writes a seeded point cloud with exact normals as binary PLY.
-//   make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform]
-//              [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply
+//   make_cloud --shape sphere|torus|patch|genus2 --points N [--seed S]
+//              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
@@ -11,8 +11,9 @@
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: make_cloud --shape sphere|torus|patch --points N [--seed S] [--nonuniform]\n"
-               "                  [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply\n");
+               "usage: make_cloud --shape sphere|torus|patch|genus2 --points N [--seed S]\n"
+               "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA]\n"
+               "                  [--outliers FRACTION] -o out.ply\n");
 }
 
 int main(int argc, char** argv) {
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
       else if (a == "--points") spec.count = std::strtoull(value(), nullptr, 10);
       else if (a == "--seed") spec.seed = std::strtoull(value(), nullptr, 10);
       else if (a == "--nonuniform") spec.nonUniform = true;
+      else if (a == "--density-ratio") spec.densityRatio = std::atof(value());
       else if (a == "--noise") spec.noiseBound = std::atof(value());
       else if (a == "--gauss") spec.gaussianSigma = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());

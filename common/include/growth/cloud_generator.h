@@ -2,9 +2,10 @@
 // Seeded point clouds with exact normals, for tests, the demo and the benchmark.
 //
 // Shapes: the unit sphere, the torus (tube radius r swept around a circle of radius R, sphere-packing
-// paper sec. 5.2 uses R = 2, r = 1) and an open, gently curved height-field patch. Sampling is
-// uniform by area, or non-uniform with a 4:1 density ratio along z. Perturbations follow the two
-// papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
+// paper sec. 5.2 uses R = 2, r = 1), an open, gently curved height-field patch and a closed genus-2
+// surface (two tori joined by a smooth blend, genus2Function below). Sampling is uniform by area,
+// or non-uniform with a density ratio (4:1 unless asked otherwise) along z. Perturbations follow
+// the two papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
 // <= nu, sphere packing sec. 5.3), Gaussian noise (Robust G2S sec. 5.2) and uniformly scattered
 // outliers. Normals are always those of the exact surface at the unperturbed sample.
 // The same spec gives the same cloud on every machine (own random number transforms, not the
@@ -19,13 +20,14 @@ class CMeshO;
 
 namespace growth {
 
-enum class Shape { Sphere, Torus, Patch };
+enum class Shape { Sphere, Torus, Patch, Genus2 };
 
 struct CloudSpec {
   Shape shape = Shape::Sphere;
   size_t count = 10000;         // points on the surface (outliers come on top)
   std::uint64_t seed = 1;
-  bool nonUniform = false;      // density varies 4:1 along z
+  bool nonUniform = false;      // density varies along z, densityRatio:1 from the top to the bottom
+  double densityRatio = 4.0;    // with nonUniform: density at the top / density at the bottom (>= 1)
   double noiseBound = 0.0;      // nu: each point moves by a uniform random vector of length <= nu
   double gaussianSigma = 0.0;   // standard deviation of isotropic Gaussian noise (absolute units)
   double outlierFraction = 0.0; // outliers added, as a fraction of count, uniform in the enlarged box
@@ -43,10 +45,32 @@ struct Cloud {
 Cloud generateCloud(const CloudSpec& spec);
 
 // Distance of p to the exact (noise-free) surface of the spec's shape; for the patch, the vertical
-// distance to the height field (a bound of the true distance, tight for its gentle slopes).
+// distance to the height field (a bound of the true distance, tight for its gentle slopes); for
+// genus 2, the distance to the foot point found by Newton steps from p (the closest point for
+// points nearer to the surface than its smallest radius of curvature, about 0.3).
 double distanceToShape(const CloudSpec& spec, const vcg::Point3d& p);
 
-// Parses "sphere", "torus", "patch"; throws growth::Error otherwise.
+// Area of the spec's exact surface: closed forms for the sphere and the torus, a quadrature for the
+// patch, for genus 2 the integral of the area scale of the map from the triangulation its samples
+// are drawn from onto the surface (52.4955; a finer triangulation and rule change it by < 1e-6).
+double shapeArea(const CloudSpec& spec);
+
+// The genus-2 surface is the zero set of F = smin(T1, T2), negative inside: T_i = (rho_i - R)^2 +
+// z^2 - r^2 are two tori with axes parallel to z through (-c, 0, 0) and (c, 0, 0) (rho_i the
+// distance to the axis), R = kGenus2Major, r = kGenus2Minor, c = kGenus2Offset; the tubes overlap
+// around the origin, the holes stay open. smin(a, b) = min(a, b) - k h^3 / 6 with h = max(k -
+// |a - b|, 0) / k, k = kGenus2Blend, is the cubic smooth minimum: F is C2, equal to one torus's
+// function wherever |T1 - T2| >= k (all of x < -c and x > c lies on the plain tori), and fills the
+// crease where the tubes meet. Extent about 6.6 x 3.6 x 1.2 (the torus's is 6 x 6 x 2).
+// Samples are uniform by area: a point uniform on a marching-tetrahedra triangulation of F (grid
+// step 0.08), moved onto F = 0 by Newton steps along the gradient, kept with a probability
+// proportional to the area scale of that map (finite differences), so the triangulation's own
+// flaws do not show. Normals are grad F / |grad F| (outward).
+constexpr double kGenus2Major = 1.2, kGenus2Minor = 0.6, kGenus2Offset = 1.5, kGenus2Blend = 0.6;
+// F at p; its gradient in *gradient when not null.
+double genus2Function(const vcg::Point3d& p, vcg::Point3d* gradient = nullptr);
+
+// Parses "sphere", "torus", "patch", "genus2"; throws growth::Error otherwise.
 Shape parseShape(const std::string& name);
 const char* shapeName(Shape s);
 

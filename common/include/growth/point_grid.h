@@ -34,6 +34,10 @@ public:
   // Calls f(index, squaredDistance) for every point with |p - c| <= radius.
   template <class F>
   void forEachInBall(const Point& c, double radius, F&& f) const;
+  // The same visit, stopped as soon as f returns false (bounded work in dense clusters); returns
+  // false when it was stopped.
+  template <class F>
+  bool forEachInBallWhile(const Point& c, double radius, F&& f) const;
 
   // Index of the point closest to c, or -1 when the grid is empty. `exclude` is skipped.
   // `maxRadius` bounds the search (a point farther away is not returned).
@@ -96,7 +100,15 @@ private:
 
 template <class F>
 void PointGrid::forEachInBall(const Point& c, double radius, F&& f) const {
-  if (cellKey_.empty() || !(radius >= 0)) return;
+  forEachInBallWhile(c, radius, [&f](int i, double d2) {
+    f(i, d2);
+    return true;
+  });
+}
+
+template <class F>
+bool PointGrid::forEachInBallWhile(const Point& c, double radius, F&& f) const {
+  if (cellKey_.empty() || !(radius >= 0)) return true;
   const double r2 = radius * radius;
   const std::int64_t x0 = coord(c[0] - radius, origin_[0]), x1 = coord(c[0] + radius, origin_[0]);
   const std::int64_t y0 = coord(c[1] - radius, origin_[1]), y1 = coord(c[1] + radius, origin_[1]);
@@ -111,9 +123,10 @@ void PointGrid::forEachInBall(const Point& c, double radius, F&& f) const {
           const Point& p = sortedPoint_[i];
           const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
           const double d2 = dx * dx + dy * dy + dz * dz;
-          if (d2 <= r2) f(static_cast<int>(pointIndex_[i]), d2);
+          if (d2 <= r2 && !f(static_cast<int>(pointIndex_[i]), d2)) return false;
         }
       }
+  return true;
 }
 
 } // namespace growth
