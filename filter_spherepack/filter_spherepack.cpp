@@ -69,15 +69,11 @@ void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, Ric
   const QString autoS = def.splatSize > 0 ? QString(" For this layer: %1.").arg(def.splatSize) : QString();
   parlst.addParam(RichAbsPerc("sphereDiameter", 0.0f, 0.0f, diag,
       "Sphere diameter d (target edge length)",
-      "Diameter of the touching spheres: every edge of the result is at least this long and most "
-      "edges are close to it. 0 = automatic: 7 times the mean point spacing." + autoD + " Keep it at "
-      "least twice the noise of the scan, and small compared with the thinnest part of the object."));
+      "Every edge is at least d, most are close to it. 0 = automatic, from the point spacing and the "
+      "noise." + autoD));
   parlst.addParam(RichAbsPerc("splatSize", 0.0f, 0.0f, diag,
       "Splat radius s",
-      "Radius of the disks placed on the points (the global splat size). They must cover the "
-      "surface: too small and the growth stops early; too large and vertices drift off the surface "
-      "in curved or noisy regions. With local splat sizes on, no splat is larger than this. "
-      "0 = automatic: 1.3 times the square root of the surface area per point, at most d." + autoS));
+      "Largest radius of the disks on the points; they must cover the surface. 0 = automatic." + autoS));
   parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
       "Compute an individual splat radius for each point from its tangent-plane Delaunay/Voronoi "
       "neighbourhood (paper, section 4.3); off uses the global splat radius everywhere."));
@@ -146,12 +142,14 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   out->updateDataMask(MeshModel::MM_FACEQUALITY);
   vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
   vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
-  vcg::tri::UpdateNormal<CMeshO>::PerFaceNormalized(out->cm);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
-  Log("Sphere Packing: %zu points (%zu duplicates dropped), d = %g, s = %g%s (mean splat radius %g)", st.inputPoints,
-      st.duplicatesDropped, st.sphereDiameter, st.splatSize, p.localSplatSizes ? " with local splat sizes" : "",
-      st.meanSplatRadius);
+  Log("Sphere Packing: %zu points (%zu duplicates dropped); median spacing %g, sqrt(area per point) %g, "
+      "estimated noise %g", st.inputPoints, st.duplicatesDropped, st.scale.spacing, st.scale.areaSpacing, st.scale.noise);
+  Log("Sphere Packing: sphere diameter d = %g, s = %g%s (mean splat radius %g); d %s", st.sphereDiameter, st.splatSize,
+      p.localSplatSizes ? " with local splat sizes" : "", st.meanSplatRadius, st.diameterReason.c_str());
+  Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d", st.componentsStarted,
+      st.componentsStarted == 1 ? "" : "s", st.unreachedPoints);
   Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f, %zu holes left open, "
       "%zu of %zu boxes where d looked too large", st.vertices, st.faces, st.smallestEdge, st.qualityAvg,
       st.holes, st.boxesDTooLarge, st.boxes);

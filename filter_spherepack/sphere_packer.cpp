@@ -4,11 +4,13 @@
 #include <growth/box_grid.h>
 #include <growth/bucket_queue.h>
 #include <growth/candidates.h>
+#include <growth/cloud_scale.h>
 #include <growth/crossing.h>
 #include <growth/error.h>
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/mesh_normals.h>
 #include <growth/morton.h>
 #include <growth/progress.h>
 #include <growth/radix_order.h>
@@ -38,22 +40,6 @@ constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
 // paper (a location on the surface is nearly always covered by a nearby point's splat as well).
 constexpr double kLargeSplatPerD = 1.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
-
-// Surface area of a cloud, estimated from the cells of side `cell` that hold points: a plane cuts
-// on average 1.5/cell² cubes per unit area (the mean of |nx| + |ny| + |nz| over the sphere).
-double estimateArea(const std::vector<vcg::Point3d>& pts, const vcg::Box3d& box, double cell) {
-  if (pts.empty() || !(cell > 0)) return 0;
-  const double extent = std::max(box.DimX(), std::max(box.DimY(), box.DimZ()));
-  cell = std::max(cell, extent / double(BoxIndexer::kMax - 4));
-  const BoxIndexer ix(box.min - vcg::Point3d(cell, cell, cell), cell);
-  KeyHash h(pts.size() / 4 + 16);
-  int n = 0;
-  for (const auto& p : pts) {
-    KeyHash::Key k;
-    if (ix.keyOf(p, k) && h.findOrInsert(k, n) == n) ++n;
-  }
-  return double(n) * cell * cell / 1.5;
-}
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -356,16 +342,26 @@ bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>
 
 CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   CloudScale sc;
-  sc.spacing = meanSpacing(points, kMeanSpacingSamples, threads);
-  if (!(sc.spacing > 0) || !std::isfinite(sc.spacing)) return sc;
-  vcg::Box3d box;
-  for (const auto& p : points) box.Add(p);
-  sc.area = estimateArea(points, box, 6 * sc.spacing);
-  sc.areaSpacing = std::sqrt(sc.area / double(std::max<size_t>(points.size(), 1)));
+  const SamplingEstimate e = estimateSampling(points, threads);
+  if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
+  sc.spacing = e.spacing;
+  sc.areaSpacing = std::sqrt(e.areaPerPoint);
+  sc.area = e.areaPerPoint * double(points.size());
+  sc.noise = std::isfinite(e.noise) ? e.noise : 0.0;
   return sc;
 }
 
-double defaultDiameter(const CloudScale& scale) { return kDefaultDiameterPerSpacing * scale.spacing; }
+double defaultDiameter(const CloudScale& scale) {
+  return std::max(kDefaultDiameterPerAreaSpacing * scale.areaSpacing, kDefaultDiameterPerNoise * scale.noise);
+}
+
+std::string defaultDiameterReason(const CloudScale& scale) {
+  if (kDefaultDiameterPerNoise * scale.noise > kDefaultDiameterPerAreaSpacing * scale.areaSpacing)
+    return "from the noise: 3 x the estimated noise bound (at least 2x, sec. 5.3; larger than the sampling's " +
+           fmt(kDefaultDiameterPerAreaSpacing * scale.areaSpacing) + ")";
+  return "from the sampling: 1.8 x sqrt(area per point) (the noise asks for at least " +
+         fmt(kDefaultDiameterPerNoise * scale.noise) + ")";
+}
 
 double defaultSplatSize(const CloudScale& scale, double d) {
   const double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
@@ -380,7 +376,7 @@ Params suggestParams(const CMeshO& cloud) {
     check.allowFaces = true;
     InputCloud in = readCloud(cloud, check);
     const CloudScale sc = cloudScale(in.points);
-    if (sc.spacing > 0 && std::isfinite(sc.spacing)) {
+    if (sc.areaSpacing > 0 && std::isfinite(sc.areaSpacing)) {
       p.sphereDiameter = defaultDiameter(sc);
       p.splatSize = defaultSplatSize(sc, p.sphereDiameter);
     }
@@ -412,8 +408,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
   const CloudScale scale = cloudScale(in.points, params.threads);
   const double diag = in.box.Diag();
+  st.scale = scale;
   double d = params.sphereDiameter;
-  if (!(d > 0)) d = defaultDiameter(scale);
+  st.diameterReason = "given";
+  if (!(d > 0)) {
+    d = defaultDiameter(scale);
+    st.diameterReason = defaultDiameterReason(scale);
+    if (!(d > 0) || !std::isfinite(d))
+      throw Error("Could not estimate the point spacing of this cloud (too few points with neighbours around "
+                  "them): give the sphere diameter d by hand.");
+  }
   if (!std::isfinite(d) || !(d > 0)) throw Error("The sphere diameter d must be a positive number.");
   if (d > 0.5 * diag) {
     throw Error("The sphere diameter d = " + fmt(d) + " is larger than the cloud (bounding box diagonal " +
@@ -586,10 +590,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
     reserveHuge(out.vert, used.size(), /*populate=*/true);
     auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
-    for (size_t i = 0; i < used.size(); ++i, ++vi) {
-      vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
-      vi->N() = CMeshO::CoordType::Construct(g.normal(used[i]));
-    }
+    for (size_t i = 0; i < used.size(); ++i, ++vi) vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
     out.face.EnableQuality();
     reserveHuge(out.face, faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
     prefault(out.face.QV.data(), faces.size() * sizeof(out.face.QV[0]));
@@ -606,6 +607,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
       qsum += q;
       minEdge = std::min(minEdge, std::sqrt(std::min(l1, std::min(l2, l3))));
     }
+    // Face and vertex normals of the mesh itself (angle-weighted), so that it shades as it comes
+    // out; the box normals stay the growth's.
+    updateNormals(out);
     st.qualityAvg = qsum / double(faces.size());
     st.smallestEdge = minEdge;
     const MeshTopology topo = measureTopology(out);

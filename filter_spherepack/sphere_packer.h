@@ -39,24 +39,32 @@ struct Params {
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };
 
-// The scale of a cloud, from which the defaults are derived.
+// The scale of a cloud, from which the defaults are derived: robust estimates (medians over a
+// sample of the points, growth/cloud_scale.h), so that outliers and far points barely move them.
 struct CloudScale {
-  double spacing = 0;        // mean nearest-neighbour distance (growth::meanSpacing)
-  double area = 0;           // estimated surface area (occupied cells of side 6·spacing)
-  double areaSpacing = 0;    // sqrt(area / points): the side of the area each point stands for
+  double spacing = 0;        // median nearest-neighbour distance
+  double areaSpacing = 0;    // sqrt(surface area per point): a sampling length that does not depend
+                             // on how regular the sampling is (0.47 of it is the median spacing of
+                             // a random sample, all of it that of a square lattice)
+  double area = 0;           // estimated surface area: area per point × points
+  double noise = 0;          // ν, the estimated bound of the points' offsets from the surface
 };
-// `threads`: for the mean spacing (0 = automatic); the scale is the same for any number.
+// `threads`: for the estimates (0 = automatic); the scale is the same for any number.
 CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0);
 
-// Defaults. d = 7 × the mean spacing: the paper asks for d >= 2ν (noise ν, sec. 5.3); 7 spacings
-// keep the merged Stanford bunny scans (normals off by > 40° on 1% of the points, points up to
-// 2.6 spacings off the surface) manifold, and give ~0.08·n vertices for n points.
-// s = 1.3 × sqrt(area per point), at most d: large enough to cover the surface (the Voronoi cells
-// of the points have that area; random samplings need ~2.6 spacings, scans ~1.9), small enough
-// that disks tilted by noisy normals do not reach far off the surface (sec. 4.3, 5.2).
-constexpr double kDefaultDiameterPerSpacing = 7.0;
+// Defaults.
+// d = max(1.8 × sqrt(area per point), 3ν): at the sampling's resolution (a packing of spheres of
+// diameter d has about area / (0.96·d²) vertices, so 1.8 gives about 0.3 vertices per point: a
+// random sample's 4 median spacings, a range scan's 2.5–3), and at least 2ν as sec. 5.3 advises,
+// with a margin (manifoldness was lost there from 2ν = 0.6–1.0·d).
+// s = 2.5 × sqrt(area per point): the radius of a splat whose fan stays open (a boundary), and
+// the largest local radius (sec. 4.3; the local radii cover the surface, sec. 5.2).
+constexpr double kDefaultDiameterPerAreaSpacing = 1.8;
+constexpr double kDefaultDiameterPerNoise = 3.0;
 constexpr double kDefaultSplatPerAreaSpacing = 2.5;
 double defaultDiameter(const CloudScale& scale);
+// Why defaultDiameter chose its value, for the log.
+std::string defaultDiameterReason(const CloudScale& scale);
 double defaultSplatSize(const CloudScale& scale, double d);
 
 struct Stat {
@@ -64,6 +72,8 @@ struct Stat {
   size_t duplicatesDropped = 0;
   double sphereDiameter = 0;     // d actually used
   double splatSize = 0;          // s actually used
+  CloudScale scale;              // the cloud's estimated sampling and noise
+  std::string diameterReason;    // how d was chosen (automatic: from the sampling or the noise)
   double meanSplatRadius = 0;    // mean of the per-point radii (= s with local sizes off)
   size_t splatsUnbounded = 0;    // local sizes: points without a closed Delaunay fan (kept s)
   size_t splatsClamped = 0;      // local sizes: points whose Voronoi radius exceeded s (kept s)
@@ -98,8 +108,8 @@ struct Stat {
   std::vector<std::string> warnings;
 };
 
-// Defaults derived from the cloud (d from the mean point spacing, s from d), so that the filter
-// works without tuning. Never throws: an unusable cloud gives the static defaults.
+// Defaults derived from the cloud (d and s from its sampling and noise), so that the filter works
+// without tuning. Never throws: an unusable cloud gives the static defaults.
 Params suggestParams(const CMeshO& cloud);
 
 // Builds the mesh of the live vertices (with normals) of `cloud` into `out` (cleared first), with

@@ -363,28 +363,72 @@ TEST(SpherePacker, StartingPointsGivenByTheUser) {
   EXPECT_EQ(none.vn, 0);
 }
 
-TEST(SpherePacker, SuggestedParametersComeFromTheSpacing) {
+TEST(SpherePacker, SuggestedParametersComeFromTheSampling) {
   const auto ref = build("sphere", sphereSpec(), paperParams());
   const sp::Params p = sp::suggestParams(ref->cloud);
-  growth::CloudCheck check;
-  const double spacing = growth::meanSpacing(growth::readCloud(ref->cloud, check).points);
-  EXPECT_NEAR(p.sphereDiameter, sp::kDefaultDiameterPerSpacing * spacing, 1e-12);
-  EXPECT_GT(p.splatSize, 0);
-  EXPECT_LE(p.splatSize, p.sphereDiameter);
+  // d = 1.8 sqrt(area per point) on a clean cloud (the sphere's area per point is 4π / 10,000).
+  const double areaSpacing = std::sqrt(4 * M_PI / 10000);
+  EXPECT_NEAR(p.sphereDiameter, sp::kDefaultDiameterPerAreaSpacing * areaSpacing, 0.03 * p.sphereDiameter);
+  EXPECT_NEAR(p.splatSize, sp::kDefaultSplatPerAreaSpacing * areaSpacing, 0.03 * p.splatSize);
   EXPECT_EQ(p.windowSize, 8);
   EXPECT_EQ(p.maxBorderLength, 40);
-  // The defaults work without tuning.
+  // The defaults work without tuning, at the scan's resolution (at least 0.2 vertices per point).
   CMeshO out;
   sp::Stat st;
-  sp::build(ref->cloud, out, p, st);
+  sp::build(ref->cloud, out, sp::Params(), st);
+  EXPECT_EQ(st.sphereDiameter, p.sphereDiameter);
   const auto m = growth::measure(out);
   EXPECT_EQ(m.nonManifoldVertices, 0u);
   EXPECT_EQ(m.boundaryEdges, 0u);
   EXPECT_GE(m.qualityMean, 0.94);
+  EXPECT_GE(double(m.vertices), 0.2 * 10000);
+  EXPECT_NE(st.diameterReason.find("sampling"), std::string::npos) << st.diameterReason;
   // An unusable layer gives the static defaults, without throwing.
   CMeshO empty;
   const sp::Params q = sp::suggestParams(empty);
   EXPECT_EQ(q.sphereDiameter, 0);
+}
+
+// Sec. 5.3: d >= 2ν for an estimated noise ν. Noise of 1.2 sqrt(area per point) (2.5 median
+// spacings) makes the default follow the noise, at 3ν; the result is manifold and closed.
+TEST(SpherePacker, DefaultDiameterFollowsTheNoise) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.count = 20000;
+  const double nu = 1.2 * std::sqrt(4 * M_PI / 20000);
+  spec.noiseBound = nu;
+  CMeshO cloud, out;
+  growth::toMesh(growth::generateCloud(spec), cloud);
+  sp::Stat st;
+  sp::build(cloud, out, sp::Params(), st);
+  EXPECT_NEAR(st.scale.noise, nu, 0.25 * nu);
+  EXPECT_NEAR(st.sphereDiameter, sp::kDefaultDiameterPerNoise * st.scale.noise, 1e-12);
+  EXPECT_NE(st.diameterReason.find("noise"), std::string::npos) << st.diameterReason;
+  const auto m = growth::measure(out);
+  EXPECT_TRUE(m.manifold());
+  EXPECT_EQ(m.boundaryEdges, 0u);
+  EXPECT_GE(m.edgeMin, st.sphereDiameter * (1 - 1e-5));
+}
+
+// The default d is robust: one point far away, or 1 % of outliers scattered around the cloud,
+// change it by less than 5 % (the mean spacing, a mean, grew about 90-fold with the far point).
+TEST(SpherePacker, DefaultDiameterIgnoresFarPointsAndOutliers) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.count = 50000;
+  const growth::Cloud clean = growth::generateCloud(spec);
+  auto defaultD = [](const growth::Cloud& c) {
+    CMeshO m;
+    growth::toMesh(c, m);
+    return sp::suggestParams(m).sphereDiameter;
+  };
+  const double d0 = defaultD(clean);
+  ASSERT_GT(d0, 0);
+  growth::Cloud far = clean;
+  far.points.insert(far.points.begin() + 1234, Point3d(1e4, 0, 0));
+  far.normals.insert(far.normals.begin() + 1234, Point3d(1, 0, 0));
+  EXPECT_NEAR(defaultD(far), d0, 0.05 * d0);
+  growth::CloudSpec noisy = spec;
+  noisy.outlierFraction = 0.01;
+  EXPECT_NEAR(defaultD(growth::generateCloud(noisy)), d0, 0.05 * d0);
 }
 
 namespace {

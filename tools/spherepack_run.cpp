@@ -98,10 +98,12 @@ int main(int argc, char** argv) {
     if (dSpacings > 0 || sOverD > 0) {
       growth::CloudCheck check;
       check.allowFaces = true;
-      const auto scale = growth::spherepack::cloudScale(growth::readCloud(cloud, check).points);
-      if (dSpacings > 0) params.sphereDiameter = dSpacings * scale.spacing;
+      // K mean spacings (growth::meanSpacing, the unit of the benchmark and of mesh_measures).
+      const auto points = growth::readCloud(cloud, check).points;
+      if (dSpacings > 0) params.sphereDiameter = dSpacings * growth::meanSpacing(points);
       if (sOverD > 0) {
-        const double d = params.sphereDiameter > 0 ? params.sphereDiameter : growth::spherepack::defaultDiameter(scale);
+        const double d = params.sphereDiameter > 0 ? params.sphereDiameter
+                                                   : growth::spherepack::defaultDiameter(growth::spherepack::cloudScale(points));
         params.splatSize = sOverD * d;
       }
     }
@@ -118,6 +120,8 @@ int main(int argc, char** argv) {
                            st.secondsTriangulation};
       for (int k = 0; k < 5; ++k) phase[k] = std::min(phase[k], t[k]);
     }
+    std::printf("median_spacing: %.6g\narea_spacing: %.6g\nnoise: %.6g\nd_reason: %s\n", st.scale.spacing,
+                st.scale.areaSpacing, st.scale.noise, st.diameterReason.c_str());
     std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",
                 st.inputPoints, st.sphereDiameter, st.splatSize, st.meanSplatRadius, st.splatsUnbounded, st.splatsClamped);
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
