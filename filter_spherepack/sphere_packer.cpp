@@ -9,6 +9,7 @@
 #include <growth/error.h>
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
+#include <growth/manifold_cleanup.h>
 #include <growth/mesh_measures.h>
 #include <growth/mesh_normals.h>
 #include <growth/morton.h>
@@ -562,6 +563,25 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
 
+  // Manifold whatever the input. Sec. 3.1 guarantees it for a suitable d on a cloud sampling a
+  // manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
+  // growth's checks and the ear cut of sec. 3.7 can leave a vertex with two fans of faces or an
+  // edge with three. The fewest faces are removed: the extra fans of every non-manifold vertex
+  // (Robust G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an
+  // edge too. Every edge left is still an edge of the packing (>= d).
+  {
+    std::vector<char> alive(faces.size(), 1);
+    const ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+    st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
+    st.facesRemoved = mc.facesRemoved;
+    if (mc.facesRemoved > 0) {
+      size_t w = 0;
+      for (size_t f = 0; f < faces.size(); ++f)
+        if (alive[f]) faces[w++] = faces[f];
+      faces.resize(w);
+    }
+  }
+
   // Output: referenced vertices only, box normals, Q_t per face.
   progress.phase("Sphere packing: writing the mesh", 97, 100);
   std::vector<std::int32_t> remap;
@@ -622,20 +642,22 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
 
   if (st.boxesDTooLarge > 0)
     st.warnings.push_back("In " + std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) +
-                          " boxes no direction agrees with all point normals within distance d: d = " + fmt(d) +
-                          " looks too large for this cloud (thin parts, or normals that are noisy or not "
-                          "consistently oriented), so a manifold result is not guaranteed (paper, section 4.1). "
-                          "Try a smaller d, or re-orient the normals.");
-  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0)
-    st.warnings.push_back("The mesh is not manifold (" + std::to_string(st.nonManifoldVertices) + " vertices, " +
-                          std::to_string(st.nonManifoldEdges) + " edges): the noise of the cloud is probably larger "
-                          "than d/2 (paper, section 5.3), or d is too large for its thin parts. Try a larger d "
-                          "for noise, a smaller d for thin parts.");
+                          " boxes the point normals within d disagree (the box sees two sides of the surface): "
+                          "d = " + fmt(d) + " is too large there for the paper's manifold guarantee (section 4.1): "
+                          "thin parts, folds, or normals not consistently oriented. Try a smaller d, or "
+                          "re-orient the normals.");
+  if (st.facesRemoved > 0)
+    st.warnings.push_back("The packing was not manifold at " + std::to_string(st.nonManifoldVerticesRemoved) +
+                          " vertices; " + std::to_string(st.facesRemoved) + " faces were removed there (the "
+                          "fewest that make it manifold), leaving holes. Usual causes: noise beyond d/2 (paper, "
+                          "section 5.3: use a larger d), thin parts (a smaller d), misregistered scans.");
+  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: the clean-up above
+    throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
   if (st.unreachedPoints * 100 > in.points.size())
     st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
-                          " % of the points have no vertex within d: the cloud has parts not connected to the "
-                          "starting vertices, or the splats do not cover the surface there (increase the splat "
-                          "radius s), or the growth was stopped by a defect.");
+                          " % of the points have no vertex within d: parts too small or too sparse to hold a "
+                          "triangle of side d (a growth was started on every part that could), or the growth "
+                          "was stopped by a defect there.");
   if (faces.empty())
     throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "

@@ -93,8 +93,11 @@ struct Stat {
   size_t unreachedPoints = 0;    // input points with no vertex within d of their splat
   size_t componentsStarted = 0;  // starting pairs placed (sec. 3.3): the first, and one for each
                                  // part of the cloud the growth had not reached when it stopped
-  size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan
-  size_t nonManifoldEdges = 0;   // output edges with more than two faces
+  size_t nonManifoldVerticesRemoved = 0; // vertices of the triangulated packing with more than one
+                                 // fan of faces (or on an edge with more than two), made manifold
+  size_t facesRemoved = 0;       // faces removed to do so (the fewest: the extra fans)
+  size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan (0)
+  size_t nonManifoldEdges = 0;   // output edges with more than two faces (0)
   size_t boundaryLoops = 0;      // boundary loops of the output (holes, including the ∂max ones)
   double smallestEdge = 0;
   double qualityAvg = 0;         // Q_avg of the output

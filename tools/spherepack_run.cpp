@@ -127,9 +127,10 @@ int main(int argc, char** argv) {
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
-                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nnon_manifold_vertices: %zu\n",
+                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nnon_manifold_vertices_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,
-                st.rejectedInconsistent, st.unreachedPoints, st.componentsStarted, st.nonManifoldVertices);
+                st.rejectedInconsistent, st.unreachedPoints, st.componentsStarted, st.nonManifoldVerticesRemoved,
+                st.facesRemoved, st.nonManifoldVertices);
     std::printf("seconds_input: %.4f\nseconds_box_grid: %.4f\nseconds_splats: %.4f\nseconds_growth: %.4f\n"
                 "seconds_triangulation: %.4f\n",
                 phase[0], phase[1], phase[2], phase[3], phase[4]);
