@@ -132,7 +132,7 @@ public:
       // edges in the projection along n used for the crossing check; when they do not, the edge
       // is too steep for the local normals to tell its side, and inserting it would twist the
       // borders (a choice where the paper is silent, for the manifold guarantee of sec. 3.1).
-      if (!graph_.gapContains(cd.a, gapA, x, n) || !graph_.gapContains(cd.b, gapB, x, n)) {
+      if (params_.rejectTwisted && (!graph_.gapContains(cd.a, gapA, x, n) || !graph_.gapContains(cd.b, gapB, x, n))) {
         ++st_.rejectedInconsistent;
         continue;
       }

@@ -35,6 +35,8 @@ struct Params {
                                  // spatial order of the points (memory locality); the same mesh
   int threads = 0;                // threads for the per-box and per-point phases (0 = automatic, at
                                  // most the hardware's); the output is the same for any number
+  bool rejectTwisted = true;     // reject a candidate whose new edges fall into other corners of its
+                                 // parents seen along the box normal than in their own planes
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };

@@ -4,7 +4,7 @@
 //   spherepack_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--noise NU]
 //                  [--outliers FRACTION] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
-//          --global-splats  --w W  --border B  --threads T (0 = automatic)
+//          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
 //          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
 //          --repeat R (best of R runs; each phase time is that phase's best)
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
       else if (a == "--s") params.splatSize = std::atof(value());
       else if (a == "--s-d") sOverD = std::atof(value());
       else if (a == "--global-splats") params.localSplatSizes = false;
+      else if (a == "--keep-twisted") params.rejectTwisted = false;
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--threads") params.threads = std::atoi(value());
