@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
       else if (a == "--points") spec.count = std::strtoull(value(), nullptr, 10);
       else if (a == "--seed") spec.seed = std::strtoull(value(), nullptr, 10);
       else if (a == "--nonuniform") spec.nonUniform = true;
+      else if (a == "--density-ratio") spec.densityRatio = std::atof(value());
       else if (a == "--noise") spec.noiseBound = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
       else if (a == "--d") params.sphereDiameter = std::atof(value());
