@@ -11,6 +11,14 @@ run of the cloud, the baseline), measures the mesh with build/mesh_measures, and
   OUT/plots/scaling.png             time against points, log-log, fitted slope per method
   OUT/runs/<cloud>/<method>/        the .mlx, meshlabserver's log, /usr/bin/time's report,
                                     the mesh, its measures (JSON) and histograms (CSV)
+  OUT/clouds/                       the generated clouds, horse's vertices, and the "-ml" clouds
+
+Methods: Ball Pivoting with auto radius ("bpa"), with r = 3 × the mean spacing ("bpa3"), bpa's mesh
+remeshed ("bpa_re"); the sphere packer at its default d ("spherepack") and at d = 2.5 × the mean
+spacing ("spherepack25"); Robust G2S ("g2s"). Clouds: generated (sphere-10k, torus-1M, ...), the
+scans of the data folder (bunny, hand, horse), .ply paths, and any of those but a path with "-ml"
+appended (hand-ml, sphere-10k-ml): the same points with MeshLab's own normals (Compute normals for
+point sets, K = 10, no smoothing, no flip), made by the scratch meshlabserver into OUT/clouds/.
 
 Time: on clouds up to --inproc-max-points (100k by default), every filter, ours and MeshLab's, is
 timed in process by build/plugin_time: the plugin loaded and applied as meshlabserver does, one steady
@@ -43,10 +51,15 @@ METHODS = {
     "bpa3": ("Ball Pivoting (r = 3 × spacing)", "BPA 3s"),
     "bpa_re": ("Ball Pivoting + remeshing (Re)", "BPA (Re)"),
     "spherepack": ("Sphere Packing (ours)", "Sphere Packing"),
+    "spherepack25": ("Sphere Packing (ours, d = 2.5 × spacing)", "Sphere Packing d 2.5s"),
     "g2s": ("Robust G2S (ours)", "Robust G2S"),
 }
 # Run order within a cloud: the sphere packer first, its d is the remeshing target of "bpa_re".
-RUN_ORDER = ["spherepack", "g2s", "bpa", "bpa3", "bpa_re"]
+RUN_ORDER = ["spherepack", "spherepack25", "g2s", "bpa", "bpa3", "bpa_re"]
+TABLE_ORDER = ["bpa", "bpa3", "bpa_re", "spherepack", "spherepack25", "g2s"]
+OURS = ("spherepack", "spherepack25", "g2s")
+SPHERE_PACKERS = ("spherepack", "spherepack25")
+SPHEREPACK25_SPACINGS = 2.5      # "spherepack25": sphereDiameter = 2.5 × the cloud's mean spacing
 REFERENCE = "bpa"
 SHAPES = ["sphere", "torus", "patch"]
 DATA = {
@@ -54,6 +67,13 @@ DATA = {
     "hand": "hand.ply",
     "horse": "horse_mesh.ply",   # its vertices (with their normals) as a clean cloud
 }
+# "<cloud>-ml": the same points with their normals replaced by MeshLab's own estimate (Compute normals
+# for point sets with these parameters), made through the scratch meshlabserver into OUT/clouds/.
+ML_NORMALS_SUFFIX = "-ml"
+ML_NORMALS_PARAMS = {"K": 10, "smoothIter": 0, "flipFlag": "false", "viewPos": (0, 0, 0)}
+ML_NORMALS_TEXT = "MeshLab's Compute normals for point sets (K = 10, smoothIter 0, flipFlag false, viewPos 0,0,0)"
+DATA_CLOUDS = [n for d in DATA for n in (d, d + ML_NORMALS_SUFFIX)]
+QUICK_DATA_CLOUDS = ["hand", "hand" + ML_NORMALS_SUFFIX]
 FULL_SIZES = [10000, 30000, 100000, 300000, 1000000]
 QUICK_SIZES = [10000, 30000]
 EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, max(6 × mean spacing, 1.5 × d)], same for all
@@ -135,12 +155,51 @@ def ply_vertices_only(src, dst):
         f.write(body)
 
 
+def normals_mlx():
+    """The .mlx of MeshLab's "Compute normals for point sets" with ML_NORMALS_PARAMS."""
+    p = ML_NORMALS_PARAMS
+    return mlx(['<filter name="Compute normals for point sets">\n'
+                '  <Param name="K" type="RichInt" value="%d"/>\n'
+                '  <Param name="smoothIter" type="RichInt" value="%d"/>\n'
+                '  <Param name="flipFlag" type="RichBool" value="%s"/>\n'
+                '  <Param name="viewPos" type="RichPoint3f" x="%g" y="%g" z="%g"/>\n'
+                ' </filter>' % ((p["K"], p["smoothIter"], p["flipFlag"]) + tuple(p["viewPos"]))])
+
+
+def meshlab_normals(ctx, src, dst, name):
+    """Writes `src` with its normals replaced by MeshLab's estimate to `dst` (vertices and normals
+    only), through the scratch meshlabserver; the script and its log stay in OUT/runs/<name>/_normals."""
+    work = os.path.join(ctx.out, "runs", name, "_normals")
+    os.makedirs(work, exist_ok=True)
+    with open(os.path.join(work, "normals.mlx"), "w") as f:
+        f.write(normals_mlx())
+    if not os.path.exists(os.path.join(ctx.prefix, "bin", "meshlabserver")):
+        raise SystemExit("%s: %s is missing and there is no MeshLab prefix to make it (run without "
+                         "--report-only)" % (name, dst))
+    partial = dst[:-len(".ply")] + ".partial.ply"
+    r = run_meshlabserver(ctx, work, ["-i", src, "-o", partial, "-m", "vn", "-s", "normals.mlx"], ctx.timeout)
+    if r["rc"] != 0 or not os.path.exists(partial):
+        raise SystemExit("%s: MeshLab's normal estimation failed (%s); see %s"
+                         % (name, failure_reason(r["log"]), work))
+    os.replace(partial, dst)
+    log("%s: normals by %s, %.1f s (meshlabserver wall clock)" % (name, ML_NORMALS_TEXT, r["wall"] or 0))
+
+
 def prepare_cloud(spec, ctx):
-    """Returns a dict with name, path, kind, shape, points, spacing, diagonal."""
+    """Returns a dict with name, path, kind, shape, points, spacing, diagonal, normals."""
     clouds_dir = os.path.join(ctx.out, "clouds")
     os.makedirs(clouds_dir, exist_ok=True)
-    shape = None
-    if spec in DATA:
+    shape, normals = None, "own"
+    if spec.endswith(ML_NORMALS_SUFFIX) and not spec.endswith(".ply"):
+        base = prepare_cloud(spec[:-len(ML_NORMALS_SUFFIX)], ctx)
+        if base is None:
+            return None
+        # No shape: a generated cloud with MeshLab's normals stays out of the per-shape fits.
+        name, kind, normals = base["name"] + ML_NORMALS_SUFFIX, base["kind"], "meshlab"
+        path = os.path.join(clouds_dir, name + ".ply")
+        if not os.path.exists(path):
+            meshlab_normals(ctx, base["path"], path, name)
+    elif spec in DATA:
         src = os.path.join(ctx.data_dir, DATA[spec])
         if not os.path.exists(src):
             return None
@@ -157,8 +216,9 @@ def prepare_cloud(spec, ctx):
     else:
         m = re.match(r"^(sphere|torus|patch)-([0-9.]+[kKmM]?)$", spec)
         if not m:
-            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s or a .ply path)"
-                             % (spec, ", ".join(DATA)))
+            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s, a .ply path, or any "
+                             "of these but a path with %s for MeshLab's normals)"
+                             % (spec, ", ".join(DATA), ML_NORMALS_SUFFIX))
         shape, n = m.group(1), parse_size(m.group(2))
         name, kind = "%s-%s" % (shape, size_label(n)), "generated"
         path = os.path.join(clouds_dir, name + ".ply")
@@ -170,7 +230,7 @@ def prepare_cloud(spec, ctx):
                        check=True, stdout=subprocess.PIPE, universal_newlines=True)
     j = json.loads(r.stdout)
     return {"name": name, "path": path, "kind": kind, "shape": shape, "points": j["cloud_points"],
-            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"]}
+            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"], "normals": normals}
 
 
 # --- Filter scripts -------------------------------------------------------------------------
@@ -239,11 +299,21 @@ def method_script(method, cloud, ctx, d_info):
             info["remesh_target"] = d_info["d"]
             info["remesh_target_source"] = d_info["source"]
         return mlx(filters), info
-    template = {"spherepack": "spherepack.mlx", "g2s": "g2s.mlx"}[method]
+    template = {"spherepack": "spherepack.mlx", "spherepack25": "spherepack.mlx", "g2s": "g2s.mlx"}[method]
     filters = mlx_filters(os.path.join(mlx_dir, template))
-    for key, value in ctx.params.get(method, []):
+    info = {}
+    if method == "spherepack25":
+        d = SPHEREPACK25_SPACINGS * cloud["spacing"]
+        filters = [set_abs_perc(f, "sphereDiameter", d, diag) for f in filters]
+        info["sphere_diameter_set"] = d
+    # --param spherepack:... applies to both sphere packer methods (spherepack25:... to that one only).
+    params = ctx.params.get(method, [])
+    if method == "spherepack25":
+        params = ctx.params.get("spherepack", []) + params
+    for key, value in params:
         filters = [set_param(f, key, value) for f in filters]
-    return mlx(filters), {"params": dict(ctx.params.get(method, []))}
+    info["params"] = dict(params)
+    return mlx(filters), info
 
 
 # --- Running meshlabserver ------------------------------------------------------------------
@@ -441,6 +511,19 @@ def extra_over_noop(r):
     return max(0, r["rss_kb"] - r["noop_rss_kb"]) * 1024.0 / r["points"]
 
 
+def spherepack_log_info(log_text):
+    """From the sphere packer's log: its d, the components it started and the points left with no
+    vertex within d (the last values when the log holds several runs)."""
+    info = {}
+    dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", log_text)
+    if dm:
+        info["d"] = float(dm[-1])
+    um = re.findall(r"Sphere Packing: (\d+) components? started, (\d+) points left with no vertex within d", log_text)
+    if um:
+        info["components_started"], info["unreached_points"] = int(um[-1][0]), int(um[-1][1])
+    return info
+
+
 def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     """Runs one method on one cloud and returns its row. "bpa_re" remeshes the mesh of `bpa_row`
     (Ball Pivoting with auto radius, already run on this cloud) when there is one, and counts
@@ -450,7 +533,7 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
         shutil.rmtree(work)
     os.makedirs(work)
     row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
-           "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
+           "points": cloud["points"], "spacing": cloud["spacing"], "normals": cloud["normals"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
            "base_rss_kb": base["rss_kb"], "noop_rss_kb": base.get("noop_rss_kb"), "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
     if (method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["kind"] == "generated"
@@ -500,7 +583,7 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     # Time: the filter's own log line for ours, wall clock minus load+save for MeshLab's.
     m = re.findall(r"(?:Sphere Packing|Robust G2S): time ([0-9.eE+-]+) s", r["log"])
     step = max(r["wall"] - step_base["wall"], 0.0)
-    if method in ("spherepack", "g2s") and m:
+    if method in OURS and m:
         row["time"], row["time_source"] = float(m[-1]), "filter log"
     elif reuse:
         row["time"], row["time_source"] = bpa_row["time"] + step, "wall - load/save"
@@ -508,16 +591,14 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     else:
         row["time"], row["time_source"] = step, "wall - load/save"
     row["time_wall_minus_base"] = step
-    if m and method in ("spherepack", "g2s"):
+    if m and method in OURS:
         row["time_filter_log"] = float(m[-1])
     if not reuse:
         apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work)
     elif bpa_row.get("time_source") == "in process" or row["points"] <= ctx.inproc_max_points:
         apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work, add=bpa_row["time"])
-    if method == "spherepack":
-        dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", r["log"])
-        if dm:
-            row["info"]["d"] = float(dm[-1])
+    if method in SPHERE_PACKERS:
+        row["info"].update(spherepack_log_info(r["log"]))
     if r["rss_kb"] is not None and base["rss_kb"] is not None:
         extra = max(0, r["rss_kb"] - base["rss_kb"]) * 1024.0 / cloud["points"]
         if reuse and bpa_row.get("extra_peak_bytes_per_point") is not None:
@@ -984,17 +1065,20 @@ class Context:
 def main():
     ap = argparse.ArgumentParser(prog="scripts/benchmark.sh", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, and hand.ply)")
+    ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, hand and hand-ml)")
     ap.add_argument("--methods", default=",".join(RUN_ORDER),
                     help="comma-separated subset of: " + ", ".join(RUN_ORDER))
     ap.add_argument("--clouds", default=None,
-                    help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths "
-                         "(default: every shape at every size, and every cloud of the data folder)")
+                    help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths; "
+                         "a name with -ml appended (bunny-ml, sphere-10k-ml) is that cloud with MeshLab's normals "
+                         "(default: every shape at every size, and every cloud of the data folder with its own "
+                         "normals and with MeshLab's)")
     ap.add_argument("--sizes", default=None, help="sizes of the generated clouds, e.g. 10k,100k,1M")
     ap.add_argument("--shapes", default=",".join(SHAPES), help="shapes of the generated clouds")
     ap.add_argument("--no-data", action="store_true", help="skip the clouds of the data folder")
     ap.add_argument("--param", action="append", default=[], metavar="METHOD:NAME=VALUE",
-                    help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4")
+                    help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4 (spherepack: "
+                         "both sphere packer methods)")
     ap.add_argument("--bpa-max-points", type=int, default=0,
                     help="skip Ball Pivoting with auto radius (and its remeshing) on generated clouds larger "
                          "than this (it grows about quadratically on random samples); 0: no limit")
@@ -1036,9 +1120,10 @@ def main():
     ctx.run_stamp = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     ctx.params = {}
     for p in a.param:
-        m = re.match(r"^(spherepack|g2s):([A-Za-z0-9_]+)=(.*)$", p)
+        m = re.match(r"^(spherepack|spherepack25|g2s):([A-Za-z0-9_]+)=(.*)$", p)
         if not m:
-            raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack or g2s, got '%s'" % p)
+            raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack (both sphere packer "
+                             "methods), spherepack25 or g2s, got '%s'" % p)
         ctx.params.setdefault(m.group(1), []).append((m.group(2), m.group(3)))
     os.makedirs(ctx.out, exist_ok=True)
     results = os.path.join(ctx.out, "results.jsonl")
@@ -1057,7 +1142,7 @@ def main():
             shapes = [s.strip() for s in a.shapes.split(",") if s.strip()]
             specs = ["%s-%s" % (s, size_label(n)) for s in shapes for n in sizes]
             if not a.no_data:
-                specs += ["hand"] if a.quick else list(DATA)
+                specs += QUICK_DATA_CLOUDS if a.quick else DATA_CLOUDS
         for spec in specs:
             cloud = prepare_cloud(spec, ctx)
             if cloud is None:
