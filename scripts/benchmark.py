@@ -636,6 +636,10 @@ def remeasure(rows, ctx):
             log("%s %s: mesh_measures failed, row kept as it was" % (r["cloud"], r["method"]))
             continue
         r["measures"], r["edge_histogram_max"] = measures, edge_max
+        # Rows from before the unreached points were recorded: read them from the saved log.
+        log_path = os.path.join(work, "meshlabserver.log")
+        if r["method"] in SPHERE_PACKERS and os.path.exists(log_path):
+            r.setdefault("info", {}).update(spherepack_log_info(open(log_path, errors="replace").read()))
         log("%s %s: measured again" % (r["cloud"], r["method"]))
     return rows
 
@@ -703,42 +707,67 @@ def fmt(v, spec):
     return format(v, spec)
 
 
+TABLE_COLUMNS = ["method", "time [s]", "speed-up vs BPA", "vs BPA 3s", "faces", "triangles/s", "E_avg", "E_RMS %",
+                 "Q_avg", "Q_RMS %", "QF", "μd %", "non-manifold V / E", "self-intersecting pairs",
+                 "boundary edges", "holes", "components", "unreached points (components started)",
+                 "extra peak [B/point]: over load+save / over no-op filter"]
+
+
+def count_text(v):
+    """A count of mesh_measures, "—" when this build of it does not report it."""
+    return "—" if v is None else "{:,}".format(v)
+
+
+def unreached_text(r):
+    """The sphere packer's points left with no vertex within d (and the components it started)."""
+    info = r.get("info", {})
+    if r["method"] not in SPHERE_PACKERS or "unreached_points" not in info:
+        return "—"
+    return "%s (%s)" % ("{:,}".format(info["unreached_points"]), "{:,}".format(info["components_started"]))
+
+
+def method_label(r):
+    label = r["label"]
+    info = r.get("info", {})
+    if r["method"] == "bpa3" and "ball_radius" in info:
+        label += " r=%.3g" % info["ball_radius"]
+    if r["method"] == "bpa_re" and "remesh_target" in info:
+        label += " d=%.3g" % info["remesh_target"]
+        if "mean spacing" in info.get("remesh_target_source", ""):
+            label += " (mean spacing: no sphere packer d)"
+    if r["method"] in SPHERE_PACKERS and "d" in info:
+        label += " d=%.3g" % info["d"]
+    return label
+
+
 def table(cloud_rows):
     ref = next((r for r in cloud_rows if r["method"] == REFERENCE and r.get("status") == "ok"), None)
     ref3 = next((r for r in cloud_rows if r["method"] == "bpa3" and r.get("status") == "ok"), None)
-    head = ("| method | time [s] | speed-up vs BPA | vs BPA 3s | faces | triangles/s | E_avg | E_RMS % | Q_avg "
-            "| Q_RMS % | QF | μd % | non-manifold V / E | boundary edges | holes "
-            "| extra peak [B/point]: over load+save / over no-op filter |")
-    lines = [head, "|" + "---|" * 16]
-    order = {m: i for i, m in enumerate(["bpa", "bpa3", "bpa_re", "spherepack", "g2s"])}
+    lines = ["| " + " | ".join(TABLE_COLUMNS) + " |", "|" + "---|" * len(TABLE_COLUMNS)]
+    order = {m: i for i, m in enumerate(TABLE_ORDER)}
     for r in sorted(cloud_rows, key=lambda x: order.get(x["method"], 99)):
-        label = r["label"]
-        if r["method"] == "bpa3" and "ball_radius" in r.get("info", {}):
-            label += " r=%.3g" % r["info"]["ball_radius"]
-        if r["method"] == "bpa_re" and "remesh_target" in r.get("info", {}):
-            label += " d=%.3g" % r["info"]["remesh_target"]
-            if "mean spacing" in r["info"].get("remesh_target_source", ""):
-                label += " (mean spacing: no sphere packer d)"
-        if r["method"] == "spherepack" and "d" in r.get("info", {}):
-            label += " d=%.3g" % r["info"]["d"]
+        label = method_label(r)
         if r.get("status") != "ok":
             status = r.get("status", "?").replace("|", "/")
             if len(status) > 120:
                 status = status[:117] + "..."
-            lines.append("| %s | %s |" % (label, status) + " — |" * 14)
+            lines.append("| %s | %s |" % (label, status) + " — |" * (len(TABLE_COLUMNS) - 2))
             continue
         m = r["measures"]
         t = r["time"]
         def speed(reference):
             return ("×%.2f" % (reference["time"] / t)) if reference and t > 0 and reference["time"] > 0 else "—"
         tps = m["faces"] / t if t > 0 else None
-        lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
-            label, fmt(t, "#.3g"), TIME_MARK.get(r["time_source"], "?"), speed(ref), speed(ref3),
-            "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
-            fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
-            fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
-            m["boundary_edges"], m["boundary_loops"],
-            "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))))
+        cells = [label, fmt(t, "#.3g") + TIME_MARK.get(r["time_source"], "?"), speed(ref), speed(ref3),
+                 "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"),
+                 fmt(m["edge_rms_percent"], ".1f"), fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"),
+                 fmt(m["qf_mean"], ".4f"), fmt(m.get("mu_d_percent"), ".2f"),
+                 "%d / %d" % (m["non_manifold_vertices"], m["non_manifold_edges"]),
+                 count_text(m.get("self_intersecting_pairs")), "%d" % m["boundary_edges"], "%d" % m["boundary_loops"],
+                 count_text(m.get("components")), unreached_text(r),
+                 "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))]
+        assert len(cells) == len(TABLE_COLUMNS)
+        lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
@@ -763,7 +792,8 @@ def plots(rows, out):
     pdir = os.path.join(out, "plots")
     os.makedirs(pdir, exist_ok=True)
     made = []
-    colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue", "g2s": "tab:red"}
+    colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue",
+              "spherepack25": "tab:cyan", "g2s": "tab:red"}
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     for c in clouds:
         ok = [r for r in rows if r["cloud"] == c and r.get("status") == "ok"]
@@ -781,7 +811,7 @@ def plots(rows, out):
                 if total <= 0:
                     continue
                 ax.step(lo, cnt / total, where="post", color=colors.get(r["method"]), label=METHODS[r["method"]][1],
-                        linewidth=1.2)
+                        linewidth=1.2, linestyle="--" if r["method"] == "spherepack25" else "-")
         axes[0].set_xlabel("angle [°]")
         axes[0].set_xlim(0, 180)
         axes[1].set_xlabel("edge length")
@@ -916,6 +946,132 @@ def headline_section(clouds, rows, level):
     return md
 
 
+def ok_row(rows, cloud, method):
+    return next((r for r in rows if r["cloud"] == cloud and r["method"] == method and r.get("status") == "ok"), None)
+
+
+def row_normals(r):
+    """"own" or "meshlab" (rows from before the normals were recorded: from the cloud's name)."""
+    return r.get("normals") or ("meshlab" if r["cloud"].endswith(ML_NORMALS_SUFFIX) else "own")
+
+
+def timed(r):
+    return fmt(r["time"], "#.3g") + TIME_MARK.get(r.get("time_source"), "?")
+
+
+def real_scans_section(rows, level):
+    """The sphere packer on the clouds of the data folder: own and MeshLab-estimated normals, at its
+    default d and at d = 2.5 × the mean spacing."""
+    scans = [(scan, n) for scan in DATA for n in (scan, scan + ML_NORMALS_SUFFIX)
+             if any(r["cloud"] == n and r["method"] in SPHERE_PACKERS for r in rows)]
+    if not scans:
+        return []
+    md = ["%s Sphere Packing on the real scans" % ("#" * level), "",
+          "Each scan with its own normals and with MeshLab's (%s), at the filter's default d and at d = %.1f × "
+          "the mean spacing. Unreached points: input points left with no vertex within d (in brackets: the "
+          "components the growth started), from the filter's log. Self-intersecting pairs: \"—\" when this "
+          "build of mesh_measures does not count them. vs BPA 3s: Ball Pivoting's (r = 3 × spacing) time / "
+          "ours, on the same cloud." % (ML_NORMALS_TEXT, SPHEREPACK25_SPACINGS), "",
+          "| scan | points | normals | d | time [s] | vs BPA 3s | non-manifold V / E | self-intersecting pairs "
+          "| holes | components | unreached points (components started) | Q_avg | E_RMS % |",
+          "|---|" + "---|" * 12]
+    for scan, name in scans:
+        b3 = ok_row(rows, name, "bpa3")
+        for method in SPHERE_PACKERS:
+            r = next((x for x in rows if x["cloud"] == name and x["method"] == method), None)
+            if r is None:
+                continue
+            normals = "MeshLab" if row_normals(r) == "meshlab" else "own"
+            d = r.get("info", {}).get("d")
+            dtext = ("default" if method == "spherepack" else "%.1f × spacing" % SPHEREPACK25_SPACINGS) + (
+                ", %.3g" % d if d else "")
+            if r.get("status") != "ok":
+                md.append("| %s | %s | %s | %s | %s |" % (scan, "{:,}".format(r["points"]), normals, dtext,
+                                                         r.get("status", "?").replace("|", "/")[:120]) + " — |" * 8)
+                continue
+            m = r["measures"]
+            vs = ("×%.2f" % (b3["time"] / r["time"])) if b3 and r["time"] > 0 and b3["time"] > 0 else "—"
+            md.append("| %s | %s | %s | %s | %s | %s | %d / %d | %s | %d | %s | %s | %s | %s |" % (
+                scan, "{:,}".format(r["points"]), normals, dtext, timed(r), vs, m["non_manifold_vertices"],
+                m["non_manifold_edges"], count_text(m.get("self_intersecting_pairs")), m["boundary_loops"],
+                count_text(m.get("components")), unreached_text(r), fmt(m["quality_mean"], ".4f"),
+                fmt(m["edge_rms_percent"], ".1f")))
+    md.append("")
+    return md
+
+
+SPEED_MIN_POINTS = 30000            # the speed check: clouds of at least this many points ...
+SLOPE_RANGE = (10000, 1000000)      # ... and the time's log-log slope over these sizes ...
+SLOPE_MAX = 1.1                     # ... at most this
+
+
+def speed_section(rows, level):
+    """The speed check of Sphere Packing at d = 2.5 × spacing: against Ball Pivoting (r = 3 × spacing)
+    on every cloud of at least SPEED_MIN_POINTS points, and the log-log slope of its time over the
+    generated clouds from 10k to 1M points, per shape."""
+    sp = "spherepack25"
+    clouds = sorted({r["cloud"] for r in rows if r["points"] >= SPEED_MIN_POINTS
+                     and r["method"] in (sp, "bpa3")}, key=lambda n: cloud_sort_key(n, rows))
+    if not clouds:
+        return []
+    md = ["%s Speed: Sphere Packing at d = %.1f × spacing against Ball Pivoting (r = 3 × spacing)" % (
+              "#" * level, SPHEREPACK25_SPACINGS), "",
+          "On every cloud of %s points or more: Ball Pivoting's time / ours (above 1: ours is faster), "
+          "with the marks of the time column of the tables; \"same run\" says whether both rows come from "
+          "one invocation. The target: faster on every such cloud, and a log–log slope of the time of at "
+          "most %.1f from %s to %s points." % ("{:,}".format(SPEED_MIN_POINTS), SLOPE_MAX,
+                                               size_label(SLOPE_RANGE[0]), size_label(SLOPE_RANGE[1])), "",
+          "| cloud | points | %s [s] | %s [s] | BPA 3s / ours | faster | same run |" % (
+              METHODS[sp][1], METHODS["bpa3"][1]),
+          "|---|" + "---|" * 6]
+    faster, slower, missing = [], [], []
+    for c in clouds:
+        a, b = ok_row(rows, c, sp), ok_row(rows, c, "bpa3")
+        pts = next(r for r in rows if r["cloud"] == c)["points"]
+        if not (a and b and a["time"] > 0):
+            missing.append(c)
+            md.append("| %s | %s | %s | %s | — | — | — |" % (c, "{:,}".format(pts), timed(a) if a else "no row",
+                                                            timed(b) if b else "no row"))
+            continue
+        ratio = b["time"] / a["time"]
+        (faster if ratio > 1 else slower).append(c)
+        md.append("| %s | %s | %s | %s | ×%.2f | %s | %s |" % (
+            c, "{:,}".format(pts), timed(a), timed(b), ratio, "yes" if ratio > 1 else "**no**",
+            "yes" if a["run"] == b["run"] else "no (%s / %s)" % (a["run"], b["run"])))
+    md += ["", "Faster than Ball Pivoting (r = 3 × spacing) on %d of %d clouds with both rows%s%s." % (
+        len(faster), len(faster) + len(slower), "; not on: " + ", ".join(slower) if slower else "",
+        "; without both rows: " + ", ".join(missing) if missing else ""), ""]
+
+    # Slope over the generated clouds of SLOPE_RANGE, per shape: of the rows' time (the scaling plot's,
+    # in process up to --inproc-max-points, the filter's log above) and of the filter's own log time
+    # (one clock at every size).
+    lo, hi = SLOPE_RANGE
+    fits = []
+    for s in SHAPES:
+        pts = sorted((r["points"], r["time"], r.get("time_filter_log"), r.get("time_source")) for r in rows
+                     if r.get("shape") == s and r["method"] == sp and r.get("status") == "ok"
+                     and lo <= r["points"] <= hi and r["time"] > 0)
+        if len({p[0] for p in pts}) < 2:
+            continue
+        k = fit_slope([p[0] for p in pts], [p[1] for p in pts])[0]
+        logs = [p for p in pts if p[2]]
+        kl = fit_slope([p[0] for p in logs], [p[2] for p in logs])[0] if len({p[0] for p in logs}) >= 2 else None
+        full = pts[0][0] == lo and pts[-1][0] == hi
+        fits.append("| %s | %s%s | %s | %s | %s |" % (
+            s, ", ".join(size_label(p[0]) for p in pts), "" if full else " (not the whole range)",
+            "%.2f%s" % (k, "" if k <= SLOPE_MAX else " **> %.1f**" % SLOPE_MAX),
+            "—" if kl is None else "%.2f%s" % (kl, "" if kl <= SLOPE_MAX else " **> %.1f**" % SLOPE_MAX),
+            ", ".join(sorted({p[3] for p in pts}))))
+    if fits:
+        md += ["Log–log slope of %s's time over the generated clouds from %s to %s points, per shape: of the "
+               "tables' time, and of the filter's own log time (`Sphere Packing: time X s`, one clock at every "
+               "size; the tables' time is in process up to --inproc-max-points)." % (
+                   METHODS[sp][1], size_label(lo), size_label(hi)), "",
+               "| shape | sizes | slope of the time | slope of the log time | time sources |", "|---|" + "---|" * 4]
+        md += fits + [""]
+    return md
+
+
 def cloud_section(c, rows, level, image):
     """Markdown of one cloud: heading, table and (when `image` is not None) its histogram plot."""
     cr = [r for r in rows if r["cloud"] == c]
@@ -976,6 +1132,7 @@ def report(rows, ctx, command):
     made, slopes = plots(rows, ctx.out)
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     md = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
+    md += real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         hp = os.path.join("plots", "%s_histograms.png" % c)
         md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
@@ -1021,6 +1178,7 @@ def publish(rows, ctx, command, slopes):
         return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
 
     full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
+    full += real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
     full += scaling_section(slopes, 2, image("scaling.png", docs), memory_fits(rows))
@@ -1038,7 +1196,7 @@ def publish(rows, ctx, command, slopes):
                "recorded in `out/benchmark/results.jsonl` and the runs are listed below). The ratios "
                "against Ball Pivoting are the headline; absolute seconds depend on the machine and its "
                "load.", ""] + header_lines(rows, command)
-    summary += headline_section(clouds, rows, 3)
+    summary += headline_section(clouds, rows, 3) + real_scans_section(rows, 3) + speed_section(rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
     summary += scaling_section(slopes, 3, image("scaling.png", where), memory_fits(rows))
