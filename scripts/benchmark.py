@@ -605,7 +605,12 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
             extra = max(extra, bpa_row["extra_peak_bytes_per_point"])
         row["extra_peak_bytes_per_point"] = extra
 
-    edge_max = edge_histogram_max(cloud["spacing"], d_info["d"] if "sphere packer" in d_info["source"] else 0)
+    # The sphere packer's d of this run when there is one (its edges are >= d: a range from an
+    # earlier d, or from the spacing alone, could leave them all above the histogram).
+    hist_d = d_info["d"] if "sphere packer" in d_info["source"] else 0
+    if method == "spherepack" and "d" in row["info"]:
+        hist_d = row["info"]["d"]
+    edge_max = edge_histogram_max(cloud["spacing"], hist_d)
     measures = measure_mesh(ctx, mesh, cloud["path"], work, edge_max)
     if measures is None:
         row["status"] = "mesh_measures failed on the mesh"
