@@ -11,6 +11,14 @@ run of the cloud, the baseline), measures the mesh with build/mesh_measures, and
   OUT/plots/scaling.png             time against points, log-log, fitted slope per method
   OUT/runs/<cloud>/<method>/        the .mlx, meshlabserver's log, /usr/bin/time's report,
                                     the mesh, its measures (JSON) and histograms (CSV)
+  OUT/clouds/                       the generated clouds, horse's vertices, and the "-ml" clouds
+
+Methods: Ball Pivoting with auto radius ("bpa"), with r = 3 × the mean spacing ("bpa3"), bpa's mesh
+remeshed ("bpa_re"); the sphere packer at its default d ("spherepack") and at d = 2.5 × the mean
+spacing ("spherepack25"); Robust G2S ("g2s"). Clouds: generated (sphere-10k, torus-1M, ...), the
+scans of the data folder (bunny, hand, horse), .ply paths, and any of those but a path with "-ml"
+appended (hand-ml, sphere-10k-ml): the same points with MeshLab's own normals (Compute normals for
+point sets, K = 10, no smoothing, no flip), made by the scratch meshlabserver into OUT/clouds/.
 
 Time: on clouds up to --inproc-max-points (100k by default), every filter, ours and MeshLab's, is
 timed in process by build/plugin_time: the plugin loaded and applied as meshlabserver does, one steady
@@ -43,10 +51,15 @@ METHODS = {
     "bpa3": ("Ball Pivoting (r = 3 × spacing)", "BPA 3s"),
     "bpa_re": ("Ball Pivoting + remeshing (Re)", "BPA (Re)"),
     "spherepack": ("Sphere Packing (ours)", "Sphere Packing"),
+    "spherepack25": ("Sphere Packing (ours, d = 2.5 × spacing)", "Sphere Packing d 2.5s"),
     "g2s": ("Robust G2S (ours)", "Robust G2S"),
 }
 # Run order within a cloud: the sphere packer first, its d is the remeshing target of "bpa_re".
-RUN_ORDER = ["spherepack", "g2s", "bpa", "bpa3", "bpa_re"]
+RUN_ORDER = ["spherepack", "spherepack25", "g2s", "bpa", "bpa3", "bpa_re"]
+TABLE_ORDER = ["bpa", "bpa3", "bpa_re", "spherepack", "spherepack25", "g2s"]
+OURS = ("spherepack", "spherepack25", "g2s")
+SPHERE_PACKERS = ("spherepack", "spherepack25")
+SPHEREPACK25_SPACINGS = 2.5      # "spherepack25": sphereDiameter = 2.5 × the cloud's mean spacing
 REFERENCE = "bpa"
 SHAPES = ["sphere", "torus", "patch"]
 DATA = {
@@ -54,6 +67,13 @@ DATA = {
     "hand": "hand.ply",
     "horse": "horse_mesh.ply",   # its vertices (with their normals) as a clean cloud
 }
+# "<cloud>-ml": the same points with their normals replaced by MeshLab's own estimate (Compute normals
+# for point sets with these parameters), made through the scratch meshlabserver into OUT/clouds/.
+ML_NORMALS_SUFFIX = "-ml"
+ML_NORMALS_PARAMS = {"K": 10, "smoothIter": 0, "flipFlag": "false", "viewPos": (0, 0, 0)}
+ML_NORMALS_TEXT = "MeshLab's Compute normals for point sets (K = 10, smoothIter 0, flipFlag false, viewPos 0,0,0)"
+DATA_CLOUDS = [n for d in DATA for n in (d, d + ML_NORMALS_SUFFIX)]
+QUICK_DATA_CLOUDS = ["hand", "hand" + ML_NORMALS_SUFFIX]
 FULL_SIZES = [10000, 30000, 100000, 300000, 1000000]
 QUICK_SIZES = [10000, 30000]
 EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, max(6 × mean spacing, 1.5 × d)], same for all
@@ -135,12 +155,51 @@ def ply_vertices_only(src, dst):
         f.write(body)
 
 
+def normals_mlx():
+    """The .mlx of MeshLab's "Compute normals for point sets" with ML_NORMALS_PARAMS."""
+    p = ML_NORMALS_PARAMS
+    return mlx(['<filter name="Compute normals for point sets">\n'
+                '  <Param name="K" type="RichInt" value="%d"/>\n'
+                '  <Param name="smoothIter" type="RichInt" value="%d"/>\n'
+                '  <Param name="flipFlag" type="RichBool" value="%s"/>\n'
+                '  <Param name="viewPos" type="RichPoint3f" x="%g" y="%g" z="%g"/>\n'
+                ' </filter>' % ((p["K"], p["smoothIter"], p["flipFlag"]) + tuple(p["viewPos"]))])
+
+
+def meshlab_normals(ctx, src, dst, name):
+    """Writes `src` with its normals replaced by MeshLab's estimate to `dst` (vertices and normals
+    only), through the scratch meshlabserver; the script and its log stay in OUT/runs/<name>/_normals."""
+    work = os.path.join(ctx.out, "runs", name, "_normals")
+    os.makedirs(work, exist_ok=True)
+    with open(os.path.join(work, "normals.mlx"), "w") as f:
+        f.write(normals_mlx())
+    if not os.path.exists(os.path.join(ctx.prefix, "bin", "meshlabserver")):
+        raise SystemExit("%s: %s is missing and there is no MeshLab prefix to make it (run without "
+                         "--report-only)" % (name, dst))
+    partial = dst[:-len(".ply")] + ".partial.ply"
+    r = run_meshlabserver(ctx, work, ["-i", src, "-o", partial, "-m", "vn", "-s", "normals.mlx"], ctx.timeout)
+    if r["rc"] != 0 or not os.path.exists(partial):
+        raise SystemExit("%s: MeshLab's normal estimation failed (%s); see %s"
+                         % (name, failure_reason(r["log"]), work))
+    os.replace(partial, dst)
+    log("%s: normals by %s, %.1f s (meshlabserver wall clock)" % (name, ML_NORMALS_TEXT, r["wall"] or 0))
+
+
 def prepare_cloud(spec, ctx):
-    """Returns a dict with name, path, kind, shape, points, spacing, diagonal."""
+    """Returns a dict with name, path, kind, shape, points, spacing, diagonal, normals."""
     clouds_dir = os.path.join(ctx.out, "clouds")
     os.makedirs(clouds_dir, exist_ok=True)
-    shape = None
-    if spec in DATA:
+    shape, normals = None, "own"
+    if spec.endswith(ML_NORMALS_SUFFIX) and not spec.endswith(".ply"):
+        base = prepare_cloud(spec[:-len(ML_NORMALS_SUFFIX)], ctx)
+        if base is None:
+            return None
+        # No shape: a generated cloud with MeshLab's normals stays out of the per-shape fits.
+        name, kind, normals = base["name"] + ML_NORMALS_SUFFIX, base["kind"], "meshlab"
+        path = os.path.join(clouds_dir, name + ".ply")
+        if not os.path.exists(path):
+            meshlab_normals(ctx, base["path"], path, name)
+    elif spec in DATA:
         src = os.path.join(ctx.data_dir, DATA[spec])
         if not os.path.exists(src):
             return None
@@ -157,8 +216,9 @@ def prepare_cloud(spec, ctx):
     else:
         m = re.match(r"^(sphere|torus|patch)-([0-9.]+[kKmM]?)$", spec)
         if not m:
-            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s or a .ply path)"
-                             % (spec, ", ".join(DATA)))
+            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s, a .ply path, or any "
+                             "of these but a path with %s for MeshLab's normals)"
+                             % (spec, ", ".join(DATA), ML_NORMALS_SUFFIX))
         shape, n = m.group(1), parse_size(m.group(2))
         name, kind = "%s-%s" % (shape, size_label(n)), "generated"
         path = os.path.join(clouds_dir, name + ".ply")
@@ -170,7 +230,7 @@ def prepare_cloud(spec, ctx):
                        check=True, stdout=subprocess.PIPE, universal_newlines=True)
     j = json.loads(r.stdout)
     return {"name": name, "path": path, "kind": kind, "shape": shape, "points": j["cloud_points"],
-            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"]}
+            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"], "normals": normals}
 
 
 # --- Filter scripts -------------------------------------------------------------------------
@@ -239,11 +299,21 @@ def method_script(method, cloud, ctx, d_info):
             info["remesh_target"] = d_info["d"]
             info["remesh_target_source"] = d_info["source"]
         return mlx(filters), info
-    template = {"spherepack": "spherepack.mlx", "g2s": "g2s.mlx"}[method]
+    template = {"spherepack": "spherepack.mlx", "spherepack25": "spherepack.mlx", "g2s": "g2s.mlx"}[method]
     filters = mlx_filters(os.path.join(mlx_dir, template))
-    for key, value in ctx.params.get(method, []):
+    info = {}
+    if method == "spherepack25":
+        d = SPHEREPACK25_SPACINGS * cloud["spacing"]
+        filters = [set_abs_perc(f, "sphereDiameter", d, diag) for f in filters]
+        info["sphere_diameter_set"] = d
+    # --param spherepack:... applies to both sphere packer methods (spherepack25:... to that one only).
+    params = ctx.params.get(method, [])
+    if method == "spherepack25":
+        params = ctx.params.get("spherepack", []) + params
+    for key, value in params:
         filters = [set_param(f, key, value) for f in filters]
-    return mlx(filters), {"params": dict(ctx.params.get(method, []))}
+    info["params"] = dict(params)
+    return mlx(filters), info
 
 
 # --- Running meshlabserver ------------------------------------------------------------------
@@ -441,6 +511,19 @@ def extra_over_noop(r):
     return max(0, r["rss_kb"] - r["noop_rss_kb"]) * 1024.0 / r["points"]
 
 
+def spherepack_log_info(log_text):
+    """From the sphere packer's log: its d, the components it started and the points left with no
+    vertex within d (the last values when the log holds several runs)."""
+    info = {}
+    dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", log_text)
+    if dm:
+        info["d"] = float(dm[-1])
+    um = re.findall(r"Sphere Packing: (\d+) components? started, (\d+) points left with no vertex within d", log_text)
+    if um:
+        info["components_started"], info["unreached_points"] = int(um[-1][0]), int(um[-1][1])
+    return info
+
+
 def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     """Runs one method on one cloud and returns its row. "bpa_re" remeshes the mesh of `bpa_row`
     (Ball Pivoting with auto radius, already run on this cloud) when there is one, and counts
@@ -450,7 +533,7 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
         shutil.rmtree(work)
     os.makedirs(work)
     row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
-           "points": cloud["points"], "spacing": cloud["spacing"], "method": method,
+           "points": cloud["points"], "spacing": cloud["spacing"], "normals": cloud["normals"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
            "base_rss_kb": base["rss_kb"], "noop_rss_kb": base.get("noop_rss_kb"), "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
     if (method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["kind"] == "generated"
@@ -500,7 +583,7 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     # Time: the filter's own log line for ours, wall clock minus load+save for MeshLab's.
     m = re.findall(r"(?:Sphere Packing|Robust G2S): time ([0-9.eE+-]+) s", r["log"])
     step = max(r["wall"] - step_base["wall"], 0.0)
-    if method in ("spherepack", "g2s") and m:
+    if method in OURS and m:
         row["time"], row["time_source"] = float(m[-1]), "filter log"
     elif reuse:
         row["time"], row["time_source"] = bpa_row["time"] + step, "wall - load/save"
@@ -508,23 +591,26 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     else:
         row["time"], row["time_source"] = step, "wall - load/save"
     row["time_wall_minus_base"] = step
-    if m and method in ("spherepack", "g2s"):
+    if m and method in OURS:
         row["time_filter_log"] = float(m[-1])
     if not reuse:
         apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work)
     elif bpa_row.get("time_source") == "in process" or row["points"] <= ctx.inproc_max_points:
         apply_inproc_time(row, ctx, os.path.join(work, "filter.mlx"), input_path, work, add=bpa_row["time"])
-    if method == "spherepack":
-        dm = re.findall(r"Sphere Packing: .*?\bd = ([0-9.eE+-]+)", r["log"])
-        if dm:
-            row["info"]["d"] = float(dm[-1])
+    if method in SPHERE_PACKERS:
+        row["info"].update(spherepack_log_info(r["log"]))
     if r["rss_kb"] is not None and base["rss_kb"] is not None:
         extra = max(0, r["rss_kb"] - base["rss_kb"]) * 1024.0 / cloud["points"]
         if reuse and bpa_row.get("extra_peak_bytes_per_point") is not None:
             extra = max(extra, bpa_row["extra_peak_bytes_per_point"])
         row["extra_peak_bytes_per_point"] = extra
 
-    edge_max = edge_histogram_max(cloud["spacing"], d_info["d"] if "sphere packer" in d_info["source"] else 0)
+    # The sphere packer's d of this run when there is one (its edges are >= d: a range from an
+    # earlier d, or from the spacing alone, could leave them all above the histogram).
+    hist_d = d_info["d"] if "sphere packer" in d_info["source"] else 0
+    if method == "spherepack" and "d" in row["info"]:
+        hist_d = row["info"]["d"]
+    edge_max = edge_histogram_max(cloud["spacing"], hist_d)
     measures = measure_mesh(ctx, mesh, cloud["path"], work, edge_max)
     if measures is None:
         row["status"] = "mesh_measures failed on the mesh"
@@ -555,6 +641,10 @@ def remeasure(rows, ctx):
             log("%s %s: mesh_measures failed, row kept as it was" % (r["cloud"], r["method"]))
             continue
         r["measures"], r["edge_histogram_max"] = measures, edge_max
+        # Rows from before the unreached points were recorded: read them from the saved log.
+        log_path = os.path.join(work, "meshlabserver.log")
+        if r["method"] in SPHERE_PACKERS and os.path.exists(log_path):
+            r.setdefault("info", {}).update(spherepack_log_info(open(log_path, errors="replace").read()))
         log("%s %s: measured again" % (r["cloud"], r["method"]))
     return rows
 
@@ -622,42 +712,67 @@ def fmt(v, spec):
     return format(v, spec)
 
 
+TABLE_COLUMNS = ["method", "time [s]", "speed-up vs BPA", "vs BPA 3s", "faces", "triangles/s", "E_avg", "E_RMS %",
+                 "Q_avg", "Q_RMS %", "QF", "μd %", "non-manifold V / E", "self-intersecting pairs",
+                 "boundary edges", "holes", "components", "unreached points (components started)",
+                 "extra peak [B/point]: over load+save / over no-op filter"]
+
+
+def count_text(v):
+    """A count of mesh_measures, "—" when this build of it does not report it."""
+    return "—" if v is None else "{:,}".format(v)
+
+
+def unreached_text(r):
+    """The sphere packer's points left with no vertex within d (and the components it started)."""
+    info = r.get("info", {})
+    if r["method"] not in SPHERE_PACKERS or "unreached_points" not in info:
+        return "—"
+    return "%s (%s)" % ("{:,}".format(info["unreached_points"]), "{:,}".format(info["components_started"]))
+
+
+def method_label(r):
+    label = r["label"]
+    info = r.get("info", {})
+    if r["method"] == "bpa3" and "ball_radius" in info:
+        label += " r=%.3g" % info["ball_radius"]
+    if r["method"] == "bpa_re" and "remesh_target" in info:
+        label += " d=%.3g" % info["remesh_target"]
+        if "mean spacing" in info.get("remesh_target_source", ""):
+            label += " (mean spacing: no sphere packer d)"
+    if r["method"] in SPHERE_PACKERS and "d" in info:
+        label += " d=%.3g" % info["d"]
+    return label
+
+
 def table(cloud_rows):
     ref = next((r for r in cloud_rows if r["method"] == REFERENCE and r.get("status") == "ok"), None)
     ref3 = next((r for r in cloud_rows if r["method"] == "bpa3" and r.get("status") == "ok"), None)
-    head = ("| method | time [s] | speed-up vs BPA | vs BPA 3s | faces | triangles/s | E_avg | E_RMS % | Q_avg "
-            "| Q_RMS % | QF | μd % | non-manifold V / E | boundary edges | holes "
-            "| extra peak [B/point]: over load+save / over no-op filter |")
-    lines = [head, "|" + "---|" * 16]
-    order = {m: i for i, m in enumerate(["bpa", "bpa3", "bpa_re", "spherepack", "g2s"])}
+    lines = ["| " + " | ".join(TABLE_COLUMNS) + " |", "|" + "---|" * len(TABLE_COLUMNS)]
+    order = {m: i for i, m in enumerate(TABLE_ORDER)}
     for r in sorted(cloud_rows, key=lambda x: order.get(x["method"], 99)):
-        label = r["label"]
-        if r["method"] == "bpa3" and "ball_radius" in r.get("info", {}):
-            label += " r=%.3g" % r["info"]["ball_radius"]
-        if r["method"] == "bpa_re" and "remesh_target" in r.get("info", {}):
-            label += " d=%.3g" % r["info"]["remesh_target"]
-            if "mean spacing" in r["info"].get("remesh_target_source", ""):
-                label += " (mean spacing: no sphere packer d)"
-        if r["method"] == "spherepack" and "d" in r.get("info", {}):
-            label += " d=%.3g" % r["info"]["d"]
+        label = method_label(r)
         if r.get("status") != "ok":
             status = r.get("status", "?").replace("|", "/")
             if len(status) > 120:
                 status = status[:117] + "..."
-            lines.append("| %s | %s |" % (label, status) + " — |" * 14)
+            lines.append("| %s | %s |" % (label, status) + " — |" * (len(TABLE_COLUMNS) - 2))
             continue
         m = r["measures"]
         t = r["time"]
         def speed(reference):
             return ("×%.2f" % (reference["time"] / t)) if reference and t > 0 and reference["time"] > 0 else "—"
         tps = m["faces"] / t if t > 0 else None
-        lines.append("| %s | %s%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %d / %d | %d | %d | %s |" % (
-            label, fmt(t, "#.3g"), TIME_MARK.get(r["time_source"], "?"), speed(ref), speed(ref3),
-            "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"), fmt(m["edge_rms_percent"], ".1f"),
-            fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"), fmt(m["qf_mean"], ".4f"),
-            fmt(m.get("mu_d_percent"), ".2f"), m["non_manifold_vertices"], m["non_manifold_edges"],
-            m["boundary_edges"], m["boundary_loops"],
-            "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))))
+        cells = [label, fmt(t, "#.3g") + TIME_MARK.get(r["time_source"], "?"), speed(ref), speed(ref3),
+                 "{:,}".format(m["faces"]), fmt(tps, ",.0f"), fmt(m["edge_mean"], ".4g"),
+                 fmt(m["edge_rms_percent"], ".1f"), fmt(m["quality_mean"], ".4f"), fmt(m["quality_rms_percent"], ".1f"),
+                 fmt(m["qf_mean"], ".4f"), fmt(m.get("mu_d_percent"), ".2f"),
+                 "%d / %d" % (m["non_manifold_vertices"], m["non_manifold_edges"]),
+                 count_text(m.get("self_intersecting_pairs")), "%d" % m["boundary_edges"], "%d" % m["boundary_loops"],
+                 count_text(m.get("components")), unreached_text(r),
+                 "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))]
+        assert len(cells) == len(TABLE_COLUMNS)
+        lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
 
 
@@ -682,7 +797,8 @@ def plots(rows, out):
     pdir = os.path.join(out, "plots")
     os.makedirs(pdir, exist_ok=True)
     made = []
-    colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue", "g2s": "tab:red"}
+    colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue",
+              "spherepack25": "tab:cyan", "g2s": "tab:red"}
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     for c in clouds:
         ok = [r for r in rows if r["cloud"] == c and r.get("status") == "ok"]
@@ -700,7 +816,7 @@ def plots(rows, out):
                 if total <= 0:
                     continue
                 ax.step(lo, cnt / total, where="post", color=colors.get(r["method"]), label=METHODS[r["method"]][1],
-                        linewidth=1.2)
+                        linewidth=1.2, linestyle="--" if r["method"] == "spherepack25" else "-")
         axes[0].set_xlabel("angle [°]")
         axes[0].set_xlim(0, 180)
         axes[1].set_xlabel("edge length")
@@ -835,6 +951,132 @@ def headline_section(clouds, rows, level):
     return md
 
 
+def ok_row(rows, cloud, method):
+    return next((r for r in rows if r["cloud"] == cloud and r["method"] == method and r.get("status") == "ok"), None)
+
+
+def row_normals(r):
+    """"own" or "meshlab" (rows from before the normals were recorded: from the cloud's name)."""
+    return r.get("normals") or ("meshlab" if r["cloud"].endswith(ML_NORMALS_SUFFIX) else "own")
+
+
+def timed(r):
+    return fmt(r["time"], "#.3g") + TIME_MARK.get(r.get("time_source"), "?")
+
+
+def real_scans_section(rows, level):
+    """The sphere packer on the clouds of the data folder: own and MeshLab-estimated normals, at its
+    default d and at d = 2.5 × the mean spacing."""
+    scans = [(scan, n) for scan in DATA for n in (scan, scan + ML_NORMALS_SUFFIX)
+             if any(r["cloud"] == n and r["method"] in SPHERE_PACKERS for r in rows)]
+    if not scans:
+        return []
+    md = ["%s Sphere Packing on the real scans" % ("#" * level), "",
+          "Each scan with its own normals and with MeshLab's (%s), at the filter's default d and at d = %.1f × "
+          "the mean spacing. Unreached points: input points left with no vertex within d (in brackets: the "
+          "components the growth started), from the filter's log. Self-intersecting pairs: \"—\" when this "
+          "build of mesh_measures does not count them. vs BPA 3s: Ball Pivoting's (r = 3 × spacing) time / "
+          "ours, on the same cloud." % (ML_NORMALS_TEXT, SPHEREPACK25_SPACINGS), "",
+          "| scan | points | normals | d | time [s] | vs BPA 3s | non-manifold V / E | self-intersecting pairs "
+          "| holes | components | unreached points (components started) | Q_avg | E_RMS % |",
+          "|---|" + "---|" * 12]
+    for scan, name in scans:
+        b3 = ok_row(rows, name, "bpa3")
+        for method in SPHERE_PACKERS:
+            r = next((x for x in rows if x["cloud"] == name and x["method"] == method), None)
+            if r is None:
+                continue
+            normals = "MeshLab" if row_normals(r) == "meshlab" else "own"
+            d = r.get("info", {}).get("d")
+            dtext = ("default" if method == "spherepack" else "%.1f × spacing" % SPHEREPACK25_SPACINGS) + (
+                ", %.3g" % d if d else "")
+            if r.get("status") != "ok":
+                md.append("| %s | %s | %s | %s | %s |" % (scan, "{:,}".format(r["points"]), normals, dtext,
+                                                         r.get("status", "?").replace("|", "/")[:120]) + " — |" * 8)
+                continue
+            m = r["measures"]
+            vs = ("×%.2f" % (b3["time"] / r["time"])) if b3 and r["time"] > 0 and b3["time"] > 0 else "—"
+            md.append("| %s | %s | %s | %s | %s | %s | %d / %d | %s | %d | %s | %s | %s | %s |" % (
+                scan, "{:,}".format(r["points"]), normals, dtext, timed(r), vs, m["non_manifold_vertices"],
+                m["non_manifold_edges"], count_text(m.get("self_intersecting_pairs")), m["boundary_loops"],
+                count_text(m.get("components")), unreached_text(r), fmt(m["quality_mean"], ".4f"),
+                fmt(m["edge_rms_percent"], ".1f")))
+    md.append("")
+    return md
+
+
+SPEED_MIN_POINTS = 30000            # the speed check: clouds of at least this many points ...
+SLOPE_RANGE = (10000, 1000000)      # ... and the time's log-log slope over these sizes ...
+SLOPE_MAX = 1.1                     # ... at most this
+
+
+def speed_section(rows, level):
+    """The speed check of Sphere Packing at d = 2.5 × spacing: against Ball Pivoting (r = 3 × spacing)
+    on every cloud of at least SPEED_MIN_POINTS points, and the log-log slope of its time over the
+    generated clouds from 10k to 1M points, per shape."""
+    sp = "spherepack25"
+    clouds = sorted({r["cloud"] for r in rows if r["points"] >= SPEED_MIN_POINTS
+                     and r["method"] in (sp, "bpa3")}, key=lambda n: cloud_sort_key(n, rows))
+    if not clouds:
+        return []
+    md = ["%s Speed: Sphere Packing at d = %.1f × spacing against Ball Pivoting (r = 3 × spacing)" % (
+              "#" * level, SPHEREPACK25_SPACINGS), "",
+          "On every cloud of %s points or more: Ball Pivoting's time / ours (above 1: ours is faster), "
+          "with the marks of the time column of the tables; \"same run\" says whether both rows come from "
+          "one invocation. The target: faster on every such cloud, and a log–log slope of the time of at "
+          "most %.1f from %s to %s points." % ("{:,}".format(SPEED_MIN_POINTS), SLOPE_MAX,
+                                               size_label(SLOPE_RANGE[0]), size_label(SLOPE_RANGE[1])), "",
+          "| cloud | points | %s [s] | %s [s] | BPA 3s / ours | faster | same run |" % (
+              METHODS[sp][1], METHODS["bpa3"][1]),
+          "|---|" + "---|" * 6]
+    faster, slower, missing = [], [], []
+    for c in clouds:
+        a, b = ok_row(rows, c, sp), ok_row(rows, c, "bpa3")
+        pts = next(r for r in rows if r["cloud"] == c)["points"]
+        if not (a and b and a["time"] > 0):
+            missing.append(c)
+            md.append("| %s | %s | %s | %s | — | — | — |" % (c, "{:,}".format(pts), timed(a) if a else "no row",
+                                                            timed(b) if b else "no row"))
+            continue
+        ratio = b["time"] / a["time"]
+        (faster if ratio > 1 else slower).append(c)
+        md.append("| %s | %s | %s | %s | ×%.2f | %s | %s |" % (
+            c, "{:,}".format(pts), timed(a), timed(b), ratio, "yes" if ratio > 1 else "**no**",
+            "yes" if a["run"] == b["run"] else "no (%s / %s)" % (a["run"], b["run"])))
+    md += ["", "Faster than Ball Pivoting (r = 3 × spacing) on %d of %d clouds with both rows%s%s." % (
+        len(faster), len(faster) + len(slower), "; not on: " + ", ".join(slower) if slower else "",
+        "; without both rows: " + ", ".join(missing) if missing else ""), ""]
+
+    # Slope over the generated clouds of SLOPE_RANGE, per shape: of the rows' time (the scaling plot's,
+    # in process up to --inproc-max-points, the filter's log above) and of the filter's own log time
+    # (one clock at every size).
+    lo, hi = SLOPE_RANGE
+    fits = []
+    for s in SHAPES:
+        pts = sorted((r["points"], r["time"], r.get("time_filter_log"), r.get("time_source")) for r in rows
+                     if r.get("shape") == s and r["method"] == sp and r.get("status") == "ok"
+                     and lo <= r["points"] <= hi and r["time"] > 0)
+        if len({p[0] for p in pts}) < 2:
+            continue
+        k = fit_slope([p[0] for p in pts], [p[1] for p in pts])[0]
+        logs = [p for p in pts if p[2]]
+        kl = fit_slope([p[0] for p in logs], [p[2] for p in logs])[0] if len({p[0] for p in logs}) >= 2 else None
+        full = pts[0][0] == lo and pts[-1][0] == hi
+        fits.append("| %s | %s%s | %s | %s | %s |" % (
+            s, ", ".join(size_label(p[0]) for p in pts), "" if full else " (not the whole range)",
+            "%.2f%s" % (k, "" if k <= SLOPE_MAX else " **> %.1f**" % SLOPE_MAX),
+            "—" if kl is None else "%.2f%s" % (kl, "" if kl <= SLOPE_MAX else " **> %.1f**" % SLOPE_MAX),
+            ", ".join(sorted({p[3] for p in pts}))))
+    if fits:
+        md += ["Log–log slope of %s's time over the generated clouds from %s to %s points, per shape: of the "
+               "tables' time, and of the filter's own log time (`Sphere Packing: time X s`, one clock at every "
+               "size; the tables' time is in process up to --inproc-max-points)." % (
+                   METHODS[sp][1], size_label(lo), size_label(hi)), "",
+               "| shape | sizes | slope of the time | slope of the log time | time sources |", "|---|" + "---|" * 4]
+        md += fits + [""]
+    return md
+
+
 def cloud_section(c, rows, level, image):
     """Markdown of one cloud: heading, table and (when `image` is not None) its histogram plot."""
     cr = [r for r in rows if r["cloud"] == c]
@@ -895,6 +1137,7 @@ def report(rows, ctx, command):
     made, slopes = plots(rows, ctx.out)
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     md = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
+    md += real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         hp = os.path.join("plots", "%s_histograms.png" % c)
         md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
@@ -940,6 +1183,7 @@ def publish(rows, ctx, command, slopes):
         return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
 
     full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
+    full += real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
     full += scaling_section(slopes, 2, image("scaling.png", docs), memory_fits(rows))
@@ -957,7 +1201,7 @@ def publish(rows, ctx, command, slopes):
                "recorded in `out/benchmark/results.jsonl` and the runs are listed below). The ratios "
                "against Ball Pivoting are the headline; absolute seconds depend on the machine and its "
                "load.", ""] + header_lines(rows, command)
-    summary += headline_section(clouds, rows, 3)
+    summary += headline_section(clouds, rows, 3) + real_scans_section(rows, 3) + speed_section(rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
     summary += scaling_section(slopes, 3, image("scaling.png", where), memory_fits(rows))
@@ -984,17 +1228,20 @@ class Context:
 def main():
     ap = argparse.ArgumentParser(prog="scripts/benchmark.sh", description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, and hand.ply)")
+    ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, hand and hand-ml)")
     ap.add_argument("--methods", default=",".join(RUN_ORDER),
                     help="comma-separated subset of: " + ", ".join(RUN_ORDER))
     ap.add_argument("--clouds", default=None,
-                    help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths "
-                         "(default: every shape at every size, and every cloud of the data folder)")
+                    help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths; "
+                         "a name with -ml appended (bunny-ml, sphere-10k-ml) is that cloud with MeshLab's normals "
+                         "(default: every shape at every size, and every cloud of the data folder with its own "
+                         "normals and with MeshLab's)")
     ap.add_argument("--sizes", default=None, help="sizes of the generated clouds, e.g. 10k,100k,1M")
     ap.add_argument("--shapes", default=",".join(SHAPES), help="shapes of the generated clouds")
     ap.add_argument("--no-data", action="store_true", help="skip the clouds of the data folder")
     ap.add_argument("--param", action="append", default=[], metavar="METHOD:NAME=VALUE",
-                    help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4")
+                    help="override a parameter of our filters' .mlx, e.g. spherepack:windowSize=4 (spherepack: "
+                         "both sphere packer methods)")
     ap.add_argument("--bpa-max-points", type=int, default=0,
                     help="skip Ball Pivoting with auto radius (and its remeshing) on generated clouds larger "
                          "than this (it grows about quadratically on random samples); 0: no limit")
@@ -1036,9 +1283,10 @@ def main():
     ctx.run_stamp = datetime.datetime.now().strftime("%Y-%m-%d %H:%M")
     ctx.params = {}
     for p in a.param:
-        m = re.match(r"^(spherepack|g2s):([A-Za-z0-9_]+)=(.*)$", p)
+        m = re.match(r"^(spherepack|spherepack25|g2s):([A-Za-z0-9_]+)=(.*)$", p)
         if not m:
-            raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack or g2s, got '%s'" % p)
+            raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack (both sphere packer "
+                             "methods), spherepack25 or g2s, got '%s'" % p)
         ctx.params.setdefault(m.group(1), []).append((m.group(2), m.group(3)))
     os.makedirs(ctx.out, exist_ok=True)
     results = os.path.join(ctx.out, "results.jsonl")
@@ -1057,7 +1305,7 @@ def main():
             shapes = [s.strip() for s in a.shapes.split(",") if s.strip()]
             specs = ["%s-%s" % (s, size_label(n)) for s in shapes for n in sizes]
             if not a.no_data:
-                specs += ["hand"] if a.quick else list(DATA)
+                specs += QUICK_DATA_CLOUDS if a.quick else DATA_CLOUDS
         for spec in specs:
             cloud = prepare_cloud(spec, ctx)
             if cloud is None:

@@ -4,8 +4,9 @@
 # scripts/benchmark.py, which writes out/benchmark/results.md (tables), results.jsonl and plots/.
 #
 #   scripts/benchmark.sh                 every generated cloud (sphere, torus, patch at 10k..1M
-#                                        points) and every cloud of ../shared/data: long (hours)
-#   scripts/benchmark.sh --quick         10k and 30k points and hand.ply: minutes
+#                                        points) and every cloud of ../shared/data, with its own
+#                                        normals and with MeshLab's (bunny-ml, ...): long (hours)
+#   scripts/benchmark.sh --quick         10k and 30k points, hand and hand-ml: minutes
 #   scripts/benchmark.sh --methods spherepack,bpa --clouds torus-60k      one method/cloud
 #   scripts/benchmark.sh --report-only   rebuild the tables and plots from results.jsonl
 #   scripts/benchmark.sh --report-only --remeasure   measure the saved meshes again (new measures or
