@@ -95,7 +95,7 @@ public:
     while (!queue_.empty()) {
       int popped = 0;
       const Candidate cd = queue_.pop(&popped);
-      if ((++pops & 127) == 0)
+      if ((++pops & 31) == 0)
         progress_.update(std::min(0.99, double(graph_.vertexCount()) / double(expected_)));
 
       vcg::Point3d x;
@@ -174,16 +174,41 @@ private:
     const vcg::Point3d x = pos[v];
     near_.clear();
     vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
+    // The circle of v and a partner u crosses the surface about twice, once on each side of the
+    // edge v–u; where splats overlap, several of them give a candidate at nearly the same place.
+    // Of those (same partner, same side, within d/2 of each other), the one nearest to its
+    // splat's point is queued: the splat is the best approximation of the surface there, and the
+    // queue does not carry the others only to drop them as too close when popped.
+    found_.clear();
+    const vcg::Point3d& nv = graph_.normal(v);
     enumerateCandidates(v, pos, d_, grid_, splats_, lists_,
                         [&](std::uint32_t u, std::uint32_t s, int root, const vcg::Point3d& y) {
                           // A candidate already closer than d to a vertex can never be inserted
                           // (vertices are never removed): drop it now instead of when popped.
                           for (std::uint32_t w : near_)
                             if (w != v && w != u && (pos[w] - y).SquaredNorm() < d2_) return;
-                          queue_.push(levelOf(v, u, y), Candidate{v, u, s, static_cast<std::uint8_t>(root)});
-                          ++st_.candidates;
+                          const double score = (y - in_.points[s]).SquaredNorm();
+                          const bool side = (((pos[u] - x) ^ (y - x)) * nv) >= 0;
+                          for (Found& f : found_)
+                            if (f.u == u && f.side == side && (f.y - y).SquaredNorm() < 0.25 * d2_) {
+                              if (score < f.score) f = Found{y, score, u, s, std::uint8_t(root), side};
+                              return;
+                            }
+                          found_.push_back(Found{y, score, u, s, std::uint8_t(root), side});
                         });
+    for (const Found& f : found_) {
+      queue_.push(levelOf(v, f.u, f.y), Candidate{v, f.u, f.splat, f.root});
+      ++st_.candidates;
+    }
   }
+  struct Found {
+    vcg::Point3d y;
+    double score;
+    std::uint32_t u, splat;
+    std::uint8_t root;
+    bool side;
+  };
+  std::vector<Found> found_;
 
   void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
     const auto& pos = graph_.positions();

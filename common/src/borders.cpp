@@ -25,23 +25,30 @@ std::uint32_t BorderGraph::addVertex(const vcg::Point3d& position, const vcg::Po
   return static_cast<std::uint32_t>(pos_.size() - 1);
 }
 
+namespace {
+// A monotonic function of the polar angle of (x, y), in [0, 4) (a full turn is 4): the same
+// cyclic order as atan2, which only orders are taken from, without the trigonometry.
+inline double pseudoAngle(double x, double y) {
+  if (x == 0 && y == 0) return 0;
+  if (y >= 0) return x >= 0 ? y / (x + y) : 1 - x / (y - x);
+  return x < 0 ? 2 - y / (-x - y) : 3 + x / (x - y);
+}
+constexpr double kTurn = 4;
+// Counter-clockwise turn from angle a to angle b, in [0, kTurn).
+inline double ccw(double a, double b) {
+  double t = b - a;
+  while (t < 0) t += kTurn;
+  while (t >= kTurn) t -= kTurn;
+  return t;
+}
+} // namespace
+
 double BorderGraph::angleAt(std::uint32_t v, const vcg::Point3d& x) const {
   vcg::Point3d e1, e2;
   tangentFrame(nrm_[v], e1, e2);
   const vcg::Point3d t = x - pos_[v];
-  return std::atan2(t * e2, t * e1);
+  return pseudoAngle(t * e1, t * e2);
 }
-
-namespace {
-constexpr double kTwoPi = 6.283185307179586476925286766559;
-// Counter-clockwise turn from angle a to angle b, in [0, 2π).
-inline double ccw(double a, double b) {
-  double t = b - a;
-  while (t < 0) t += kTwoPi;
-  while (t >= kTwoPi) t -= kTwoPi;
-  return t;
-}
-} // namespace
 
 int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {
   const Rotation& r = rot_[v];
@@ -51,7 +58,7 @@ int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {
   const double* a = r.angle;
   // The gap k runs counter-clockwise from neighbour k to neighbour k+1.
   int best = 0;
-  double bestSlack = -kTwoPi - 1;
+  double bestSlack = -kTurn - 1;
   for (int k = 0; k < r.degree; ++k) {
     const double span = ccw(a[k], a[(k + 1) % r.degree]);
     const double into = ccw(a[k], th);
@@ -71,7 +78,7 @@ bool BorderGraph::gapContains(std::uint32_t v, int gap, const vcg::Point3d& targ
   tangentFrame(n, e1, e2);
   auto angle = [&](const vcg::Point3d& x) {
     const vcg::Point3d t = x - pos_[v];
-    return std::atan2(t * e2, t * e1);
+    return pseudoAngle(t * e1, t * e2);
   };
   const double a0 = angle(pos_[r.nb[gap]]), a1 = angle(pos_[r.nb[(gap + 1) % r.degree]]);
   return ccw(a0, angle(target)) < ccw(a0, a1);

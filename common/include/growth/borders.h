@@ -56,7 +56,8 @@ public:
   size_t edgeCount() const { return edges_; }
 
   // Angle of the direction from v to x, projected onto the plane orthogonal to normal(v), in
-  // v's tangent frame; in (−π, π].
+  // v's tangent frame, as a pseudo-angle: a monotonic function of the polar angle in [0, 4) (a
+  // full turn is 4), which gives the same cyclic order without the trigonometry.
   double angleAt(std::uint32_t v, const vcg::Point3d& x) const;
 
   // Corner of v whose gap contains the projected direction towards `target`: the slot k of its
