@@ -305,8 +305,6 @@ constexpr double kCellEdges = 1.5;
 constexpr double kMaxCellsPerAxis = 4.0;
 // Work allowed for the long faces, in units of the number of faces.
 constexpr double kLongBudget = 4.0;
-// At most 2^20 cells along an axis (cell coordinates take 21 bits in a key).
-constexpr double kMaxCellsAcross = double(1 << 20);
 
 struct Box {
   double lo[3], hi[3];
@@ -342,26 +340,22 @@ inline bool referenceCellIs(const Cell& a, const Cell& b, const Cell& at) {
   return std::max(a.c[0], b.c[0]) == at.c[0] && std::max(a.c[1], b.c[1]) == at.c[1] && std::max(a.c[2], b.c[2]) == at.c[2];
 }
 
-struct Entry {
-  std::uint64_t key;
-  std::uint32_t face;
-};
-
-// Stable LSD radix sort by the low `bits` bits of the keys.
-void sortEntries(std::vector<Entry>& entries, int bits) {
+// Stable LSD radix sort of 64-bit entries by their bits [low, low + bits).
+void sortEntries(std::vector<std::uint64_t>& entries, int low, int bits) {
   constexpr int kDigit = 11;
-  std::vector<Entry> tmp(entries.size());
+  constexpr std::uint64_t kMask = (1u << kDigit) - 1;
+  std::vector<std::uint64_t> tmp(entries.size());
   std::vector<std::uint32_t> count(size_t(1) << kDigit);
-  for (int shift = 0; shift < bits; shift += kDigit) {
+  for (int shift = low; shift < low + bits; shift += kDigit) {
     std::fill(count.begin(), count.end(), 0u);
-    for (const Entry& e : entries) ++count[(e.key >> shift) & ((1u << kDigit) - 1)];
+    for (const std::uint64_t e : entries) ++count[(e >> shift) & kMask];
     std::uint32_t at = 0;
     for (auto& c : count) {
       const std::uint32_t k = c;
       c = at;
       at += k;
     }
-    for (const Entry& e : entries) tmp[count[(e.key >> shift) & ((1u << kDigit) - 1)]++] = e;
+    for (const std::uint64_t e : entries) tmp[count[(e >> shift) & kMask]++] = e;
     entries.swap(tmp);
   }
 }
@@ -445,7 +439,12 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
   Grid grid;
   grid.origin = Point(all.lo[0], all.lo[1], all.lo[2]);
   const double across = std::max({all.hi[0] - all.lo[0], all.hi[1] - all.lo[1], all.hi[2] - all.lo[2]});
-  grid.side = std::max(kCellEdges * edges / double(3 * n), across / kMaxCellsAcross);
+  // An entry packs a cell's Morton code above a face index of faceBits bits in 64 bits, so at most
+  // 2^cellBits − 1 cells along an axis (cellBits = 14 for a million faces): the cells grow if needed.
+  int faceBits = 1;
+  while ((std::uint64_t(1) << faceBits) < n) ++faceBits;
+  const int cellBits = std::min(21, (64 - faceBits) / 3);
+  grid.side = std::max(kCellEdges * edges / double(3 * n), across / double((1u << cellBits) - 1));
   if (!(grid.side > 0) || !std::isfinite(grid.side)) grid.side = 1; // every face a single point
   for (;;) {
     double longCost = 0;
@@ -459,7 +458,8 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
     grid.side *= 2;
   }
   int bits = 1; // per axis, for the largest cell coordinate
-  while (bits < 21 && double(std::uint64_t(1) << bits) <= across / grid.side + 1) ++bits;
+  while (bits < cellBits && double(std::uint64_t(1) << bits) <= across / grid.side) ++bits;
+  const std::uint64_t faceMask = (std::uint64_t(1) << faceBits) - 1;
   std::vector<Cell> lo(n);
   std::vector<char> isLong(n);
   std::vector<std::uint32_t> longFaces;
@@ -482,28 +482,29 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
     partStart[size_t(part) + 1] = count;
   });
   for (int part = 0; part < parts; ++part) partStart[size_t(part) + 1] += partStart[size_t(part)];
-  std::vector<Entry> entries(partStart.back());
+  std::vector<std::uint64_t> entries(partStart.back());
   parallelFor(n, parts, [&](size_t begin, size_t end, int part) {
-    Entry* out = entries.data() + partStart[size_t(part)];
+    std::uint64_t* out = entries.data() + partStart[size_t(part)];
     for (size_t i = begin; i < end; ++i) {
       if (isLong[i]) continue;
       const Cell hi = grid.cellOf(box[i].hi);
       for (std::int32_t x = lo[i].c[0]; x <= hi.c[0]; ++x)
         for (std::int32_t y = lo[i].c[1]; y <= hi.c[1]; ++y)
-          for (std::int32_t z = lo[i].c[2]; z <= hi.c[2]; ++z) *out++ = {grid.key(x, y, z), std::uint32_t(i)};
+          for (std::int32_t z = lo[i].c[2]; z <= hi.c[2]; ++z) *out++ = grid.key(x, y, z) << faceBits | i;
     }
   });
-  sortEntries(entries, 3 * bits);
+  sortEntries(entries, faceBits, 3 * bits);
   std::vector<std::uint32_t> runStart;
   std::vector<Cell> runCell;
   std::vector<std::uint64_t> runKey;
   for (size_t e = 0; e < entries.size(); ++e)
-    if (e == 0 || entries[e].key != entries[e - 1].key) {
+    if (e == 0 || entries[e] >> faceBits != entries[e - 1] >> faceBits) {
+      const std::uint64_t key = entries[e] >> faceBits;
       runStart.push_back(std::uint32_t(e));
-      runKey.push_back(entries[e].key);
+      runKey.push_back(key);
       Cell c = {{0, 0, 0}}; // the key's bits are the coordinates' bits, interleaved
       for (int b = 0; b < bits; ++b)
-        for (int k = 0; k < 3; ++k) c.c[k] |= std::int32_t((entries[e].key >> (3 * b + k)) & 1u) << b;
+        for (int k = 0; k < 3; ++k) c.c[k] |= std::int32_t((key >> (3 * b + k)) & 1u) << b;
       runCell.push_back(c);
     }
   runStart.push_back(std::uint32_t(entries.size()));
@@ -521,9 +522,9 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
     PairList& out = found[size_t(w)];
     for (size_t r = begin; r < end; ++r)
       for (std::uint32_t x = runStart[r]; x < runStart[r + 1]; ++x) {
-        const std::uint32_t i = entries[x].face;
+        const std::uint32_t i = std::uint32_t(entries[x] & faceMask);
         for (std::uint32_t y = x + 1; y < runStart[r + 1]; ++y) {
-          const std::uint32_t j = entries[y].face;
+          const std::uint32_t j = std::uint32_t(entries[y] & faceMask);
           if (boxesOverlap(box[i], box[j]) && referenceCellIs(lo[i], lo[j], runCell[r])) test(i, j, out);
         }
       }
@@ -549,7 +550,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
               if (it == runKey.end() || *it != key) continue;
               const size_t r = size_t(it - runKey.begin());
               for (std::uint32_t e = runStart[r]; e < runStart[r + 1]; ++e) {
-                const std::uint32_t j = entries[e].face;
+                const std::uint32_t j = std::uint32_t(entries[e] & faceMask);
                 if (boxesOverlap(box[i], box[j]) && referenceCellIs(lo[i], lo[j], runCell[r])) test(i, j, out);
               }
             }
