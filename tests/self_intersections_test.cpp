@@ -200,6 +200,26 @@ TEST(SelfIntersections, SharedEdge) {
   EXPECT_FALSE(meetAtEdge(u2, w2, {0.9, 1.1, z}, {1.3, 0.7, std::nextafter(z, 1.0)}));
 }
 
+TEST(SelfIntersections, FoldsOnInexactPlanesAreDecidedExactly) {
+  // f = (a, b, c) with coordinates k·2^-20, |k| < 2^30, and g = (b, a, d) with d = a + 2(b − a) +
+  // (c − a) exactly (the same lattice): coplanar, on c's side of the edge, a fold-over. Evaluated
+  // in floating point, the plane side of d mostly comes out nonzero; one lattice unit off the plane
+  // the faces meet at a dihedral angle and do not intersect.
+  growth::Random rng(31);
+  const double unit = std::ldexp(1.0, -20);
+  auto coord = [&]() { return double(std::int64_t(rng.next() % (std::uint64_t(1) << 30)) - (std::int64_t(1) << 29)) * unit; };
+  int roundedOff = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Point3d a(coord(), coord(), coord()), b(coord(), coord(), coord()), c(coord(), coord(), coord());
+    const Point3d d = a + (b - a) * 2.0 + (c - a); // exact: integers below 2^33 times 2^-20
+    const Point3d n = (b - a) ^ (c - a);
+    roundedOff += n * (d - a) != 0;
+    EXPECT_TRUE(meetAtEdge(a, b, c, d)) << trial;
+    EXPECT_FALSE(meetAtEdge(a, b, c, d + Point3d(0, 0, unit))) << trial;
+  }
+  EXPECT_GT(roundedOff, 1000); // the naive side test would call most of them non-coplanar
+}
+
 TEST(SelfIntersections, DuplicateFaces) {
   const std::vector<Point3d> pos{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 5}};
   EXPECT_TRUE(facesIntersect(pos, {0, 1, 2}, {0, 1, 2}));
