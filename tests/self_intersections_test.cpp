@@ -582,6 +582,34 @@ TEST(SelfIntersections, SmallSphereWithAPushedVertexMatchesTheBruteForce) {
   expectSameAsBruteForce(pos, faces, nullptr, 5);
 }
 
+TEST(SelfIntersections, RemovalCanLeaveANonManifoldVertex) {
+  // A flat hexagonal fan around vertex 0; faces 0 and 3 (opposite) are each pierced by two small
+  // vertical triangles. Removing the two fan faces (in two pairs each) clears every pair but
+  // splits the fan into two: vertex 0 is non-manifold until removeNonManifoldVertices runs.
+  std::vector<Point3d> pos{{0, 0, 0}};
+  for (int i = 0; i < 6; ++i) pos.emplace_back(std::cos(M_PI / 3 * i), std::sin(M_PI / 3 * i), 0);
+  std::vector<Triangle> faces;
+  for (std::uint32_t i = 0; i < 6; ++i) faces.push_back({0, 1 + i, 1 + (i + 1) % 6});
+  for (std::uint32_t f : {0u, 3u}) {
+    const Point3d centre = (pos[faces[f][0]] + pos[faces[f][1]] + pos[faces[f][2]]) / 3.0;
+    for (double dx : {-0.05, 0.05}) {
+      const std::uint32_t b = std::uint32_t(pos.size());
+      pos.insert(pos.end(), {centre + Point3d(dx, 0, -0.1), centre + Point3d(dx, 0, 0.1), centre + Point3d(dx, 0.03, 0)});
+      faces.push_back({b, b + 1, b + 2});
+    }
+  }
+  EXPECT_EQ(findSelfIntersections(pos, faces), (Pairs{{0, 6}, {0, 7}, {3, 8}, {3, 9}}));
+  std::vector<char> alive(faces.size(), 1);
+  EXPECT_EQ(removeSelfIntersections(pos, faces, alive), 2u);
+  EXPECT_EQ(alive[0], 0);
+  EXPECT_EQ(alive[3], 0);
+  EXPECT_TRUE(findSelfIntersections(pos, faces, &alive).empty());
+  EXPECT_EQ(growth::countNonManifoldVertices(faces, pos.size(), alive), 1u);
+  const growth::ManifoldCleanupStat st = growth::removeNonManifoldVertices(faces, pos.size(), alive);
+  EXPECT_EQ(st.facesRemoved, 2u);
+  EXPECT_EQ(growth::countNonManifoldVertices(faces, pos.size(), alive), 0u);
+}
+
 TEST(SelfIntersections, GreedyRemovalTakesTheFaceInMostPairsAndTheLowestIndexOnTies) {
   // Face 0 crosses faces 1, 2 and 3 (three disjoint small triangles stacked along its plane's
   // normal... here: three vertical triangles standing through a large horizontal one); faces 4

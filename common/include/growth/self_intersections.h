@@ -10,7 +10,8 @@
 //   on opposite sides of it, do not intersect;
 // - all three (duplicate faces, in either orientation): always.
 // Sharing is by vertex index: two vertices at the same position are different vertices, so the
-// faces of an unwelded mesh that touch along their borders intersect. A face whose vertices are
+// faces of an unwelded mesh that touch along their borders intersect, and the faces around a
+// non-manifold edge are tested in pairs like any two faces sharing an edge. A face whose vertices are
 // distinct but collinear (a zero-area sliver) is the segment or point it covers and is tested
 // like any other face with that point set (CGAL instead reports it paired with itself and tests
 // it against nothing). Faces with a repeated vertex index, dead faces (alive[f] == 0) and faces
