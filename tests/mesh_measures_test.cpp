@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 using growth::MeshMeasures;
@@ -318,6 +319,38 @@ TEST(MeshMeasures, DuplicateFaces) {
   EXPECT_EQ(growth::countDuplicateFaces(m), 2u);
   EXPECT_EQ(r.nonManifoldEdges, 3u);  // the tripled triangle's edges have three or four faces
   EXPECT_EQ(r.degenerateFaces, 0u);
+  EXPECT_EQ(r.selfIntersectingPairs, 3u); // each two of the three copies; the fourth face is flat beside them
+}
+
+TEST(MeshMeasures, SelfIntersectingPairs) {
+  // A closed torus has none.
+  CMeshO torus;
+  gridTorus(torus, 24, 12);
+  EXPECT_EQ(measure(torus).selfIntersectingPairs, 0u);
+  EXPECT_EQ(growth::countSelfIntersections(torus), 0u);
+  // Vertex 0, on the outer equator at (3, 0, 0), pulled across the tube to (0.5, 0, 0): its six
+  // faces cross the inner side of the tube.
+  torus.vert[0].P() = vcg::Point3f(0.5f, 0, 0);
+  const MeshMeasures r = measure(torus);
+  EXPECT_GT(r.selfIntersectingPairs, 0u);
+  EXPECT_EQ(growth::countSelfIntersections(torus), r.selfIntersectingPairs);
+  const std::string json = r.toJson();
+  EXPECT_NE(json.find("\"self_intersecting_pairs\": " + std::to_string(r.selfIntersectingPairs)), std::string::npos);
+  EXPECT_LT(json.find("\"duplicate_faces\""), json.find("\"self_intersecting_pairs\""));
+  // Deleted faces take no part: without the moved vertex's faces there is none left.
+  for (auto& f : torus.face)
+    if (f.V(0) == &torus.vert[0] || f.V(1) == &torus.vert[0] || f.V(2) == &torus.vert[0])
+      vcg::tri::Allocator<CMeshO>::DeleteFace(torus, f);
+  EXPECT_EQ(growth::countSelfIntersections(torus), 0u);
+  EXPECT_EQ(measure(torus).selfIntersectingPairs, 0u);
+
+  // Two triangles crossing, and the same two apart.
+  CMeshO crossing;
+  makeMesh(crossing, {Point3d(0, 0, 0), Point3d(2, 0, 0), Point3d(0, 2, 0), Point3d(0.5, 0.5, -1), Point3d(0.5, 0.5, 1), Point3d(2, 2, 0)},
+           {{0, 1, 2}, {3, 4, 5}});
+  EXPECT_EQ(growth::countSelfIntersections(crossing), 1u);
+  crossing.vert[3].P() = vcg::Point3f(0.5f, 0.5f, 0.25f);
+  EXPECT_EQ(growth::countSelfIntersections(crossing), 0u);
 }
 
 TEST(MeshMeasures, DeletedElementsAreIgnoredAndUnreferencedCounted) {

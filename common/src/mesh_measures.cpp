@@ -3,6 +3,7 @@
 #include <growth/mesh_measures.h>
 #include <growth/morton.h>
 #include <growth/point_grid.h>
+#include <growth/self_intersections.h>
 
 #include <common/ml_mesh_type.h>
 
@@ -252,6 +253,18 @@ MeshTopology topology(const Compact& c, const Edges& e) {
   return t;
 }
 
+// Self-intersecting pairs among the proper faces (exact, growth/self_intersections.h).
+size_t selfIntersectingPairs(const Compact& c) {
+  std::vector<Triangle> faces(c.face.size(), Triangle{{0, 0, 0}});
+  std::vector<char> alive(c.face.size(), 0);
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    if (!c.proper[f]) continue;
+    for (int k = 0; k < 3; ++k) faces[f][size_t(k)] = std::uint32_t(c.face[f][size_t(k)]);
+    alive[f] = 1;
+  }
+  return findSelfIntersections(c.vert, faces, &alive).size();
+}
+
 double angleBetween(const vcg::Point3d& u, const vcg::Point3d& w) {
   return std::atan2((u ^ w).Norm(), u * w);
 }
@@ -323,6 +336,7 @@ size_t countInconsistentEdges(const CMeshO& m) { return measureTopology(m).incon
 bool isConsistentlyOriented(const CMeshO& m) { return measureTopology(m).inconsistentEdges == 0; }
 size_t countDegenerateFaces(const CMeshO& m) { return measureTopology(m).degenerateFaces; }
 size_t countDuplicateFaces(const CMeshO& m) { return measureTopology(m).duplicateFaces; }
+size_t countSelfIntersections(const CMeshO& m) { return selfIntersectingPairs(compact(m)); }
 
 // --- Distance of points to the mesh ---
 
@@ -550,6 +564,7 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   m.inconsistentEdges = t.inconsistentEdges;
   m.degenerateFaces = t.degenerateFaces;
   m.duplicateFaces = t.duplicateFaces;
+  m.selfIntersectingPairs = selfIntersectingPairs(c);
   const size_t properFaces = size_t(std::count(c.proper.begin(), c.proper.end(), 1));
   m.eulerCharacteristic = int(m.vertices - m.unreferencedVertices) - int(m.edges) + int(properFaces);
 
@@ -666,6 +681,7 @@ std::string MeshMeasures::toJson() const {
   field("inconsistent_edges", count(inconsistentEdges));
   field("degenerate_faces", count(degenerateFaces));
   field("duplicate_faces", count(duplicateFaces));
+  field("self_intersecting_pairs", count(selfIntersectingPairs));
   field("euler_characteristic", std::to_string(eulerCharacteristic));
   if (hasCloud) {
     field("cloud_points", count(cloudPoints));

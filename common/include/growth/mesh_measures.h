@@ -25,6 +25,10 @@
 //   height is zero up to float storage (height <= 4·FLT_EPSILON·max|coordinate|) is degenerate
 //   too, but still a face: its Q_t and QF are ~0 and it counts in the topology. Duplicate faces
 //   are faces with the same vertex set as an earlier one (any orientation).
+// - Self-intersecting pairs: pairs of faces that meet other than in the vertices and edge they
+//   share, decided exactly (growth/self_intersections.h: faces sharing an edge count only when
+//   folded onto each other, duplicate faces always count); faces with a repeated vertex take no
+//   part.
 // - Given the input cloud: the distance of every input point to the nearest face (exact point–
 //   triangle distance through a bounding-volume hierarchy), its mean and maximum, and
 //   μd % = mean distance / the cloud's mean nearest-neighbour spacing (growth::meanSpacing) · 100
@@ -97,6 +101,7 @@ struct MeshMeasures {
   size_t inconsistentEdges = 0;     // two-face edges traversed in the same direction by both
   size_t degenerateFaces = 0;       // repeated vertex or zero area
   size_t duplicateFaces = 0;        // same vertex set as an earlier face
+  size_t selfIntersectingPairs = 0; // face pairs meeting beyond their shared vertices and edge
   int eulerCharacteristic = 0;      // V − E + F over the referenced vertices and proper faces
 
   // Distance of the input cloud to the mesh (only when a cloud was given)
@@ -142,6 +147,7 @@ size_t countInconsistentEdges(const CMeshO& mesh);
 bool isConsistentlyOriented(const CMeshO& mesh);
 size_t countDegenerateFaces(const CMeshO& mesh);
 size_t countDuplicateFaces(const CMeshO& mesh);
+size_t countSelfIntersections(const CMeshO& mesh); // self-intersecting face pairs
 
 // Exact distance from points to the nearest live face of a mesh, in double, through a bounding
 // volume hierarchy over the faces (built once; a query costs about log(faces)). The mesh may be
