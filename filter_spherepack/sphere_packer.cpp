@@ -15,9 +15,11 @@
 #include <growth/morton.h>
 #include <growth/progress.h>
 #include <growth/radix_order.h>
+#include <growth/self_intersections.h>
 #include <growth/region_triangulation.h>
 #include <growth/splats.h>
 #include <growth/stopwatch.h>
+#include <growth/stored_positions.h>
 #include <growth/vertex_grid.h>
 
 #include <common/ml_mesh_type.h>
@@ -594,12 +596,27 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   // edge with three. The fewest faces are removed: the extra fans of every non-manifold vertex
   // (Robust G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an
   // edge too. Every edge left is still an edge of the packing (>= d).
+  // Then no two faces may intersect (two sheets of a thin part or of misregistered scans meshed
+  // through each other, a fold of the ear cut): of each intersecting pair, faces are removed
+  // greedily (the one in most pairs first, growth/self_intersections.h), and the fans that this
+  // leaves at a vertex are cleaned up again.
   {
     std::vector<char> alive(faces.size(), 1);
-    const ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+    ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
     st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
     st.facesRemoved = mc.facesRemoved;
-    if (mc.facesRemoved > 0) {
+    {
+      // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not
+      // make faces that nearly touch intersect.
+      st.selfIntersectionFacesRemoved =
+          removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
+    }
+    if (st.selfIntersectionFacesRemoved > 0) {
+      mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+      st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;
+      st.facesRemoved += mc.facesRemoved + st.selfIntersectionFacesRemoved;
+    }
+    if (st.facesRemoved > 0) {
       size_t w = 0;
       for (size_t f = 0; f < faces.size(); ++f)
         if (alive[f]) faces[w++] = faces[f];
@@ -673,9 +690,11 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                           "re-orient the normals.");
   if (st.facesRemoved > 0)
     st.warnings.push_back("The packing was not manifold at " + std::to_string(st.nonManifoldVerticesRemoved) +
-                          " vertices; " + std::to_string(st.facesRemoved) + " faces were removed there (the "
-                          "fewest that make it manifold), leaving holes. Usual causes: noise beyond d/2 (paper, "
-                          "section 5.3: use a larger d), thin parts (a smaller d), misregistered scans.");
+                          " vertices and had " + std::to_string(st.selfIntersectionFacesRemoved) +
+                          " faces through others; " + std::to_string(st.facesRemoved) + " faces were removed "
+                          "there (the fewest that make it manifold and free of intersections), leaving holes. "
+                          "Usual causes: noise beyond d/2 (paper, section 5.3: use a larger d), thin parts (a "
+                          "smaller d), misregistered scans.");
   if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: the clean-up above
     throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
   if (st.unreachedPoints * 100 > in.points.size())

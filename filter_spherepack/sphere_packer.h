@@ -97,7 +97,8 @@ struct Stat {
                                  // part of the cloud the growth had not reached when it stopped
   size_t nonManifoldVerticesRemoved = 0; // vertices of the triangulated packing with more than one
                                  // fan of faces (or on an edge with more than two), made manifold
-  size_t facesRemoved = 0;       // faces removed to do so (the fewest: the extra fans)
+  size_t selfIntersectionFacesRemoved = 0; // faces removed because they intersected others
+  size_t facesRemoved = 0;       // faces removed in all (the extra fans, the intersecting faces)
   size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan (0)
   size_t nonManifoldEdges = 0;   // output edges with more than two faces (0)
   size_t boundaryLoops = 0;      // boundary loops of the output (holes, including the ∂max ones)

@@ -73,6 +73,7 @@ sp::Params paperParams() {
 void expectClosedManifoldMesh(const Run& r, int euler) {
   const double d = r.stat.sphereDiameter;
   const auto& m = r.m;
+  EXPECT_EQ(m.selfIntersectingPairs, 0u);
   EXPECT_GT(m.faces, 1000u);
   // Every edge and every pair of vertices at least d apart (float storage: relative 1e-5).
   EXPECT_GE(m.edgeMin, d * (1 - 1e-5));
@@ -248,6 +249,8 @@ TEST(SpherePacker, NoiseFarBeyondHalfDIsMadeManifoldWithAWarning) {
   ASSERT_FALSE(r->stat.warnings.empty());
   EXPECT_GT(r->stat.nonManifoldVerticesRemoved, 0u); // the packing itself was not manifold here
   EXPECT_GT(r->stat.facesRemoved, 0u);
+  EXPECT_GT(r->stat.selfIntersectionFacesRemoved, 0u); // and faces through others
+  EXPECT_EQ(r->m.selfIntersectingPairs, 0u);
   bool mentionsNoise = false;
   for (const auto& w : r->stat.warnings) mentionsNoise = mentionsNoise || w.find("noise") != std::string::npos;
   EXPECT_TRUE(mentionsNoise);

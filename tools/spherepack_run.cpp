@@ -129,10 +129,10 @@ int main(int argc, char** argv) {
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
-                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nnon_manifold_vertices_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
+                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,
                 st.rejectedInconsistent, st.unreachedPoints, st.componentsStarted, st.nonManifoldVerticesRemoved,
-                st.facesRemoved, st.nonManifoldVertices);
+                st.selfIntersectionFacesRemoved, st.facesRemoved, st.nonManifoldVertices);
     std::printf("seconds_input: %.4f\nseconds_box_grid: %.4f\nseconds_splats: %.4f\nseconds_growth: %.4f\n"
                 "seconds_triangulation: %.4f\n",
                 phase[0], phase[1], phase[2], phase[3], phase[4]);
@@ -146,9 +146,9 @@ int main(int argc, char** argv) {
       std::printf("e_avg: %.6g\ne_rms_percent: %.3f\ne_min: %.8g\nq_rms_percent: %.3f\nmin_vertex_distance: %.8g\n",
                   m.edgeMean, m.edgeRmsPercent, m.edgeMin, m.qualityRmsPercent, m.minVertexDistance);
       std::printf("boundary_edges: %zu\nboundary_loops: %zu\nnon_manifold_edges: %zu\nnon_manifold_vertices_measured: %zu\n"
-                  "inconsistent_edges: %zu\ncomponents: %zu\nunreferenced: %zu\neuler: %d\n",
+                  "inconsistent_edges: %zu\ncomponents: %zu\nunreferenced: %zu\neuler: %d\nself_intersecting_pairs: %zu\n",
                   m.boundaryEdges, m.boundaryLoops, m.nonManifoldEdges, m.nonManifoldVertices, m.inconsistentEdges,
-                  m.components, m.unreferencedVertices, m.eulerCharacteristic);
+                  m.components, m.unreferencedVertices, m.eulerCharacteristic, m.selfIntersectingPairs);
       if (generated) {
         double worst = 0;
         for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, vcg::Point3d::Construct(v.cP())));
