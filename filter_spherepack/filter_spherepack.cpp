@@ -155,7 +155,8 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       st.holes, st.boxesDTooLarge, st.boxes);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
-  Log("Sphere Packing: time %.3f s (input %.3f, box grid %.3f, splats %.3f, growth %.3f, regions %.3f)", st.seconds,
-      st.secondsInput, st.secondsBoxGrid, st.secondsSplats, st.secondsGrowth, st.secondsTriangulation);
+  Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "
+      "output %.3f)", st.seconds, st.secondsInput, st.secondsSplats, st.secondsBoxGrid, st.secondsGrowth,
+      st.secondsTriangulation, st.secondsCleanup, st.secondsOutput);
   return true;
 }

@@ -94,6 +94,7 @@ public:
   void run() {
     size_t pops = 0;
     std::vector<std::uint32_t> nearby;
+    std::vector<double> nearbyD2;
     while (!queue_.empty()) {
       int popped = 0;
       const Candidate cd = queue_.pop(&popped);
@@ -112,7 +113,10 @@ public:
         continue;
       }
       // Sec. 3.6: a candidate whose priority got worse since it was queued goes to its new level.
-      const int level = levelOf(cd.a, cd.b, x);
+      // (The corners of the parents the new edges go into, from the graph as it is now: the
+      // priority's and the insertion's.)
+      const int gapA = graph_.gapOf(cd.a, x), gapB = graph_.gapOf(cd.b, x);
+      const int level = levelOf(cd.a, cd.b, gapA, gapB);
       if (level > popped) {
         queue_.push(level, cd);
         ++st_.requeued;
@@ -123,13 +127,18 @@ public:
       // Sec. 3.6, fig. 4b: projected along the approximated surface normal, the new edges must not
       // cross existing edges within d in normal direction.
       const vcg::Point3d n = normalAt(x, cd.splat);
+      // One look-up for the crossing check and, when x is inserted, its candidates (enumerate()
+      // needs the vertices within 2d, inside the crossing radius).
       nearby.clear();
-      vgrid_.forEachInBall(x, crossingSearchRadius(d_), pos, [&](std::uint32_t v, double) { nearby.push_back(v); });
+      nearbyD2.clear();
+      vgrid_.forEachInBall(x, crossingSearchRadius(d_), pos, [&](std::uint32_t v, double d2) {
+        nearby.push_back(v);
+        nearbyD2.push_back(d2);
+      });
       if (newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
         ++st_.rejectedCrossing;
         continue;
       }
-      const int gapA = graph_.gapOf(cd.a, x), gapB = graph_.gapOf(cd.b, x);
       // The corners chosen at the parents (in their own planes, sec. 3.5) must also hold the new
       // edges in the projection along n used for the crossing check; when they do not, the edge
       // is too steep for the local normals to tell its side, and inserting it would twist the
@@ -142,7 +151,10 @@ public:
       if (!graph_.connect(c, cd.a, gapA, cd.b, gapB))
         throw std::logic_error("sphere packing: could not connect a new vertex"); // degrees checked above
       if (params_.checkInvariants) checkInvariants(c, cd.a, cd.b);
-      enumerate(c);
+      near_.clear();
+      for (size_t k = 0; k < nearby.size(); ++k)
+        if (nearbyD2[k] <= 4 * d2_) near_.push_back(nearby[k]);
+      enumerate(c, /*nearKnown=*/true);
     }
   }
 
@@ -166,16 +178,25 @@ private:
   int levelOf(std::uint32_t a, std::uint32_t b, const vcg::Point3d& x) const {
     const int da = graph_.degree(a), db = graph_.degree(b);
     if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
-    const int dist = w_ > 0 ? graph_.borderDistance(a, graph_.gapOf(a, x), b, graph_.gapOf(b, x), w_) : 0;
+    return levelOf(a, b, graph_.gapOf(a, x), graph_.gapOf(b, x));
+  }
+  // The same, given the corners of a and b that x falls into.
+  int levelOf(std::uint32_t a, std::uint32_t b, int gapA, int gapB) const {
+    const int da = graph_.degree(a), db = graph_.degree(b);
+    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
+    const int dist = w_ > 0 ? graph_.borderDistance(a, gapA, b, gapB, w_) : 0;
     return CandidatePriority::level(da, db, dist, w_);
   }
 
   // Sec. 3.4/4.4: new candidates with v as a parent, from the splats near v and their vertex lists.
-  void enumerate(std::uint32_t v) {
+  // near_: the vertices within 2d of v when nearKnown (a superset does as well), else looked up.
+  void enumerate(std::uint32_t v, bool nearKnown = false) {
     const auto& pos = graph_.positions();
     const vcg::Point3d x = pos[v];
-    near_.clear();
-    vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
+    if (!nearKnown) {
+      near_.clear();
+      vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
+    }
     // The circle of v and a partner u crosses the surface about twice, once on each side of the
     // edge v–u; where splats overlap, several of them give a candidate at nearly the same place.
     // Of those (same partner, same side, within d/2 of each other), the one nearest to its
@@ -370,7 +391,12 @@ bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>
 
 CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   CloudScale sc;
-  const SamplingEstimate e = estimateSampling(points, threads);
+  // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
+  // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
+  SamplingOptions options;
+  options.maxSamples = 8000;
+  options.maxNoiseSamples = 3000;
+  const SamplingEstimate e = estimateSampling(points, options, threads);
   if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
   sc.spacing = e.spacing;
   sc.areaSpacing = std::sqrt(e.areaPerPoint);
@@ -589,6 +615,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.holes = rs.holes;
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
+  st.secondsTriangulation = watch.lap();
 
   // Manifold whatever the input. Sec. 3.1 guarantees it for a suitable d on a cloud sampling a
   // manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
@@ -624,7 +651,9 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     }
   }
 
-  // Output: referenced vertices only, box normals, Q_t per face.
+  st.secondsCleanup = watch.lap();
+
+  // Output: referenced vertices only, the mesh's own normals, Q_t per face.
   progress.phase("Sphere packing: writing the mesh", 97, 100);
   std::vector<std::int32_t> remap;
   assignHuge(remap, g.vertexCount(), std::int32_t(-1));
@@ -707,7 +736,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
                 "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
 
-  st.secondsTriangulation = watch.lap();
+  st.secondsOutput = watch.lap();
   st.seconds = watch.total();
 }
 

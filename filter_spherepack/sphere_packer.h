@@ -110,7 +110,9 @@ struct Stat {
   double secondsSplats = 0;      //           splat radii (sec. 4.3)
   double secondsGrowth = 0;      //           initialization and disk growing (sec. 3.3–3.6), and
                                  //           the other box normals, on another thread meanwhile
-  double secondsTriangulation = 0; //         regions and output (sec. 3.7)
+  double secondsTriangulation = 0; //         regions (sec. 3.7)
+  double secondsCleanup = 0;     //           manifold and intersection clean-up
+  double secondsOutput = 0;      //           writing the mesh, its normals, the topology check
   std::vector<std::string> warnings;
 };
 

@@ -16,11 +16,15 @@ void BorderGraph::reserve(size_t n) {
   pos_.reserve(n);
   nrm_.reserve(n);
   rot_.reserve(n);
+  frame_.reserve(n);
 }
 
 std::uint32_t BorderGraph::addVertex(const vcg::Point3d& position, const vcg::Point3d& normal) {
   pos_.push_back(position);
   nrm_.push_back(normal);
+  vcg::Point3d e1, e2;
+  tangentFrame(normal, e1, e2);
+  frame_.push_back(Frame{e1, e2});
   rot_.emplace_back();
   return static_cast<std::uint32_t>(pos_.size() - 1);
 }
@@ -44,10 +48,9 @@ inline double ccw(double a, double b) {
 } // namespace
 
 double BorderGraph::angleAt(std::uint32_t v, const vcg::Point3d& x) const {
-  vcg::Point3d e1, e2;
-  tangentFrame(nrm_[v], e1, e2);
+  const Frame& f = frame_[v];
   const vcg::Point3d t = x - pos_[v];
-  return pseudoAngle(t * e1, t * e2);
+  return pseudoAngle(t * f.e1, t * f.e2);
 }
 
 int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {

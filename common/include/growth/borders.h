@@ -110,6 +110,10 @@ private:
   void insertAt(std::uint32_t v, int pos, std::uint32_t u);
 
   std::vector<vcg::Point3d> pos_, nrm_;
+  struct Frame {
+    vcg::Point3d e1, e2; // tangentFrame(normal(v)), kept: angleAt() is asked for often
+  };
+  std::vector<Frame> frame_;
   std::vector<Rotation> rot_;
   size_t edges_ = 0;
 };
