@@ -206,6 +206,55 @@ TEST(BoxGrid, PointsOnBoxFacesAreReferredToExactly) {
   }
 }
 
+// Splats larger than d (BoxGrid::build's extraReach): such a point is referred to by every box
+// within side + its extra reach, the others by the boxes within side, checked against a brute
+// force over the boxes around every point (the normal filter drops nothing: one normal for all).
+TEST(BoxGrid, LargeSplatsReachFartherBoxes) {
+  growth::Random rnd(9);
+  std::vector<Point3d> pts, nrm;
+  std::vector<float> extra;
+  for (int i = 0; i < 3000; ++i) {
+    pts.emplace_back(rnd.uniform(0, 2), rnd.uniform(0, 2), 0.05 * rnd.uniform(-1, 1));
+    nrm.emplace_back(0, 0, 1);
+    extra.push_back(i % 5 == 0 ? float(rnd.uniform(0, 0.5)) : 0.0f);
+  }
+  extra[7] = 100.0f; // capped at kMaxExtraReach · side
+  const double d = 0.1;
+  BoxGrid plain, wide;
+  plain.build(pts, nrm, d, nullptr, 1);
+  wide.build(pts, nrm, d, nullptr, 2, false, nullptr, &extra);
+  EXPECT_GT(wide.references(), plain.references());
+  const auto& ix = wide.indexer();
+  std::map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>> expect;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const double reach = d + std::min(double(extra[i]), BoxGrid::kMaxExtraReach * d);
+    std::int64_t lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = ix.coord(pts[i][a] - reach, a), hi[a] = ix.coord(pts[i][a] + reach, a);
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (growth::squaredDistanceToBox(pts[i], ix.corner(x, y, z), d) <= reach * reach * (1 - 1e-12))
+            expect[{x, y, z}].push_back(std::uint32_t(i));
+  }
+  size_t checked = 0;
+  for (const auto& e : expect) {
+    const int box = wide.boxOf(ix.corner(e.first[0], e.first[1], e.first[2]) + Point3d(0.5 * d, 0.5 * d, 0.5 * d));
+    ASSERT_GE(box, 0);
+    const std::vector<std::uint32_t> got(wide.pointsBegin(box), wide.pointsEnd(box));
+    // Every point the brute force finds (up to rounding at the reach) is listed, in index order.
+    for (std::uint32_t i : e.second) EXPECT_TRUE(std::binary_search(got.begin(), got.end(), i)) << i;
+    EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+    ++checked;
+  }
+  EXPECT_GT(checked, 400u);
+  // The capped point reaches 7 boxes away, not farther.
+  const int far = wide.boxOf(Point3d(pts[7][0] + 8.5 * d, pts[7][1], pts[7][2]));
+  if (far >= 0) {
+    const std::vector<std::uint32_t> got(wide.pointsBegin(far), wide.pointsEnd(far));
+    EXPECT_FALSE(std::binary_search(got.begin(), got.end(), 7u));
+  }
+}
+
 // Sec. 4.1 before the filter: a thin plate whose sides hold 2:1 points (its normals then sum to
 // the denser side, and the filter alone would hide the other) is flagged where d sees both sides,
 // not where d is below the plate's thickness.

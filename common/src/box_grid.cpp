@@ -368,13 +368,16 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   for (const auto& p : pts)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
-  if (extent / side + 8 > double(BoxIndexer::kMax)) {
+  if (extent / side + 2 * (kMaxExtraReach + 4) > double(BoxIndexer::kMax)) {
     std::ostringstream s;
     s << "The sphere diameter d = " << side << " is too small for a cloud of extent " << extent
       << ": use a larger d.";
     throw Error(s.str());
   }
-  index_ = BoxIndexer(lo - vcg::Point3d(2 * side, 2 * side, 2 * side), side);
+  // A margin of whole boxes below the points: the farthest reach (side + kMaxExtraReach·side)
+  // stays at non-negative box coordinates.
+  const double margin = (kMaxExtraReach + 2) * side;
+  index_ = BoxIndexer(lo - vcg::Point3d(margin, margin, margin), side);
   const double d2 = side * side;
 
   // The boxes near a point are its own box and its 26 neighbours: their ids are looked up once per
