@@ -7,9 +7,12 @@
 #include <growth/error.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/mesh_normals.h>
+#include <growth/point_grid.h>
 
 #include <common/ml_mesh_type.h>
 #include <vcg/complex/allocate.h>
+#include <vcg/complex/append.h>
 
 #include <gtest/gtest.h>
 
@@ -146,7 +149,7 @@ TEST(SpherePacker, FacesAreOrientedLikeTheNormalsAndCarryQt) {
   for (const auto& f : r->mesh.face) {
     const Point3d a = Point3d::Construct(f.cP(0)), b = Point3d::Construct(f.cP(1)), c = Point3d::Construct(f.cP(2));
     const Point3d n = (b - a) ^ (c - a);
-    // Outward like the sphere's normals, and like the vertex normals (box normals, sec. 4.1).
+    // Outward like the sphere's normals, and like the vertex normals.
     EXPECT_GT(n * (a + b + c), 0);
     for (int k = 0; k < 3; ++k) EXPECT_GT(n * Point3d::Construct(f.cV(k)->cN()), 0);
     EXPECT_NEAR(f.cQ(), growth::triangleQuality(a, b, c), 1e-5);
@@ -155,6 +158,15 @@ TEST(SpherePacker, FacesAreOrientedLikeTheNormalsAndCarryQt) {
     EXPECT_NEAR(Point3d::Construct(v.cN()).Norm(), 1.0, 1e-5);
     EXPECT_GT(Point3d::Construct(v.cN()) * Point3d::Construct(v.cP()).Normalize(), 0.95);
   }
+  // The output's normals are the mesh's own (angle-weighted vertex normals, unit face normals),
+  // not the box normals: recomputing them on a copy changes nothing.
+  CMeshO copy;
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(copy, r->mesh);
+  growth::updateNormals(copy);
+  for (size_t i = 0; i < copy.vert.size(); ++i)
+    EXPECT_LT((Point3d::Construct(copy.vert[i].cN()) - Point3d::Construct(r->mesh.vert[i].cN())).Norm(), 1e-6);
+  for (size_t i = 0; i < copy.face.size(); ++i)
+    EXPECT_LT((Point3d::Construct(copy.face[i].cN()) - Point3d::Construct(r->mesh.face[i].cN())).Norm(), 1e-6);
 }
 
 TEST(SpherePacker, SameInputSameOutput) {
@@ -437,6 +449,91 @@ TEST(SpherePacker, DefaultDiameterIgnoresFarPointsAndOutliers) {
   growth::CloudSpec noisy = spec;
   noisy.outlierFraction = 0.01;
   EXPECT_NEAR(defaultD(growth::generateCloud(noisy)), d0, 0.05 * d0);
+}
+
+// Sec. 4.3 / 5.2: with the default splat radii, the clean closed clouds of 100k points (sphere,
+// torus, genus 2, 5:1 non-uniform) are meshed closed and manifold at every d from 1.5 to 10 mean
+// spacings, and every input point has a vertex within d.
+TEST(SpherePackerCoverage, ClosedAtEveryDFromOneAndAHalfToTenSpacings) {
+  std::vector<growth::CloudSpec> specs(4);
+  specs[0].shape = growth::Shape::Sphere;
+  specs[1].shape = growth::Shape::Torus;
+  specs[2].shape = growth::Shape::Genus2;
+  specs[3].shape = growth::Shape::Torus;
+  specs[3].nonUniform = true;
+  specs[3].densityRatio = 5;
+  const int eulers[4] = {2, 0, -2, 0};
+  for (size_t k = 0; k < specs.size(); ++k) {
+    specs[k].count = 100000;
+    specs[k].seed = 5;
+    const growth::Cloud c = growth::generateCloud(specs[k]);
+    CMeshO cloud;
+    growth::toMesh(c, cloud);
+    const double spacing = growth::meanSpacing(c.points);
+    for (double spacings : {1.5, 2.5, 5.0, 10.0}) {
+      sp::Params p;
+      p.sphereDiameter = spacings * spacing;
+      CMeshO mesh;
+      sp::Stat st;
+      sp::build(cloud, mesh, p, st);
+      const growth::MeshTopology t = growth::measureTopology(mesh);
+      const std::string what = std::string(growth::shapeName(specs[k].shape)) + (specs[k].nonUniform ? " 5:1" : "") +
+                               " at " + std::to_string(spacings) + " spacings";
+      EXPECT_EQ(st.holes, 0u) << what;
+      EXPECT_EQ(t.boundaryEdges, 0u) << what;
+      EXPECT_EQ(t.nonManifoldVertices + t.nonManifoldEdges, 0u) << what;
+      EXPECT_EQ(t.components, 1u) << what;
+      EXPECT_EQ(int(mesh.vn) - int(t.edges) + mesh.fn, eulers[k]) << what;
+      EXPECT_EQ(st.facesRemoved, 0u) << what;
+      // Every input point has a vertex within d.
+      growth::PointGrid vertices;
+      std::vector<Point3d> vp;
+      for (const auto& v : mesh.vert) vp.push_back(Point3d::Construct(v.cP()));
+      vertices.build(vp, p.sphereDiameter);
+      size_t far = 0;
+      for (const auto& q : c.points) {
+        double d2 = 0;
+        far += vertices.nearest(q, &d2, -1, p.sphereDiameter) < 0 ? 1 : 0;
+      }
+      EXPECT_EQ(far, 0u) << what;
+    }
+  }
+}
+
+// Sec. 4.1: a fold (two sheets meeting at a sharp angle, normals on their outer sides) makes the
+// boxes at the crease see opposed normals once d reaches across it: the warning fires there, and
+// not at a d well below the fold's width.
+TEST(SpherePackerBadInput, DTooLargeAtAFoldIsWarnedAbout) {
+  growth::Cloud c;
+  growth::Random rnd(21);
+  const double half = 10 * M_PI / 180; // a 20° wedge: the sheets z = ±tan(10°)·x, x in [0, 1]
+  for (int i = 0; i < 40000; ++i) {
+    const double x = rnd.uniform(0, 1), y = rnd.uniform(0, 1);
+    const double side = i % 2 ? 1.0 : -1.0;
+    c.points.emplace_back(x, y, side * std::tan(half) * x);
+    c.normals.push_back(Point3d(-std::sin(half), 0, side * std::cos(half)));
+  }
+  CMeshO cloud;
+  growth::toMesh(c, cloud);
+  auto warned = [&](double d) {
+    sp::Params p;
+    p.sphereDiameter = d;
+    CMeshO out;
+    sp::Stat st;
+    try {
+      sp::build(cloud, out, p, st);
+    } catch (const growth::Error&) {
+    }
+    bool w = false;
+    for (const auto& s : st.warnings) w = w || s.find("too large") != std::string::npos;
+    return std::make_pair(w, double(st.boxesDTooLarge) / double(std::max<size_t>(st.boxes, 1)));
+  };
+  const auto coarse = warned(0.1), fine = warned(0.02);
+  EXPECT_TRUE(coarse.first);
+  EXPECT_GT(coarse.second, 0.0);
+  // The boxes that see both sides lie where the sheets are closer than about 2d (x < ~6d here):
+  // at d = 0.02 a far smaller share of the boxes than at d = 0.1.
+  EXPECT_LT(fine.second, 0.5 * coarse.second);
 }
 
 namespace {
