@@ -13,6 +13,7 @@
 #include <growth/mesh_measures.h>
 #include <growth/mesh_normals.h>
 #include <growth/morton.h>
+#include <growth/parallel.h>
 #include <growth/progress.h>
 #include <growth/radix_order.h>
 #include <growth/self_intersections.h>
@@ -70,11 +71,12 @@ public:
         queue_(CandidatePriority::levels(p.windowSize)) {
     splats_ = SplatSet{&in.points, &in.normals, &radius};
     lists_.reset(in.points.size());
-    // Cells of side 2d: the ball of radius d of the distance check (sec. 3.6), the most frequent
-    // query, then meets at most 2 × 2 × 2 cells.
+    // Cells of the crossing check's radius (√5·d): its ball then meets at most 3 × 3 × 3 cells
+    // (at most 4 × 4 × 4 with cells of 2d), and the ball of radius d of the distance check
+    // (sec. 3.6), the most frequent query, at most 2 × 2 × 2.
     // Reserve for the estimate, within reason (the estimate can be high on noisy clouds).
     const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, size_t(1) << 21);
-    vgrid_.reset(grid.indexer().origin(), 2 * d, reserve);
+    vgrid_.reset(grid.indexer().origin(), crossingSearchRadius(d), reserve);
     graph_.reserve(reserve);
   }
 
@@ -700,10 +702,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
     }
     // Face and vertex normals of the mesh itself (angle-weighted), so that it shades as it comes
     // out; the box normals stay the growth's.
-    updateNormals(out);
+    // (With the topology check, which only reads the faces' vertices, on a second thread.)
+    MeshTopology topo;
+    parallelFor(2, parallelParts(2, params.threads, 1), [&](size_t t0, size_t t1, int) {
+      for (size_t t = t0; t < t1; ++t) {
+        if (t == 0) updateNormals(out);
+        else topo = measureTopology(out);
+      }
+    });
     st.qualityAvg = qsum / double(faces.size());
     st.smallestEdge = minEdge;
-    const MeshTopology topo = measureTopology(out);
     st.nonManifoldVertices = topo.nonManifoldVertices;
     st.nonManifoldEdges = topo.nonManifoldEdges;
     st.boundaryLoops = topo.boundaryLoops;

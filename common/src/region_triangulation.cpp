@@ -158,6 +158,12 @@ RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& bo
       ++st.longBorders;
       continue;
     }
+    if (b.size() == 3 && b[0] != b[1] && b[1] != b[2] && b[0] != b[2]) {
+      // A triangle, as triangulateLoop() would give it (about half the regions of a packing).
+      faces.push_back(Triangle{b[0], b[1], b[2]});
+      ++st.triangulated;
+      continue;
+    }
     bool ok = true;
     for (const auto& loop : splitAtRepeatedVertices(b))
       if (loop.size() >= 3 && !triangulateLoop(loop, pos, nrm, edges, faces)) ok = false;

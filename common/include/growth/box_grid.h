@@ -251,7 +251,8 @@ public:
 
   // The deferred box normals: startNormals() computes them on one more thread while the caller
   // goes on (when `threads` allows more than one; 0 = automatic), nearest to `from` first (where
-  // the caller will ask first), finishNormals() waits for it and computes what is still missing.
+  // the caller will ask first), then the other boxes' normals; finishNormals() stops that thread
+  // and computes the deferred ones still missing.
   // Meanwhile boxNormal() is safe to call from one thread: a box not done yet is computed there
   // (or awaited when the other thread is at it). The values are the same whoever computes them;
   // dTooLargeCount() is final after finishNormals().
