@@ -150,9 +150,11 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       p.localSplatSizes ? " with local splat sizes" : "", st.meanSplatRadius, st.diameterReason.c_str());
   Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d", st.componentsStarted,
       st.componentsStarted == 1 ? "" : "s", st.unreachedPoints);
-  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f, %zu holes left open, "
-      "%zu of %zu boxes where d looked too large", st.vertices, st.faces, st.smallestEdge, st.qualityAvg,
-      st.holes, st.boxesDTooLarge, st.boxes);
+  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary loops: %zu "
+      "regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh without "
+      "intersections); %zu of %zu boxes where d looked too large", st.vertices,
+      st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved, st.boxesDTooLarge,
+      st.boxes);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "
