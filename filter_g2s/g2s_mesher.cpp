@@ -57,7 +57,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   pem_.reset(n);
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));
-  assignHuge(freeEdges_, n, std::uint8_t(0));
+  assignHuge(freeEdges_, n, std::uint16_t(0));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
   // A closed surface has 2N − 4 + 4g triangles: room for 2N + 16, made resident at once (an
@@ -172,10 +172,14 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 bool Mesher::topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const {
   if (p == a || p == b || p == c) return false;
-  if (isolated(p)) return true; // no edge at p yet: nothing can conflict
-  if (interior(p)) return false;
+  // The new edges need room at their points (PointEdgeMap::kMaxEntries): where a point is full,
+  // the edge stays open (counted by the caller through roomRefused_).
+  const bool room = pem_.hasRoom(b, a, p);
+  // No edge at p yet: nothing else can conflict.
   // New triangle (b, a, p): half-edges b→a (free by construction), a→p and p→b must be unused.
-  return !pem_.used(a, p) && !pem_.used(p, b);
+  const bool allowed = isolated(p) || (!interior(p) && !pem_.used(a, p) && !pem_.used(p, b));
+  roomRefused_ |= allowed & !room;
+  return allowed & room;
 }
 
 Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -372,8 +376,8 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
       const float len = float((pts_[x] - pts_[y]).Norm());
       edgeLengthSum_[x] += len;
       edgeLengthSum_[y] += len;
-      if (edgeCount_[x] < 65535) ++edgeCount_[x];
-      if (edgeCount_[y] < 65535) ++edgeCount_[y];
+      ++edgeCount_[x]; // at most PointEdgeMap::kMaxEntries
+      ++edgeCount_[y];
       ++freeEdges_[x];
       ++freeEdges_[y];
     } else {
@@ -392,9 +396,13 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
 }
 
 void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  roomRefused_ = false;
   const Candidate cand = findCandidate(a, b, c);
   // No candidate up to the maximum radius: a boundary edge (sec. 3.2 step 4.2); it stays free.
-  if (!cand.valid()) return;
+  if (!cand.valid()) {
+    edgesLeftAtFullPoints_ += roomRefused_;
+    return;
+  }
   queue_.push(cand.priority(params_.flatnessLevels) - 1,
               FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point)});
 }
@@ -615,7 +623,7 @@ void Mesher::releaseGrowthState() {
   grid_.releaseSearch();
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
-  HugeVector<std::uint8_t>().swap(freeEdges_);
+  HugeVector<std::uint16_t>().swap(freeEdges_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
@@ -699,7 +707,7 @@ Mesher::BoundaryCount Mesher::boundary() {
 size_t Mesher::memoryBytes() const {
   return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
          edgeLengthSum_.capacity() * sizeof(float) +
-         edgeCount_.capacity() * sizeof(std::uint16_t) + freeEdges_.capacity() +
+         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) +
          tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }

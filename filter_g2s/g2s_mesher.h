@@ -62,6 +62,10 @@ public:
 
   // --- The parts, exposed for the unit tests ---
 
+  // Neighbours one point may have (PointEdgeMap::setCapacity; kMaxEntries unless set): tests
+  // lower it to reach the degraded case, where a full point's extra edges stay open.
+  void setMaxNeighboursPerPoint(std::uint32_t n) { pem_.setCapacity(n); }
+
   // Sec. 3.1: from point p (which must be unused), its nearest neighbour q and a third point
   // within k·|pq| of the midpoint: the first triangle, by increasing circumradius, that is a
   // Gabriel 2-simplex and passes the cylinder test. All three points must be unused. The triangle
@@ -85,7 +89,8 @@ public:
   // Sec. 3.2 step 4.3 for the new triangle (b, a, p) on the free edge a→b of front triangle
   // (a, b, c): p is a new point; its edges to a and b, where they exist, are traversed in the
   // opposite direction by their one triangle (point–edge map); and p is not an interior vertex
-  // (all of its edges already with two triangles), which would make it non-manifold.
+  // (all of its edges already with two triangles), which would make it non-manifold; and the
+  // points have room for the new edges (PointEdgeMap::hasRoom).
   bool topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const;
 
   // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts. Only the
@@ -123,6 +128,9 @@ public:
   const PointEdgeMap& edges() const { return pem_; }
   size_t seeds() const { return seeds_; }
   size_t seedAttempts() const { return seedAttempts_; }
+  // Front edges left open because a candidate had no room for another edge at one of its points
+  // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
+  size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
@@ -165,10 +173,12 @@ private:
   const P3* pts_ = nullptr;            // grid_.points().data()
   PointEdgeMap pem_;
   // Per point, during growth: the sum of the lengths of its edges, their number, and how many of
-  // them have one triangle only (free edges; an interior vertex has none).
+  // them have one triangle only (free edges; an interior vertex has none). Both counts are at most
+  // PointEdgeMap::kMaxEntries.
   HugeVector<float> edgeLengthSum_;
   HugeVector<std::uint16_t> edgeCount_;
-  HugeVector<std::uint8_t> freeEdges_;
+  HugeVector<std::uint16_t> freeEdges_;
+  static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
@@ -176,6 +186,8 @@ private:
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
+  size_t edgesLeftAtFullPoints_ = 0;
+  mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
   NearList near_;                      // scratch: points of the last gathered ball
   std::vector<Scored> scored_;         // scratch: candidates being ranked

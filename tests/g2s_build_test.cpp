@@ -154,6 +154,60 @@ TEST(G2SBuild, NonUniformDensityStaysClosed) {
   EXPECT_GE(r->stat.vertices, 4990u);
 }
 
+// Issue 13 item 1: a latitude-longitude sampling (a UV-sphere's vertices, a turntable scan) puts
+// 600 neighbours around each pole. It used to fail the whole run ("more than 255 edges at one
+// point"); it meshes closed, every point used.
+TEST(G2SBuild, LatitudeLongitudeSphereMeshesClosed) {
+  CloudSpec spec;
+  spec.shape = Shape::LatLongSphere;
+  spec.latitudeRings = 300;
+  spec.longitudeSegments = 600;
+  const Mesh cloud = cloudMesh(spec);
+  ASSERT_EQ(cloud->vn, 300 * 600 + 2);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->stat.boundaryEdges, 0u);
+  EXPECT_EQ(r->stat.unusedPoints, 0u);
+  EXPECT_EQ(r->stat.vertices, size_t(cloud->vn));
+  EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices - 4);
+  EXPECT_EQ(r->stat.edgesLeftAtFullPoints, 0u);
+  EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
+  EXPECT_TRUE(r->stat.warnings.empty());
+}
+
+// Where a point is full (here the capacity is lowered to 64 neighbours, below the 120 each pole
+// needs), the growth goes on: the edges that would add a neighbour there stay open, counted,
+// and only around the poles; the rest of the sphere closes.
+TEST(G2SBuild, AFullPointLeavesItsEdgesOpenLocallyInsteadOfFailing) {
+  CloudSpec spec;
+  spec.shape = Shape::LatLongSphere;
+  spec.latitudeRings = 60;
+  spec.longitudeSegments = 120;
+  const growth::Cloud cloud = growth::generateCloud(spec);
+  g2s::Mesher m(cloud.points, defaults());
+  m.setMaxNeighboursPerPoint(64);
+  ASSERT_NO_THROW(m.meshAll());
+  EXPECT_GT(m.edgesLeftAtFullPoints(), 0u);
+  m.removeNonManifoldVertices();
+  // Every boundary edge lies near a pole (the two polar caps down to the third ring).
+  size_t boundary = 0;
+  for (std::uint32_t v = 0; v < m.size(); ++v)
+    m.edges().forEachEdge(v, [&](std::uint32_t w, bool out, bool in) {
+      if (!out || in) return;
+      ++boundary;
+      EXPECT_GT(std::abs(m.points()[v][2]), std::cos(M_PI * 3.5 / 61)) << v;
+      EXPECT_GT(std::abs(m.points()[w][2]), std::cos(M_PI * 3.5 / 61)) << w;
+    });
+  EXPECT_GT(boundary, 0u);
+  EXPECT_LE(m.boundaryLoops(), 2u);
+  // Far from the poles every point is a vertex.
+  size_t unusedAwayFromPoles = 0;
+  for (std::uint32_t v = 0; v < m.size(); ++v)
+    unusedAwayFromPoles += m.edges().isolated(v) && std::abs(m.points()[v][2]) < 0.99;
+  EXPECT_EQ(unusedAwayFromPoles, 0u);
+}
+
 TEST(G2SBuild, OpenPatchKeepsOneBoundaryLoop) {
   CloudSpec spec;
   spec.shape = Shape::Patch;
