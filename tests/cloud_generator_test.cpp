@@ -441,8 +441,11 @@ TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
     const vcg::Point3d& n = cloud.normals[i];
     EXPECT_LT(growth::distanceToShape(c, p), 1e-15);
     // On its face, with the face's outward normal.
-    for (int a = 0; a < 3; ++a)
-      if (n[a] != 0) EXPECT_EQ(p[a], n[a] * (a == 2 ? 0.05 : 1.0));
+    for (int a = 0; a < 3; ++a) {
+      if (n[a] != 0) {
+        EXPECT_EQ(p[a], n[a] * (a == 2 ? 0.05 : 1.0));
+      }
+    }
     onSides += n[2] == 0;
   }
   // The four sides hold 8 h t / (8 h^2 + 8 h t) = 0.1 / 1.1 of the area.

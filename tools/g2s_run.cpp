@@ -2,8 +2,8 @@
 //
 //   g2s_run cloud.ply [options]                      a PLY point cloud (binary or ASCII)
 //   g2s_run --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]
-//           [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION] [--rings R --segments S] [--inner-radius r]
-//           [--thickness T] [options]               a generated cloud
+//           [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION] [--cluster FRACTION] [--far-points N]
+//           [--rings R --segments S] [--inner-radius r] [--thickness T] [options]   a generated cloud
 // adversarial addition to either: --near-triples K (K points of the cloud each get two more within a
 // few float rounding steps: seeds of almost no size)
 // options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --random-seed S
@@ -85,6 +85,8 @@ int main(int argc, char** argv) {
       else if (a == "--nonuniform") spec.nonUniform = true;
       else if (a == "--gauss") gaussSpacings = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
+      else if (a == "--cluster") spec.clusterFraction = std::atof(value());
+      else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--rings") spec.latitudeRings = std::atoi(value());
       else if (a == "--segments") spec.longitudeSegments = std::atoi(value());
       else if (a == "--inner-radius") spec.innerRadius = std::atof(value());

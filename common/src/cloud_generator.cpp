@@ -227,7 +227,11 @@ Sample sampleSurface(const CloudSpec& s, Random& rng) {
     }
   }
   case Shape::Genus2: return sampleGenus2(rng);
-  case Shape::LatLongSphere: break; // a grid, laid out in generateCloud
+  case Shape::LatLongSphere: {
+    // The grid is laid out in generateCloud; this is for the dense cluster's centre.
+    const vcg::Point3d n = rng.unitVector();
+    return {n * s.sphereRadius, n};
+  }
   case Shape::HollowBall: {
     // Uniform by area over both spheres: the inner one with probability r^2 / (R^2 + r^2).
     const double R = s.sphereRadius, r = s.innerRadius;
@@ -306,15 +310,18 @@ vcg::Point3d Random::unitVector() {
 
 vcg::Point3d Random::inBall(double radius) { return unitVector() * (radius * std::cbrt(uniform())); }
 
+double shapeSize(const CloudSpec& s);
+
 Cloud generateCloud(const CloudSpec& spec) {
   if (spec.count == 0) throw Error("a cloud needs at least one point");
   Random rng(spec.seed);
   Cloud c;
-  const size_t outliers = static_cast<size_t>(std::llround(
-      spec.outlierFraction *
-      double(spec.shape == Shape::LatLongSphere
-                 ? size_t(std::max(spec.latitudeRings, 0)) * size_t(std::max(spec.longitudeSegments, 0)) + 2
-                 : spec.count)));
+  // Outliers and the cluster are fractions of the surface's points (for the grid, its size).
+  const size_t surfaceCount =
+      spec.shape == Shape::LatLongSphere
+          ? size_t(std::max(spec.latitudeRings, 0)) * size_t(std::max(spec.longitudeSegments, 0)) + 2
+          : spec.count;
+  const size_t outliers = static_cast<size_t>(std::llround(spec.outlierFraction * double(surfaceCount)));
   c.points.reserve(spec.count + outliers);
   c.normals.reserve(spec.count + outliers);
   double zmin = 0;
@@ -346,8 +353,7 @@ Cloud generateCloud(const CloudSpec& spec) {
     }
     add(vcg::Point3d(0, 0, -1));
   }
-  const size_t surfacePoints = spec.shape == Shape::LatLongSphere ? c.points.size() : spec.count;
-  while (c.points.size() < surfacePoints) {
+  while (c.points.size() < surfaceCount) {
     Sample s = sampleSurface(spec, rng);
     if (spec.nonUniform) {
       const double t = (s.p[2] - zmin) / zspan;
@@ -373,6 +379,24 @@ Cloud generateCloud(const CloudSpec& spec) {
       c.points.emplace_back(rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1]), rng.uniform(lo[2], hi[2]));
       c.normals.push_back(rng.unitVector());
     }
+  }
+  // Drawn after everything above, so the clouds without them are the same as before.
+  if (spec.clusterFraction > 0) {
+    // A dense cluster on the surface: that fraction of `count` points, moved by at most a
+    // hundredth of the surface's mean spacing about a surface sample (the normal of that sample).
+    const size_t k = static_cast<size_t>(std::llround(spec.clusterFraction * double(surfaceCount)));
+    const Sample centre = sampleSurface(spec, rng);
+    const double spread = 0.01 * std::sqrt(shapeArea(spec) / double(surfaceCount));
+    for (size_t i = 0; i < k; ++i) {
+      c.points.push_back(centre.p + rng.inBall(spread));
+      c.normals.push_back(centre.n);
+    }
+  }
+  for (size_t i = 0; i < spec.farPoints; ++i) {
+    // 10^4 times the shape's size away, in a random direction.
+    const vcg::Point3d dir = rng.unitVector();
+    c.points.push_back(dir * (1e4 * shapeSize(spec)));
+    c.normals.push_back(dir);
   }
   return c;
 }
@@ -416,6 +440,19 @@ double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
   }
   }
   return 0;
+}
+
+// The shape's size: the radius of a ball around the origin holding it (for the far points).
+double shapeSize(const CloudSpec& s) {
+  switch (s.shape) {
+  case Shape::Sphere:
+  case Shape::LatLongSphere:
+  case Shape::HollowBall: return s.sphereRadius;
+  case Shape::Slab: return std::sqrt(2.0) * s.slabHalfSize + s.slabThickness;
+  case Shape::Torus: return s.torusMajor + s.torusMinor;
+  case Shape::Patch: return 2 * s.patchHalfSize;
+  default: return 4.0; // genus 2: extent about 6.6 x 3.6 x 1.2
+  }
 }
 
 double shapeArea(const CloudSpec& s) {
