@@ -84,7 +84,8 @@ public:
   // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
   bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Cylinder test (sec. 3.1, fig. 1): the points inside the infinite cylinder through the
-  // triangle's circumcircle, with axis along its normal, are all on one side of its plane.
+  // triangle's circumcircle, with axis along its normal, are all on one side of its plane. The
+  // cylinder is followed up to 2048 circumradii on each side (a bound on the work per seed).
   bool passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Sec. 3.2 step 4.3 for the new triangle (b, a, p) on the free edge a→b of front triangle
   // (a, b, c): p is a new point; its edges to a and b, where they exist, are traversed in the
@@ -128,6 +129,7 @@ public:
   const PointEdgeMap& edges() const { return pem_; }
   size_t seeds() const { return seeds_; }
   size_t seedAttempts() const { return seedAttempts_; }
+  size_t cylinderQueries() const { return cylinderQueries_; } // ball queries of the cylinder tests
   // Front edges left open because a candidate had no room for another edge at one of its points
   // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
   size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
@@ -186,6 +188,7 @@ private:
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
+  mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
   mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
