@@ -219,9 +219,37 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       cand.cosBeta = (frontNormal * earNormal) / (frontNorm * earNormal.Norm());
       cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
       cand.closesLoop = true;
-      return cand;
+      // An unused point inside the loop would be skipped for good by the ear: then the edge
+      // grows to it by the ordinary search (sec. 3.2) instead, and the ear closes only if that
+      // search finds nothing (so the loop is never left open).
+      if (!unusedPointInside(b, a, static_cast<std::uint32_t>(ear))) return cand;
+      const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
+      return grown.valid() ? grown : cand;
     }
   }
+  return search(a, b, c, dir, frontNormal, frontNorm);
+}
+
+bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+  // An unused point whose projection on the plane of (a, b, c) falls inside the triangle, within
+  // the triangle's circumball (so near the plane, at the scale of the triangle).
+  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
+  Ball ball;
+  if (!circumBall(A, B, C, ball)) return false;
+  const P3 n = (B - A) ^ (C - A);
+  return grid_.anyInBall(ball.centre, std::sqrt(ball.radius2), [&](std::uint32_t i, double d2) {
+    if (!isolated(i) || !strictlyInside(d2, ball.radius2)) return false;
+    const P3& X = pts_[i];
+    // Inside the prism over the triangle: on the inner side of its three edges' planes along n.
+    return ((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0;
+  });
+}
+
+Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
+                         double frontNorm) {
+  Candidate none;
+  const P3 &A = pts_[a], &B = pts_[b];
+  const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
   const P3 mid = (A + B) * 0.5;
   // Maximum search radius: a multiple of the local spacing, here the mean length of the mesh
   // edges already at a and b (sec. 3.2 leaves its choice open; edge lengths of the growing mesh

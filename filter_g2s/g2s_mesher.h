@@ -78,8 +78,13 @@ public:
   void grow(Progress* progress = nullptr);
 
   // Sec. 3.2 steps 4.1–4.2 for the free edge a→b of front triangle (a, b, c), considering only
-  // points that pass the topological tests now (topologyAllows).
+  // points that pass the topological tests now (topologyAllows). An edge that closes a loop of
+  // three free edges takes the loop's third point (closesLoop), unless an unused point lies
+  // inside the loop (unusedPointInside): then the ordinary search runs, so that point is not
+  // skipped, and the loop closes only when that search finds nothing.
   Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // An unused point inside triangle (a, b, c): within its circumball, and projecting inside it.
+  bool unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 
   // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
   bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
@@ -155,6 +160,9 @@ private:
   };
 
   double sampleSpacing() const;
+  // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
+  Candidate search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
+                   double frontNorm);
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
                  std::uint32_t b, std::uint32_t c) const; // G2S emptiness, using near_ then the grid
