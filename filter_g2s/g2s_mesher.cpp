@@ -181,14 +181,14 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 bool Mesher::topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const {
   if (p == a || p == b || p == c) return false;
-  // The new edges need room at their points (PointEdgeMap::kMaxEntries): where a point is full,
-  // the edge stays open (counted by the caller through roomRefused_).
-  const bool room = pem_.hasRoom(b, a, p);
-  // No edge at p yet: nothing else can conflict.
-  // New triangle (b, a, p): half-edges b→a (free by construction), a→p and p→b must be unused.
+  // No edge at p yet: nothing can conflict. New triangle (b, a, p): half-edges b→a (free by
+  // construction), a→p and p→b must be unused.
   const bool allowed = isolated(p) || (!interior(p) && !pem_.used(a, p) && !pem_.used(p, b));
-  roomRefused_ |= allowed & !room;
-  return allowed & room;
+  // The new edges need room at their points (PointEdgeMap::capacity): asked only once some point
+  // is near full; where one is full, the edge stays open (counted by queueEdge).
+  if (!allowed || !nearFullPoint_ || pem_.hasRoom(b, a, p)) return allowed;
+  roomRefused_ = true;
+  return false;
 }
 
 Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
@@ -413,8 +413,11 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
       const float len = float((pts_[x] - pts_[y]).Norm());
       edgeLengthSum_[x] += len;
       edgeLengthSum_[y] += len;
-      ++edgeCount_[x]; // at most PointEdgeMap::kMaxEntries
+      // One entry per neighbour in the point-edge map (no triangle is removed while growing), so
+      // these are its entry counts: at most its capacity.
+      ++edgeCount_[x];
       ++edgeCount_[y];
+      nearFullPoint_ |= std::max(edgeCount_[x], edgeCount_[y]) + 2u > pem_.capacity();
       ++freeEdges_[x];
       ++freeEdges_[y];
     } else {

@@ -63,7 +63,7 @@ public:
   // --- The parts, exposed for the unit tests ---
 
   // Neighbours one point may have (PointEdgeMap::setCapacity; kMaxEntries unless set): tests
-  // lower it to reach the degraded case, where a full point's extra edges stay open.
+  // lower it (before meshAll) to reach the degraded case, where a full point's extra edges stay open.
   void setMaxNeighboursPerPoint(std::uint32_t n) { pem_.setCapacity(n); }
 
   // Sec. 3.1: from point p (which must be unused), its nearest neighbour q and a third point
@@ -198,6 +198,7 @@ private:
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
+  bool nearFullPoint_ = false;       // some point has fewer than 2 free entries (PointEdgeMap::hasRoom)
   mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
   NearList near_;                      // scratch: points of the last gathered ball

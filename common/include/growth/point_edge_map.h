@@ -69,6 +69,9 @@ public:
   }
 
   // Half-edge a→b is traversed by a triangle.
+#if defined(__GNUC__)
+  __attribute__((always_inline)) // the mesher's most frequent test, see find()
+#endif
   bool used(std::uint32_t a, std::uint32_t b) const {
     const std::uint32_t* e = find(a, b);
     return e != nullptr && (*e & kOut) != 0;
@@ -111,8 +114,7 @@ public:
     // Almost always far from full: three loads decide.
     const std::uint32_t cap = capacity_;
     if (count_[a] + 2u <= cap && count_[b] + 2u <= cap && count_[c] + 2u <= cap) return true;
-    const unsigned ab = !hasEntry(a, b), bc = !hasEntry(b, c), ca = !hasEntry(c, a);
-    return count_[a] + ab + ca <= cap && count_[b] + ab + bc <= cap && count_[c] + bc + ca <= cap;
+    return hasRoomNearFull(a, b, c);
   }
 
   // Records triangle (a, b, c). Returns a bit mask of its edges that were new (had no triangle):
@@ -210,9 +212,25 @@ private:
     }
   }
 
+  // hasRoom where a point may be full: counts the entries the triangle would add. Kept out of
+  // line so that the hot callers (addTriangle, the mesher's tests) stay small.
+#if defined(__GNUC__)
+  __attribute__((noinline, cold))
+#endif
+  bool hasRoomNearFull(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    const std::uint32_t cap = capacity_;
+    const unsigned ab = !hasEntry(a, b), bc = !hasEntry(b, c), ca = !hasEntry(c, a);
+    return count_[a] + ab + ca <= cap && count_[b] + ab + bc <= cap && count_[c] + bc + ca <= cap;
+  }
+
   std::uint32_t* find(std::uint32_t v, std::uint32_t w) {
     return const_cast<std::uint32_t*>(static_cast<const PointEdgeMap*>(this)->find(v, w));
   }
+  // Inlined into the hot callers (used(), addTriangle) even where they grew past the compiler's
+  // limits: it is most of their work, usually a scan of one cache line.
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
   const std::uint32_t* find(std::uint32_t v, std::uint32_t w) const {
     std::uint32_t n = count_[v];
     const std::uint32_t* blk = &slot_[size_t(v) * kInline];
