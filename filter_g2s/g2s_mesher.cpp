@@ -227,7 +227,56 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       return grown.valid() ? grown : cand;
     }
   }
-  return search(a, b, c, dir, frontNormal, frontNorm);
+  const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
+  if (grown.valid() || freeEdges_[b] < 2 || freeEdges_[a] < 2) return grown;
+  return quadClosure(a, b, c, frontNormal, frontNorm);
+}
+
+Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,
+                              double frontNorm) const {
+  // The free edge a→b on a loop of four free edges a→b→p→q→a: a hole no search spans (on a
+  // curved surface the G2S balls of both its triangulations can hold a neighbouring vertex). It
+  // is closed by the diagonal whose two triangles have the larger smallest angle, unless an
+  // unused point lies inside; the edge is queued last (size level n, flatness m), so it closes
+  // only if the growth around it did not.
+  std::int64_t p = -1, q = -1;
+  pem_.forEachEdge(b, [&](std::uint32_t x, bool out, bool in) {
+    if (q >= 0 || !out || in || x == a || x == c) return;
+    pem_.forEachEdge(x, [&](std::uint32_t y, bool out2, bool in2) {
+      if (q >= 0 || !out2 || in2 || y == a || y == b) return;
+      if (pem_.used(y, a) && !pem_.used(a, y)) {
+        p = x;
+        q = y;
+      }
+    });
+  });
+  if (q < 0) return Candidate();
+  const auto P = static_cast<std::uint32_t>(p), Q = static_cast<std::uint32_t>(q);
+  // Diagonal b–q: triangles (b, a, q) and (b, q, p); diagonal a–p: (b, a, p) and (a, q, p).
+  auto minSine = [&](std::uint32_t u, std::uint32_t v, std::uint32_t w) {
+    const P3 &U = pts_[u], &V = pts_[v], &W = pts_[w];
+    const double twiceArea = ((V - U) ^ (W - U)).Norm();
+    const double l2 = std::max({(V - U).SquaredNorm(), (W - V).SquaredNorm(), (U - W).SquaredNorm()});
+    return l2 > 0 ? twiceArea / l2 : 0.0; // grows with the smallest angle
+  };
+  const double viaQ = std::min(minSine(b, a, Q), minSine(b, Q, P));
+  const double viaP = std::min(minSine(b, a, P), minSine(a, Q, P));
+  const std::uint32_t first = viaQ >= viaP ? Q : P, second = viaQ >= viaP ? P : Q;
+  for (std::uint32_t x : {first, second}) {
+    if (!topologyAllows(a, b, c, x)) continue;
+    if (unusedPointInside(b, a, P) || unusedPointInside(b, a, Q) || unusedPointInside(b, Q, P) ||
+        unusedPointInside(a, Q, P))
+      return Candidate();
+    const P3 newNormal = (pts_[a] - pts_[b]) ^ (pts_[x] - pts_[b]);
+    Candidate cand;
+    cand.point = x;
+    cand.sizeLevel = params_.sizeLevels;
+    cand.cosBeta = (frontNormal * newNormal) / (frontNorm * newNormal.Norm());
+    cand.flatLevel = params_.flatnessLevels;
+    cand.closesLoop = true;
+    return cand;
+  }
+  return Candidate();
 }
 
 bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {

@@ -83,6 +83,10 @@ public:
   // inside the loop (unusedPointInside): then the ordinary search runs, so that point is not
   // skipped, and the loop closes only when that search finds nothing.
   Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // For a free edge a→b whose search found nothing, on a loop of four free edges: the point of
+  // the diagonal with the better triangles (closesLoop; queued last). Invalid otherwise.
+  Candidate quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,
+                        double frontNorm) const;
   // An unused point inside triangle (a, b, c): within its circumball, and projecting inside it.
   bool unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 
