@@ -533,17 +533,32 @@ void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
   const P3 &A = pts_[tri[0]], &B = pts_[tri[1]], &C = pts_[tri[2]];
   const P3 n = (B - A) ^ (C - A);
   const P3 centroid = (A + B + C) / 3.0;
-  // Next to an existing part of the mesh (a seed inside a hole), agree with its orientation so
-  // that the two fronts can join (sec. 3.2: edges are shared only with consistent orientation).
+  // Next to an existing part of the same sheet (a seed inside a hole), agree with its
+  // orientation so that the two fronts can join (sec. 3.2: edges are shared only with consistent
+  // orientation). A triangle of another sheet (the far side of a thin part) must not be copied:
+  // its orientation is the opposite one. The reference is the nearest triangle that lies in the
+  // seed's plane as seen from both: the normals within 60° of parallel (either sign), and the
+  // offset between the two triangles within 30° of both planes.
   double best = std::numeric_limits<double>::infinity();
   std::array<std::uint32_t, 3> ref{};
   bool haveRef = false;
+  const double nNorm = n.Norm();
+  auto sameSheet = [&](const std::array<std::uint32_t, 3>& t) {
+    const P3 &X = pts_[t[0]], &Y = pts_[t[1]], &Z = pts_[t[2]];
+    const P3 m = (Y - X) ^ (Z - X);
+    const double mNorm = m.Norm();
+    if (!(mNorm > 0) || !(nNorm > 0)) return false;
+    if (std::abs(m * n) < 0.5 * mNorm * nNorm) return false;
+    const P3 offset = centroid - (X + Y + Z) / 3.0;
+    const double len = offset.Norm();
+    return std::abs(offset * m) <= 0.5 * len * mNorm && std::abs(offset * n) <= 0.5 * len * nNorm;
+  };
   for (size_t k = 0; k < near_.size; ++k) {
     const std::uint32_t id = near_.id[k];
     const double d2 = (pts_[id] - centroid).SquaredNorm();
     if (d2 >= best || isolated(id)) continue;
     std::array<std::uint32_t, 3> t;
-    if (triangleAt(id, t)) {
+    if (triangleAt(id, t) && sameSheet(t)) {
       best = d2;
       ref = t;
       haveRef = true;
@@ -697,15 +712,87 @@ void Mesher::orientComponents() {
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
-  if (std::none_of(volume.begin(), volume.end(), [](double x) { return x < 0; })) return; // nothing to flip
+  // Each component faces outwards of its own volume (positive signed volume) unless it is a
+  // closed shell nested inside an odd number of other closed shells: then it bounds a cavity of
+  // the material (the inner wall of a hollow ball) and faces into the cavity (negative volume).
+  std::vector<signed char> wanted(components, 1);
+  nestedShellSigns(component, components, wanted);
+  std::vector<char> flip(components, 0);
+  bool any = false;
+  for (size_t k = 0; k < components; ++k) {
+    flip[k] = volume[k] * double(wanted[k]) < 0;
+    any = any || flip[k];
+  }
+  if (!any) return;
   // The flipped components' triangles, then their half-edges in the point–edge map: every edge at
   // a vertex of a flipped component is one of that component's (its triangles are all flipped),
   // so reversing each such vertex's entries records the flip. A vertex with an edge carrying a
   // triangle lies on a live triangle, so it has a component.
   for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f] && volume[component(tri_[f][0])] < 0) std::swap(tri_[f][1], tri_[f][2]);
+    if (alive_[f] && flip[component(tri_[f][0])]) std::swap(tri_[f][1], tri_[f][2]);
   for (std::uint32_t v = 0; v < n; ++v)
-    if (pem_.degree(v) > 0 && volume[component(v)] < 0) pem_.reverseAt(v);
+    if (pem_.degree(v) > 0 && flip[component(v)]) pem_.reverseAt(v);
+}
+
+template <class ComponentOf>
+void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const {
+  // Closed components (no boundary half-edge: every used half-edge's twin is used) and their
+  // bounding boxes.
+  std::vector<char> open(components, 0);
+  std::vector<vcg::Box3d> box(components);
+  std::vector<size_t> faces(components + 1, 0);
+  for (size_t f = 0; f < tri_.size(); ++f) {
+    if (!alive_[f]) continue;
+    const std::uint32_t k = component(tri_[f][0]);
+    ++faces[k + 1];
+    for (int e = 0; e < 3; ++e) {
+      box[k].Add(pts_[tri_[f][e]]);
+      open[k] = open[k] || !pem_.used(tri_[f][(e + 1) % 3], tri_[f][e]);
+    }
+  }
+  std::vector<std::uint32_t> closed;
+  for (size_t k = 0; k < components; ++k)
+    if (!open[k]) closed.push_back(static_cast<std::uint32_t>(k));
+  if (closed.size() < 2) return;
+  // The live faces grouped by component (a counting sort).
+  for (size_t k = 0; k < components; ++k) faces[k + 1] += faces[k];
+  std::vector<std::uint32_t> byComponent(faces[components]);
+  {
+    std::vector<size_t> next(faces.begin(), faces.end() - 1);
+    for (size_t f = 0; f < tri_.size(); ++f)
+      if (alive_[f]) byComponent[next[component(tri_[f][0])]++] = static_cast<std::uint32_t>(f);
+  }
+  // Parity of the crossings of a ray from q with shell j (Möller–Trumbore). The direction is a
+  // fixed unit vector off the axes and diagonals, so that a ray through an edge or a vertex of a
+  // shell, where a crossing would count twice or not at all, does not occur on real clouds.
+  const P3 dir(0.48, 0.6, 0.64);
+  auto inside = [&](const P3& q, std::uint32_t j) {
+    bool odd = false;
+    for (size_t i = faces[j]; i < faces[j + 1]; ++i) {
+      const Triangle& t = tri_[byComponent[i]];
+      const P3 &A = pts_[t[0]], e1 = pts_[t[1]] - A, e2 = pts_[t[2]] - A;
+      const P3 h = dir ^ e2;
+      const double det = e1 * h;
+      if (det == 0) continue;
+      const P3 s = q - A;
+      const double u = (s * h) / det;
+      if (u < 0 || u > 1) continue;
+      const P3 r = s ^ e1;
+      const double v = (dir * r) / det;
+      if (v < 0 || u + v > 1) continue;
+      odd ^= (e2 * r) / det > 0;
+    }
+    return odd;
+  };
+  // A shell's depth: the number of other closed shells around one of its vertices. Only shells
+  // whose box holds the vertex are tested, so shells side by side cost nothing.
+  for (std::uint32_t k : closed) {
+    const P3& q = pts_[tri_[byComponent[faces[k]]][0]];
+    int depth = 0;
+    for (std::uint32_t j : closed)
+      if (j != k && box[j].IsIn(q) && inside(q, j)) ++depth;
+    wanted[k] = (depth % 2 == 1) ? -1 : 1;
+  }
 }
 
 void Mesher::releaseGrowthState() {

@@ -107,9 +107,12 @@ public:
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
-  // Flips every connected component whose signed volume (about its own centroid) is negative, so
-  // that closed surfaces face outwards. Each component was grown with one consistent orientation
-  // from its seed; flipping whole components keeps every edge consistent.
+  // Orients every connected component so that closed surfaces face out of the material: a
+  // component faces outwards of its own volume (positive signed volume about its centroid),
+  // except a closed shell inside an odd number of other closed shells (found by the parity of a
+  // ray's crossings), which bounds a cavity and faces into it (the inner wall of a hollow ball).
+  // Each component was grown with one consistent orientation from its seed; flipping whole
+  // components keeps every edge consistent. G2S has no normals: nesting is all it can go by.
   void orientComponents();
 
   // Frees what only the growth uses: the grid's search structure, the per-point edge counters,
@@ -179,6 +182,10 @@ private:
   int flatnessLevelOfCos(double cosBeta) const;
   void orientSeed(std::array<std::uint32_t, 3>& tri) const;
   bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
+  // orientComponents: sets wanted[k] to -1 for each closed component nested inside an odd number
+  // of other closed components (component(v): v's component number, of `components`).
+  template <class ComponentOf>
+  void nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const;
 
   Params params_;
   double spacing_ = 0;

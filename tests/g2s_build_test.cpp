@@ -380,6 +380,110 @@ TEST(G2SBuild, OrientComponentsKeepsThePointEdgeMapInStep) {
   EXPECT_GT(flippedClouds, 0u); // the flip itself was exercised
 }
 
+// Issue 13 item 5: closed shells face out of the material. Faces of `mesh` counted by whether
+// their normal points away from `centre` (per shell: the shell of radius below `split` or above).
+struct Facing {
+  size_t innerOut = 0, innerIn = 0, outerOut = 0, outerIn = 0;
+};
+Facing facing(const CMeshO& mesh, const vcg::Point3d& centre, double split) {
+  Facing c;
+  for (const auto& f : mesh.face) {
+    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                       d = vcg::Point3d::Construct(f.cP(2));
+    const vcg::Point3d g = (a + b + d) / 3.0 - centre;
+    const bool out = ((b - a) ^ (d - a)) * g > 0;
+    if (g.Norm() < split) (out ? c.innerOut : c.innerIn) += 1;
+    else (out ? c.outerOut : c.outerIn) += 1;
+  }
+  return c;
+}
+
+TEST(G2SBuild, HollowBallsInnerShellFacesIntoTheHollow) {
+  CloudSpec spec;
+  spec.shape = Shape::HollowBall;
+  spec.count = 20000;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->stat.unusedPoints, 0u);
+  EXPECT_EQ(r->topo.components, 2u);
+  const Facing c = facing(r->mesh, vcg::Point3d(0, 0, 0), 0.9);
+  EXPECT_GT(c.innerIn, 5000u);
+  EXPECT_EQ(c.innerOut, 0u); // the cavity's wall faces into the cavity
+  EXPECT_GT(c.outerOut, 10000u);
+  EXPECT_EQ(c.outerIn, 0u);
+}
+
+// Three nested spheres (radii 1, 0.75, 0.5: material, cavity, material again) and a fourth sphere
+// beside them: depth 0 faces out, depth 1 in, depth 2 out; the one beside, out.
+TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
+  std::vector<vcg::Point3d> pts;
+  for (double radius : {1.0, 0.75, 0.5}) {
+    CloudSpec spec;
+    spec.shape = Shape::Sphere;
+    spec.count = size_t(6000 * radius * radius);
+    spec.sphereRadius = radius;
+    spec.seed = std::uint64_t(10 * radius);
+    for (const auto& p : growth::generateCloud(spec).points) pts.push_back(p);
+  }
+  CloudSpec beside;
+  beside.shape = Shape::Sphere;
+  beside.count = 1500;
+  beside.sphereRadius = 0.5;
+  for (const auto& p : growth::generateCloud(beside).points) pts.push_back(p + vcg::Point3d(3, 0, 0));
+  const Mesh cloud = pointsMesh(pts);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->topo.components, 4u);
+  size_t wrong = 0, faces = 0;
+  for (const auto& f : r->mesh.face) {
+    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                       d = vcg::Point3d::Construct(f.cP(2));
+    vcg::Point3d g = (a + b + d) / 3.0;
+    const bool side = g[0] > 2;
+    if (side) g -= vcg::Point3d(3, 0, 0);
+    const double rad = g.Norm();
+    const bool wantOut = side || rad > 0.9 || rad < 0.6;
+    const bool out = ((b - a) ^ (d - a)) * g > 0;
+    wrong += out != wantOut;
+    ++faces;
+  }
+  EXPECT_GT(faces, 20000u);
+  EXPECT_EQ(wrong, 0u);
+}
+
+// A closed thin plate: 0.05 thick, three times the square root of the area per point (about six
+// mean nearest-neighbour spacings). Its faces look out of the plate, the large faces up on top
+// and down below. (At three nearest-neighbour spacings the growth still crosses the plate's
+// interior from one sheet to the other where a sheet has a gap, which turns the other sheet
+// inside out: not solved yet.)
+TEST(G2SBuild, ThinSlabFacesOutward) {
+  CloudSpec spec;
+  spec.shape = Shape::Slab;
+  spec.count = 30000;
+  spec.slabThickness = 0.05;
+  const Mesh cloud = cloudMesh(spec);
+  const auto r = run(cloud);
+  expectValidOutput(cloud, r);
+  EXPECT_NEAR(spec.slabThickness / std::sqrt(growth::shapeArea(spec) / double(spec.count)), 3.0, 0.1);
+  size_t top = 0, bottom = 0, wrong = 0;
+  for (const auto& f : r->mesh.face) {
+    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                       d = vcg::Point3d::Construct(f.cP(2));
+    const vcg::Point3d n = ((b - a) ^ (d - a)).Normalize();
+    if (std::abs(n[2]) < 0.9) continue; // on the sides or across the rim
+    const double z = (a[2] + b[2] + d[2]) / 3.0;
+    (z > 0 ? top : bottom) += 1;
+    wrong += (n[2] > 0) != (z > 0);
+  }
+  EXPECT_GT(top, 25000u);
+  EXPECT_GT(bottom, 25000u);
+  EXPECT_LE(wrong, 5u); // a stray face across the rim at most
+  EXPECT_GT(r->stat.vertices, 29900u);
+}
+
 TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {
   growth::Random rng(4);
   std::vector<vcg::Point3d> pts;
