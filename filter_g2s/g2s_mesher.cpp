@@ -736,25 +736,26 @@ void Mesher::orientComponents() {
 
 template <class ComponentOf>
 void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const {
-  // Closed components (no boundary half-edge: every used half-edge's twin is used) and their
-  // bounding boxes.
+  if (components < 2) return;
+  // Closed components (no vertex with a boundary half-edge: a used half-edge whose twin is not)
+  // and their bounding boxes, in one pass over the vertices.
   std::vector<char> open(components, 0);
   std::vector<vcg::Box3d> box(components);
-  std::vector<size_t> faces(components + 1, 0);
-  for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f]) continue;
-    const std::uint32_t k = component(tri_[f][0]);
-    ++faces[k + 1];
-    for (int e = 0; e < 3; ++e) {
-      box[k].Add(pts_[tri_[f][e]]);
-      open[k] = open[k] || !pem_.used(tri_[f][(e + 1) % 3], tri_[f][e]);
-    }
+  for (std::uint32_t v = 0; v < grid_.size(); ++v) {
+    if (pem_.degree(v) == 0) continue;
+    const std::uint32_t k = component(v);
+    box[k].Add(pts_[v]);
+    if (open[k]) continue;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { open[k] = open[k] || (out && !in); });
   }
   std::vector<std::uint32_t> closed;
   for (size_t k = 0; k < components; ++k)
     if (!open[k]) closed.push_back(static_cast<std::uint32_t>(k));
   if (closed.size() < 2) return;
   // The live faces grouped by component (a counting sort).
+  std::vector<size_t> faces(components + 1, 0);
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (alive_[f]) ++faces[component(tri_[f][0]) + 1];
   for (size_t k = 0; k < components; ++k) faces[k + 1] += faces[k];
   std::vector<std::uint32_t> byComponent(faces[components]);
   {
