@@ -264,8 +264,9 @@ Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c,
   const std::uint32_t first = viaQ >= viaP ? Q : P, second = viaQ >= viaP ? P : Q;
   for (std::uint32_t x : {first, second}) {
     if (!topologyAllows(a, b, c, x)) continue;
-    if (unusedPointInside(b, a, P) || unusedPointInside(b, a, Q) || unusedPointInside(b, Q, P) ||
-        unusedPointInside(a, Q, P))
+    // The two triangles of that diagonal: (b, a, q) and (b, q, p), or (b, a, p) and (a, q, p).
+    if (x == Q ? unusedPointInside(b, a, Q) || unusedPointInside(b, Q, P)
+               : unusedPointInside(b, a, P) || unusedPointInside(a, Q, P))
       return Candidate();
     const P3 newNormal = (pts_[a] - pts_[b]) ^ (pts_[x] - pts_[b]);
     Candidate cand;
@@ -280,15 +281,31 @@ Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c,
 }
 
 bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
-  // An unused point whose projection on the plane of (a, b, c) falls inside the triangle, within
-  // the triangle's circumball (so near the plane, at the scale of the triangle).
+  // An unused point whose projection on the plane of (a, b, c) falls inside the triangle, at most
+  // r from the plane, r the radius of the triangle's smallest enclosing ball (the circumball, or
+  // for an obtuse triangle the ball on its longest edge): the query stays at the triangle's own
+  // scale even for a sliver, whose circumball can be huge.
   const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
-  Ball ball;
-  if (!circumBall(A, B, C, ball)) return false;
   const P3 n = (B - A) ^ (C - A);
-  return grid_.anyInBall(ball.centre, std::sqrt(ball.radius2), [&](std::uint32_t i, double d2) {
-    if (!isolated(i) || !strictlyInside(d2, ball.radius2)) return false;
+  const double n2 = n.SquaredNorm();
+  if (!(n2 > 0)) return false;
+  const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
+  P3 centre;
+  double r2;
+  if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
+  else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
+  else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
+  else {
+    Ball ball;
+    if (!circumBall(A, B, C, ball)) return false;
+    centre = ball.centre;
+    r2 = ball.radius2;
+  }
+  return grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
+    if (!isolated(i)) return false;
     const P3& X = pts_[i];
+    const double h = (X - A) * n;
+    if (h * h > r2 * n2) return false;
     // Inside the prism over the triangle: on the inner side of its three edges' planes along n.
     return ((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0;
   });
@@ -737,31 +754,34 @@ void Mesher::orientComponents() {
 template <class ComponentOf>
 void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const {
   if (components < 2) return;
-  // Closed components (no vertex with a boundary half-edge: a used half-edge whose twin is not)
-  // and their bounding boxes, in one pass over the vertices.
+  // Closed components: no vertex with a boundary half-edge (a used half-edge whose twin is not).
   std::vector<char> open(components, 0);
-  std::vector<vcg::Box3d> box(components);
   for (std::uint32_t v = 0; v < grid_.size(); ++v) {
-    if (pem_.degree(v) == 0) continue;
-    const std::uint32_t k = component(v);
-    box[k].Add(pts_[v]);
-    if (open[k]) continue;
-    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { open[k] = open[k] || (out && !in); });
+    bool boundary = false;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { boundary = boundary || (out && !in); });
+    if (boundary) open[component(v)] = 1; // a vertex with a used half-edge is on a live triangle
   }
   std::vector<std::uint32_t> closed;
   for (size_t k = 0; k < components; ++k)
     if (!open[k]) closed.push_back(static_cast<std::uint32_t>(k));
   if (closed.size() < 2) return;
-  // The live faces grouped by component (a counting sort).
+  // Their bounding boxes, and their faces grouped by component (a counting sort).
+  std::vector<vcg::Box3d> box(components);
   std::vector<size_t> faces(components + 1, 0);
-  for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f]) ++faces[component(tri_[f][0]) + 1];
+  for (size_t f = 0; f < tri_.size(); ++f) {
+    if (!alive_[f]) continue;
+    const std::uint32_t k = component(tri_[f][0]);
+    if (open[k]) continue;
+    ++faces[k + 1];
+    for (std::uint32_t w : tri_[f]) box[k].Add(pts_[w]);
+  }
   for (size_t k = 0; k < components; ++k) faces[k + 1] += faces[k];
   std::vector<std::uint32_t> byComponent(faces[components]);
   {
     std::vector<size_t> next(faces.begin(), faces.end() - 1);
     for (size_t f = 0; f < tri_.size(); ++f)
-      if (alive_[f]) byComponent[next[component(tri_[f][0])]++] = static_cast<std::uint32_t>(f);
+      if (alive_[f] && !open[component(tri_[f][0])])
+        byComponent[next[component(tri_[f][0])]++] = static_cast<std::uint32_t>(f);
   }
   // Parity of the crossings of a ray from q with shell j (Möller–Trumbore). The direction is a
   // fixed unit vector off the axes and diagonals, so that a ray through an edge or a vertex of a

@@ -87,7 +87,8 @@ public:
   // the diagonal with the better triangles (closesLoop; queued last). Invalid otherwise.
   Candidate quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,
                         double frontNorm) const;
-  // An unused point inside triangle (a, b, c): within its circumball, and projecting inside it.
+  // An unused point inside triangle (a, b, c): projecting inside it, at most the radius of the
+  // triangle's smallest enclosing ball from its plane.
   bool unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 
   // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
