@@ -191,7 +191,7 @@ bool Mesher::topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, s
   return false;
 }
 
-Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c, bool ears) {
   Candidate none;
   const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
   const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
@@ -205,7 +205,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // G2S or not. On a curved or noisy surface the G2S ball of such a triangle can hold a vertex of
   // a neighbouring triangle barely inside (the Gabriel test is not symmetric across an edge as
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
-  if (freeEdges_[b] >= 2) {
+  if (ears && freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
     pem_.forEachEdge(b, [&](std::uint32_t p, bool out, bool in) {
       if (ear < 0 && out && !in && p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
@@ -219,12 +219,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       cand.cosBeta = (frontNormal * earNormal) / (frontNorm * earNormal.Norm());
       cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
       cand.closesLoop = true;
-      // An unused point inside the loop would be skipped for good by the ear: then the edge
-      // grows to it by the ordinary search (sec. 3.2) instead, and the ear closes only if that
-      // search finds nothing (so the loop is never left open).
-      if (!unusedPointInside(b, a, static_cast<std::uint32_t>(ear))) return cand;
-      const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
-      return grown.valid() ? grown : cand;
+      return cand;
     }
   }
   const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
@@ -236,9 +231,9 @@ Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c,
                               double frontNorm) const {
   // The free edge a→b on a loop of four free edges a→b→p→q→a: a hole no search spans (on a
   // curved surface the G2S balls of both its triangulations can hold a neighbouring vertex). It
-  // is closed by the diagonal whose two triangles have the larger smallest angle, unless an
-  // unused point lies inside; the edge is queued last (size level n, flatness m), so it closes
-  // only if the growth around it did not.
+  // is closed by the diagonal whose two triangles have the larger smallest angle (grow() checks
+  // each of them for an unused point inside, as for any loop); the edge is queued last (size
+  // level n, flatness m), so it closes only if the growth around it did not.
   std::int64_t p = -1, q = -1;
   pem_.forEachEdge(b, [&](std::uint32_t x, bool out, bool in) {
     if (q >= 0 || !out || in || x == a || x == c) return;
@@ -264,10 +259,6 @@ Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c,
   const std::uint32_t first = viaQ >= viaP ? Q : P, second = viaQ >= viaP ? P : Q;
   for (std::uint32_t x : {first, second}) {
     if (!topologyAllows(a, b, c, x)) continue;
-    // The two triangles of that diagonal: (b, a, q) and (b, q, p), or (b, a, p) and (a, q, p).
-    if (x == Q ? unusedPointInside(b, a, Q) || unusedPointInside(b, Q, P)
-               : unusedPointInside(b, a, P) || unusedPointInside(a, Q, P))
-      return Candidate();
     const P3 newNormal = (pts_[a] - pts_[b]) ^ (pts_[x] - pts_[b]);
     Candidate cand;
     cand.point = x;
@@ -510,13 +501,15 @@ void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     return;
   }
   queue_.push(cand.priority(params_.flatnessLevels) - 1,
-              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point)});
+              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u)});
 }
 
 void Mesher::grow(Progress* progress) {
   size_t tick = 0;
   while (!queue_.empty()) {
-    const FrontEdge e = queue_.pop();
+    FrontEdge e = queue_.pop();
+    const bool loop = (e.p & FrontEdge::kLoop) != 0;
+    e.p &= ~FrontEdge::kLoop;
     // Closed from the other side since it was queued: no longer a free edge.
     if (pem_.used(e.b, e.a)) continue;
     if (!topologyAllows(e.a, e.b, e.c, e.p)) {
@@ -524,6 +517,18 @@ void Mesher::grow(Progress* progress) {
       // points that pass the tests now, at the priority that gives (or make it a boundary edge).
       queueEdge(e.a, e.b, e.c);
       continue;
+    }
+    // The triangle closes a loop of free edges (findCandidate's closesLoop). An unused point
+    // inside it would be skipped for good: the edge grows to it by the ordinary search instead
+    // (sec. 3.2), and the loop closes only if that search finds nothing, so it is never left
+    // open. Checked here, once per loop, rather than for each of the loop's edges when queued.
+    if (loop && unusedPointInside(e.b, e.a, e.p)) {
+      const Candidate grown = findCandidate(e.a, e.b, e.c, /*ears=*/false);
+      if (grown.valid() && grown.point != e.p && !grown.closesLoop) {
+        queue_.push(grown.priority(params_.flatnessLevels) - 1,
+                    FrontEdge{e.a, e.b, e.c, static_cast<std::uint32_t>(grown.point)});
+        continue;
+      }
     }
     addTriangle(e.b, e.a, e.p);
     if (progress != nullptr && (++tick & 1023) == 0)

@@ -29,8 +29,10 @@ namespace growth {
 namespace g2s {
 
 // A free edge in the front queue: half-edge a→b of the front triangle (a, b, c) is used, b→a is
-// not; p is the candidate point found for the new triangle (b, a, p).
+// not; p is the candidate point found for the new triangle (b, a, p) (point indices use at most
+// 29 bits, see PointEdgeMap::kMaxPoints, so the top bit carries a flag).
 struct FrontEdge {
+  static constexpr std::uint32_t kLoop = 1u << 31; // on p: the triangle closes a loop (closesLoop)
   std::uint32_t a, b, c, p;
 };
 
@@ -78,11 +80,11 @@ public:
   void grow(Progress* progress = nullptr);
 
   // Sec. 3.2 steps 4.1–4.2 for the free edge a→b of front triangle (a, b, c), considering only
-  // points that pass the topological tests now (topologyAllows). An edge that closes a loop of
-  // three free edges takes the loop's third point (closesLoop), unless an unused point lies
-  // inside the loop (unusedPointInside): then the ordinary search runs, so that point is not
-  // skipped, and the loop closes only when that search finds nothing.
-  Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // points that pass the topological tests now (topologyAllows). With `ears`, an edge that
+  // closes a loop of three free edges takes the loop's third point (closesLoop); grow() checks
+  // for an unused point inside the loop (unusedPointInside) before it closes it, and then grows
+  // the edge by the ordinary search (ears off) so that the point is not skipped.
+  Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c, bool ears = true);
   // For a free edge a→b whose search found nothing, on a loop of four free edges: the point of
   // the diagonal with the better triangles (closesLoop; queued last). Invalid otherwise.
   Candidate quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,

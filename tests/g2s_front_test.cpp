@@ -181,10 +181,13 @@ TEST(G2SFront, ALoopWithAnUnusedPointInsideGrowsToThePoint) {
   m.addSeed({in[1], in[2], in[4]}); // b→p
   m.addSeed({in[2], in[0], in[5]}); // p→a
   EXPECT_TRUE(m.unusedPointInside(in[1], in[0], in[2]));
-  const Candidate c = m.findCandidate(in[0], in[1], in[3]);
+  // The edge's candidate is the loop's third point; without ears, the point inside.
+  EXPECT_TRUE(m.findCandidate(in[0], in[1], in[3]).closesLoop);
+  const Candidate c = m.findCandidate(in[0], in[1], in[3], /*ears=*/false);
   ASSERT_TRUE(c.valid());
   EXPECT_EQ(c.point, in[6]);
   EXPECT_FALSE(c.closesLoop);
+  // The growth checks the loop before it closes it, and grows to the point.
   m.grow();
   EXPECT_FALSE(m.edges().isolated(in[6]));
   for (int k = 0; k < 3; ++k) {
