@@ -198,6 +198,32 @@ TEST(G2SFront, ALoopWithAnUnusedPointInsideGrowsToThePoint) {
   EXPECT_FALSE(m.unusedPointInside(in[1], in[0], in[2]));
 }
 
+// A loop of four free edges a→b→p→q→a (each with its outer triangle) is closed by the diagonal
+// whose two triangles have the larger smallest angle: in the parallelogram a, b, p, q the short
+// diagonal b–q. The candidate closes a loop and is queued last.
+TEST(G2SFront, AFourEdgeLoopClosesByItsBetterDiagonal) {
+  std::vector<P3> pts{P3(0, 0, 0), P3(1, 0, 0), P3(1.5, -0.9, 0), P3(0.5, -0.9, 0), // a, b, p, q
+                      P3(0.5, 1, 0), P3(2.3, -0.3, 0), P3(1, -1.9, 0), P3(-0.8, -0.6, 0)}; // outer apexes
+  Mesher m(pts, defaults());
+  const auto in = internalIndex(m);
+  m.addSeed({in[0], in[1], in[4]}); // a→b
+  m.addSeed({in[1], in[2], in[5]}); // b→p
+  m.addSeed({in[2], in[3], in[6]}); // p→q
+  m.addSeed({in[3], in[0], in[7]}); // q→a
+  const P3 frontNormal = (m.points()[in[1]] - m.points()[in[0]]) ^ (m.points()[in[4]] - m.points()[in[0]]);
+  const Candidate c = m.quadClosure(in[0], in[1], in[4], frontNormal, frontNormal.Norm());
+  ASSERT_TRUE(c.valid());
+  EXPECT_EQ(c.point, in[3]);
+  EXPECT_TRUE(c.closesLoop);
+  EXPECT_EQ(c.priority(defaults().flatnessLevels), defaults().sizeLevels * defaults().flatnessLevels);
+  // Not on such a loop (the q→a edge missing): nothing.
+  Mesher open(pts, defaults());
+  open.addSeed({in[0], in[1], in[4]});
+  open.addSeed({in[1], in[2], in[5]});
+  open.addSeed({in[2], in[3], in[6]});
+  EXPECT_FALSE(open.quadClosure(in[0], in[1], in[4], frontNormal, frontNormal.Norm()).valid());
+}
+
 TEST(G2STopology, PointEdgeMapTestsOfTheNewTriangle) {
   // New triangle (b, a, p) on the free edge a→b of front triangle (a, b, c).
   std::vector<P3> pts;
