@@ -302,7 +302,12 @@ bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c
   });
 }
 
-Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
+// Inlined into its one caller, findCandidate, as it was before the ear and loop handling were
+// split off (a separate function cost 2.5 % of the growth's instructions on a clean sphere).
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
                          double frontNorm) {
   Candidate none;
   const P3 &A = pts_[a], &B = pts_[b];
