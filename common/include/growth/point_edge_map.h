@@ -121,9 +121,9 @@ public:
   // bit 0 for {a,b}, bit 1 for {b,c}, bit 2 for {c,a}. Precondition: canAddTriangle(a, b, c)
   // (std::length_error, with the map unchanged, when a point has no room).
   unsigned addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    assert(canAddTriangle(a, b, c));
     // Checked before anything changes, so a refused triangle leaves the map as it was.
     if (!hasRoom(a, b, c)) throw std::length_error("PointEdgeMap: a triangle was added at a point with no room left");
+    assert(canAddTriangle(a, b, c));
     unsigned fresh = 0;
     fresh |= addHalfEdge(a, b) ? 1u : 0u;
     fresh |= addHalfEdge(b, c) ? 2u : 0u;
