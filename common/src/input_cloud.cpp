@@ -169,9 +169,8 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   // points of a line written in float are off it by up to half a unit in the last place of the
   // largest coordinate, about 6e-8 of it, far more than any tolerance relative to the box.
   {
-    double magnitude = 0;
-    for (const auto& p : c.points)
-      for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, std::abs(p[k]));
+    double magnitude = 0; // the largest |coordinate|, from the box
+    for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(c.box.min[k]), std::abs(c.box.max[k])});
     const vcg::Point3d a = c.points[0];
     size_t far = 0;
     double best = -1;
