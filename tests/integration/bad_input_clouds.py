@@ -49,6 +49,14 @@ def uv_sphere(per_ring):
     return rows
 
 
+def cube_point(i, j, k, n):
+    """Lattice point (i, j, k) / 32 on the surface of the cube [0, n/32]^3, with the mean of the
+    outward normals of the faces it lies on."""
+    nrm = [(-1 if a == 0 else 1 if a == n else 0) for a in (i, j, k)]
+    length = math.sqrt(sum(x * x for x in nrm))
+    return (i / 32.0, j / 32.0, k / 32.0) + tuple(x / length for x in nrm)
+
+
 def unit(rnd):
     while True:
         v = [rnd.gauss(0, 1) for _ in range(3)]
@@ -75,6 +83,9 @@ def cases():
     c["coplanar"] = [(rnd.uniform(-1, 1), rnd.uniform(-1, 1), 0.0, 0, 0, 1) for _ in range(N)]
     # An exact lattice (1/32 is exact in float): four points on every empty circle.
     c["regular-grid"] = [(i / 32.0, j / 32.0, 0.0, 0, 0, 1) for i in range(55) for j in range(55)]
+    # The surface of a cube on the same lattice: exact ties in 3D, and sharp edges and corners.
+    c["cube-lattice"] = [cube_point(i, j, k, 24) for i in range(25) for j in range(25) for k in range(25)
+                         if {i, j, k} & {0, 24}]
     # 149 rings of 300 points and the poles (44,702 points; the issue's 300 x 600 at half the
     # resolution): 300 edges at each pole, more than G2S's per-point edge capacity of 255 today.
     c["uv-sphere"] = uv_sphere(300)
@@ -90,6 +101,7 @@ def cases():
     c["tiny-1e-6"] = sphere(N, 1, radius=0.5e-6)
     c["flipped-normals"] = [r if rnd.random() < 0.5 else r[:3] + tuple(-x for x in r[3:]) for r in base]
     c["zero-normals"] = [r if i % 10 else r[:3] + (0.0, 0.0, 0.0) for i, r in enumerate(base)]
+    c["nan-normal"] = base[:-1] + [base[-1][:3] + (float("nan"), 0.0, 1.0)]
     octahedron = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
     c["mesh"] = ([p + p for p in octahedron],
                  [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)])

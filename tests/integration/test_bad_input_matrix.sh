@@ -34,6 +34,7 @@ duplicates      | closed                              | closed
 collinear       | error:one straight line             | error:one straight line
 coplanar        | mesh                                | mesh
 regular-grid    | mesh                                | mesh
+cube-lattice    | mesh                                | closed
 uv-sphere       | changing:more than 255 edges        | closed
 far-outlier     | closed                              | closed
 far-outlier-20k | mesh-to-closed                      | closed
@@ -43,6 +44,7 @@ offset-1e6      | closed                              | closed
 tiny-1e-6       | closed                              | closed
 flipped-normals | closed                              | mesh
 zero-normals    | closed                              | error:zero or invalid normal
+nan-normal      | closed                              | error:1 of 3000 vertices have a zero or invalid normal
 mesh            | error:is a mesh                     | error:is a mesh
 '
 # EXPECTED TO CHANGE:
