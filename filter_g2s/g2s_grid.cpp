@@ -1,6 +1,7 @@
 #include "g2s_grid.h"
 
 #include <growth/huge_pages.h>
+#include <growth/input_cloud.h>
 
 #include <algorithm>
 
@@ -34,6 +35,10 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   box_.SetNull();
   for (const P3& p : points) box_.Add(p);
   if (n == 0) return;
+  // Float coordinates relative to the bulk of the cloud: relative to the box, one far point would
+  // leave the others only a few float bits of their spacing (see floatSlack).
+  const vcg::Box3d bulk = robustBox(points, 1024); // (any point of the bulk would do)
+  fo_ = bulk.IsNull() ? box_.min : bulk.Center();
 
   const double extent = std::max(box_.DimX(), std::max(box_.DimY(), box_.DimZ()));
   cell_ = std::max(cellSize, extent / double(kMaxCoord - 1));
@@ -127,13 +132,10 @@ void MortonGrid::build(std::vector<P3> points, double cellSize) {
   float* fy = fx + stride_;
   float* fz = fy + stride_;
   for (size_t i = 0; i < n; ++i) {
-    fx[i] = float(pts_[i][0] - box_.min[0]);
-    fy[i] = float(pts_[i][1] - box_.min[1]);
-    fz[i] = float(pts_[i][2] - box_.min[2]);
+    fx[i] = float(pts_[i][0] - fo_[0]);
+    fy[i] = float(pts_[i][1] - fo_[1]);
+    fz[i] = float(pts_[i][2] - fo_[2]);
   }
-  // Float rounding of a relative coordinate is at most 2^-24 of the extent; the query centre's
-  // as well: a distance computed in float errs by less than 4·√3·2^-24·extent (with margin).
-  floatSlack_ = 8.0 * std::sqrt(3.0) * std::ldexp(extent, -24) + 1e-300;
 
   for (size_t i = 0; i < n; ++i) cells_ += (i == 0 || key[i] != key[i - 1]);
 
@@ -217,6 +219,19 @@ std::int64_t MortonGrid::nearest(const P3& c, std::int64_t exclude, double maxRa
       return best;
     }
     radius = std::min(2.0 * radius, maxRadius);
+  }
+}
+
+void MortonGrid::nearestOtherSquaredDistances(size_t stride, std::vector<double>& squared) const {
+  stride = std::max<size_t>(stride, 1);
+  const size_t n = pts_.size();
+  squared.assign(n == 0 ? 0 : (n - 1) / stride + 1, -1.0);
+  // In grid order, so that consecutive queries touch the same cells.
+  for (size_t i = 0; i < n; ++i) {
+    if (order_[i] % stride != 0) continue;
+    double d2 = -1;
+    if (nearest(pts_[i], std::int64_t(i), std::numeric_limits<double>::infinity(), &d2) >= 0)
+      squared[order_[i] / stride] = d2;
   }
 }
 

@@ -92,8 +92,10 @@ public:
   void gatherNear(const P3& c, double radius, NearList& out) const {
     out.clear();
     if (pts_.empty() || !(radius >= 0)) return;
-    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
-    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    const double slack = floatSlack(c, radius);
+    const float r2f = float((radius + slack) * (radius + slack));
+    float fc[3];
+    toFloat(c, fc);
     const float* fx = coords_.data();
     // The cells' ranges are collected first and scanned in one call (one call per cell costs as
     // much as the scan of a small cell).
@@ -114,15 +116,24 @@ public:
     });
     if (ranges > 0) flush();
   }
-  // The point's coordinates relative to box().min, in float (|float − exact| <= floatSlack()/2
-  // per distance, see build()).
+  // The point's coordinates relative to floatOrigin(), in float.
   float fx(std::uint32_t i) const { return coords_[i]; }
   float fy(std::uint32_t i) const { return coords_[stride_ + i]; }
   float fz(std::uint32_t i) const { return coords_[2 * stride_ + i]; }
-  // A bound on the error of a distance computed from the float coordinates.
-  double floatSlack() const { return floatSlack_; }
+  // A bound on the error of a distance between c and a point within `radius` of it computed from
+  // float coordinates (the point's fx/fy/fz, c's from toFloat). Rounding to float errs by at most
+  // 2^-24 of a coordinate's magnitude, and both coordinates are at most |c − origin|∞ + radius (+
+  // the slack itself) from the origin: 2·√3·2^-24·(|c − origin|∞ + 2·radius) bounds the error,
+  // taken four times for the float arithmetic and margin. The origin is in the bulk of the cloud
+  // (the centre of growth::robustBox), so a far point costs no precision near the others.
+  double floatSlack(const P3& c, double radius) const {
+    constexpr double kSlackPerMagnitude = 8.0 * 1.7320508075688772 / 16777216.0; // 8·√3·2^-24
+    const double m = std::max(std::abs(c[0] - fo_[0]), std::max(std::abs(c[1] - fo_[1]), std::abs(c[2] - fo_[2])));
+    return kSlackPerMagnitude * (m + 2.0 * radius) + 1e-300;
+  }
+  const P3& floatOrigin() const { return fo_; }
   void toFloat(const P3& c, float out[3]) const {
-    for (int a = 0; a < 3; ++a) out[a] = float(c[a] - box_.min[a]);
+    for (int a = 0; a < 3; ++a) out[a] = float(c[a] - fo_[a]);
   }
 
   // Calls stop(index, squaredDistance) for the points with |p − c| <= radius until it returns
@@ -136,6 +147,11 @@ public:
   std::int64_t nearest(const P3& c, std::int64_t exclude = -1,
                        double maxRadius = std::numeric_limits<double>::infinity(),
                        double* squaredDistance = nullptr) const;
+
+  // For every point whose caller index order()[i] is a multiple of `stride`: squared[order()[i] /
+  // stride] = the squared distance to its nearest other point (-1 when there is none), the values
+  // growth::PointGrid::nearestOtherSquaredDistances gives over the caller's array.
+  void nearestOtherSquaredDistances(size_t stride, std::vector<double>& squared) const;
 
   size_t memoryBytes() const {
     return pts_.capacity() * sizeof(P3) + coords_.capacity() * sizeof(float) +
@@ -186,11 +202,13 @@ private:
   bool visitBall(const P3& c, double radius, F&& stop) const {
     if (pts_.empty() || !(radius >= 0)) return false;
     const double r2 = radius * radius;
-    // Float prefilter radius: the float coordinates (relative to the box corner) are within
-    // floatSlack_ of the exact ones, so no point within `radius` is missed; hits are re-checked
-    // exactly in double.
-    const float r2f = float((radius + floatSlack_) * (radius + floatSlack_));
-    const float fc[3] = {float(c[0] - box_.min[0]), float(c[1] - box_.min[1]), float(c[2] - box_.min[2])};
+    // Float prefilter radius: distances computed from the float coordinates are within
+    // floatSlack(c, radius) of the exact ones, so no point within `radius` is missed; hits are
+    // re-checked exactly in double.
+    const double slack = floatSlack(c, radius);
+    const float r2f = float((radius + slack) * (radius + slack));
+    float fc[3];
+    toFloat(c, fc);
     return visitCells(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
       return scanCell<Exact>(begin, end, c, fc, r2, r2f, stop);
     });
@@ -314,11 +332,11 @@ private:
   }
 
   std::vector<P3> pts_;
-  // The points relative to box_.min, in float, same order: x, y, z arrays of stride_ = n + kNearPad
+  // The points relative to fo_, in float, same order: x, y, z arrays of stride_ = n + kNearPad
   // (padded for whole-vector loads) in one block (one mapping, see HugeAllocator).
   HugeVector<float> coords_;
   size_t stride_ = 0;
-  double floatSlack_ = 0;
+  P3 fo_{0, 0, 0}; // origin of the float coordinates: the centre of the bulk of the points
   std::vector<std::uint32_t> order_;
   HugeVector<Slot> table_;
   // The alternative to table_ (then empty) when compact: bricks of 4×4×4 cells, aligned, so that
