@@ -57,6 +57,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   }
   if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
   pts_ = grid_.points().data();
+  grid_.setVisitCounter(&visited_);
   pem_.reset(n);
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));

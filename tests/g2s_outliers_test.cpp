@@ -69,3 +69,26 @@ TEST(G2SOutliers, OneFarPointChangesNeitherTheSpacingNorTheHoles) {
     EXPECT_EQ(far->stat.faces, clean->stat.faces);
   }
 }
+
+TEST(G2SOutliers, AFarPointOrADenseClusterCostsTheIndexAtMostHalfAgainTheCleanCloudsWork) {
+  // The work is the number of points the index scans for the queries (deterministic, unlike the
+  // wall time); the cluster: 1 % of the points within a hundredth of the spacing of one sample.
+  for (Shape shape : {Shape::Sphere, Shape::Torus}) {
+    const auto clean = run(spec(shape, 50000));
+    CloudSpec s = spec(shape, 50000);
+    s.farPoints = 1;
+    const auto far = run(s);
+    s.farPoints = 0;
+    s.clusterFraction = 0.01;
+    const auto cluster = run(s);
+    ASSERT_GT(clean->stat.pointsVisited, 0u);
+    EXPECT_LE(double(far->stat.pointsVisited), 1.5 * double(clean->stat.pointsVisited));
+    EXPECT_LE(double(cluster->stat.pointsVisited), 1.5 * double(clean->stat.pointsVisited));
+    EXPECT_EQ(far->stat.holes, clean->stat.holes);
+    // The cluster (a ball of 500 points, not a surface) leaves a few holes around itself that
+    // the growth, not the index, decides (10 and 12 here; issue 13 asks for none): bounded, so
+    // that a change shows.
+    EXPECT_LE(cluster->stat.holes, 20u);
+    EXPECT_LE(cluster->stat.unusedPoints, 20u);
+  }
+}
