@@ -257,8 +257,13 @@ bool PointIndex::buildBricks(const HugeVector<std::uint64_t>& key, size_t n) {
     }
     i = j;
   }
-  for (int a = 0; a < 3; ++a) brickDim_[a] = dim[a];
+  for (int a = 0; a < 3; ++a) {
+    brickDim_[a] = dim[a];
+    brickCellLo_[a] = brickLo_[a];
+    brickCellHi_[a] = brickLo_[a] + 4 * dim[a] - 1;
+  }
   assignHuge(brickOf_, static_cast<size_t>(boxBricks), 0u);
+  brickBias_ = brickIndex(brickLo_[0] >> 2, brickLo_[1] >> 2, brickLo_[2] >> 2);
   assignHuge(brickBase_, bricks, 0u);
   assignHuge(brickOff_, bricks * 65, std::uint16_t(0));
   size_t b = 0;
@@ -271,7 +276,7 @@ bool PointIndex::buildBricks(const HugeVector<std::uint64_t>& key, size_t n) {
       i = j;
       continue;
     }
-    brickOf_[brickIndex(at[0], at[1], at[2])] = static_cast<std::uint32_t>(b + 1);
+    brickOf_[brickIndex(at[0], at[1], at[2])] = static_cast<std::uint32_t>(b + 1); // (at: from brickLo_)
     brickBase_[b] = static_cast<std::uint32_t>(i);
     std::uint16_t* off = &brickOff_[b * 65];
     for (; j < n && (key[j] >> 6) == brick; ++j) ++off[(key[j] & 63) + 1];

@@ -235,17 +235,16 @@ private:
   // box touches (sub-cells of split cells, the far points when it reaches beyond the range), until
   // it returns true; returns whether it did.
   template <class F>
-  bool visitCells(const P3& c, double radius, F&& cell) const {
+  __attribute__((always_inline)) bool visitCells(const P3& c, double radius, F&& cell) const {
     std::int64_t lo[3], hi[3];
-    bool beyond = false; // the box reaches outside the 2^21 cells of the range
     for (int a = 0; a < 3; ++a) {
       lo[a] = coord(c[a] - radius, a);
       hi[a] = coord(c[a] + radius, a);
-      beyond |= lo[a] < 0 || hi[a] > kMaxCoord;
     }
-    if (__builtin_expect(beyond, 0) && farBegin_ < pts_.size() &&
+    if (__builtin_expect(farBegin_ < pts_.size(), 0) &&
+        (lo[0] < 0 || lo[1] < 0 || lo[2] < 0 || hi[0] > kMaxCoord || hi[1] > kMaxCoord || hi[2] > kMaxCoord) &&
         range(std::uint32_t(farBegin_), std::uint32_t(pts_.size()), cell))
-      return true;
+      return true; // the box reaches outside the 2^21 cells of the range: the far points too
     bool empty = false;
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::max<std::int64_t>(lo[a], 0);
@@ -260,29 +259,28 @@ private:
 
   // visitCells for the cells [lo, hi] (clamped to the occupied ones), split cells only if Split.
   template <bool Split, class F>
-  bool visitCellRange(std::int64_t* lo, std::int64_t* hi, const P3& c, double radius, F&& cell) const {
+  __attribute__((always_inline)) bool visitCellRange(std::int64_t* lo, std::int64_t* hi, const P3& c, double radius,
+                                                     F&& cell) const {
     auto visit = [&](std::uint32_t begin, std::uint32_t end) {
       if (!Split || end - begin <= kSplitPoints) return range(begin, end, cell);
       return visitSplit(begin, end, c, radius, cell);
     };
-    auto boxCells = [&]() {
-      return double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
-    };
     if (!brickOf_.empty()) {
-      bool inBricks = true;
-      for (int a = 0; a < 3; ++a) inBricks &= lo[a] >= brickLo_[a] && hi[a] < brickLo_[a] + 4 * brickDim_[a];
+      bool inBricks = lo[0] >= brickCellLo_[0] && lo[1] >= brickCellLo_[1] && lo[2] >= brickCellLo_[2] &&
+                      hi[0] <= brickCellHi_[0] && hi[1] <= brickCellHi_[1] && hi[2] <= brickCellHi_[2];
       if (!inBricks && table_.empty()) {
         // No occupied cell outside the bricks: clamp to them.
         for (int a = 0; a < 3; ++a) {
-          lo[a] = std::max(lo[a], brickLo_[a]);
-          hi[a] = std::min(hi[a], brickLo_[a] + 4 * brickDim_[a] - 1);
+          lo[a] = std::max(lo[a], brickCellLo_[a]);
+          hi[a] = std::min(hi[a], brickCellHi_[a]);
           if (lo[a] > hi[a]) return false;
         }
         inBricks = true;
       }
+      const double boxCells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
       // (A box of more cells than are occupied is walked through the table when there is one.)
-      if (inBricks && (table_.empty() || !(boxCells() > double(cells_)))) {
-        if (boxCells() > double(cells_)) {
+      if (inBricks && (table_.empty() || !(boxCells > double(cells_)))) {
+        if (boxCells > double(cells_)) {
           // More cells in the box than occupied ones: walk the occupied cells instead.
           for (size_t b = 0; b < brickBase_.size(); ++b)
             for (int k = 0; k < 64; ++k) {
@@ -295,10 +293,10 @@ private:
         static constexpr unsigned kPlace[4] = {0, 1, 8, 9};
         for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
           for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-            const size_t row = brickIndex((x >> 2) - (brickLo_[0] >> 2), (y >> 2) - (brickLo_[1] >> 2), 0);
+            const size_t row = brickIndex(x >> 2, y >> 2, 0) - brickBias_; // (unsigned: wraps back)
             const unsigned xy = kPlace[x & 3] | kPlace[y & 3] << 1;
             for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-              const std::uint32_t b = brickOf_[row + size_t((z >> 2) - (brickLo_[2] >> 2))];
+              const std::uint32_t b = brickOf_[row + size_t(z >> 2)];
               if (b == 0) continue;
               const std::uint16_t* off = &brickOff_[size_t(b - 1) * 65 + (xy | kPlace[z & 3] << 2)];
               if (off[0] != off[1] && visit(brickBase_[b - 1] + off[0], brickBase_[b - 1] + off[1])) return true;
@@ -307,7 +305,7 @@ private:
         return false;
       }
     }
-    if (boxCells() > double(cells_)) {
+    if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
       // More cells in the box than occupied ones: walk the occupied cells instead.
       for (const Slot& s : table_)
         if (s.key != kEmpty && visit(s.begin, s.end)) return true;
@@ -340,7 +338,7 @@ private:
   }
 
   template <class F>
-  bool range(std::uint32_t begin, std::uint32_t end, F&& cell) const {
+  __attribute__((always_inline)) bool range(std::uint32_t begin, std::uint32_t end, F&& cell) const {
     if (__builtin_expect(visited_ != nullptr, 0)) *visited_ += end - begin;
     return cell(begin, end);
   }
@@ -464,6 +462,9 @@ private:
   HugeVector<std::uint16_t> brickOff_;
   std::int64_t brickDim_[3] = {0, 0, 0}; // bricks per axis
   std::int64_t brickLo_[3] = {0, 0, 0};  // first cell of the bricks' box (a multiple of 4)
+  std::int64_t brickCellLo_[3] = {0, 0, 0}, brickCellHi_[3] = {-1, -1, -1}; // its cells, inclusive
+  // brickOf_[brickIndex(X, Y, Z) − brickBias_] is the entry of brick (X, Y, Z) of the range.
+  size_t brickBias_ = 0;
   size_t brickIndex(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return static_cast<size_t>((x * brickDim_[1] + y) * brickDim_[2] + z);
   }
