@@ -76,6 +76,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     mesher.releaseGrowthState();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
+    stat.pointsVisited = mesher.pointsVisited();
 
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
     if (p.removeNonManifoldVertices) {

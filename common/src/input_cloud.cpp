@@ -212,6 +212,10 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, i
   // their median.
   std::vector<double> d2;
   grid.nearestOtherSquaredDistances(stride, d2, threads);
+  return trimmedMeanSpacing(d2);
+}
+
+double trimmedMeanSpacing(const std::vector<double>& d2) {
   std::vector<double> valid;
   valid.reserve(d2.size());
   for (const double v : d2)
