@@ -76,6 +76,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     mesher.releaseGrowthState();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
+    stat.pointsVisited = mesher.pointsVisited();
     stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
     if (stat.edgesLeftAtFullPoints > 0)
       stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "

@@ -41,7 +41,8 @@ struct Stat {
   size_t nonManifoldVertices = 0;         // left in the output (0 unless the removal is off)
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
-  double spacing = 0;                     // mean nearest-neighbour spacing of the cloud
+  double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)
+  std::uint64_t pointsVisited = 0;        // points the index scanned for the growth's queries
   double maxSearchRadiusFactor = 0;       // the factor used
   size_t workingBytes = 0;                // engine memory at its peak (points, grid, edges, faces)
   double seconds = 0;                     // whole run

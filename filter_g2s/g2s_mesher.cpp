@@ -2,7 +2,7 @@
 
 #include <growth/cloud_generator.h> // growth::Random
 #include <growth/huge_pages.h>
-#include <growth/input_cloud.h>     // growth::roughSpacing
+#include <growth/input_cloud.h>     // growth::robustBox, roughSpacing, trimmedMeanSpacing
 
 #include <algorithm>
 #include <cmath>
@@ -42,11 +42,14 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   if (spacing_ > 0) {
     grid_.build(std::move(points), kCellSpacings * spacing_);
   } else {
-    // Spacing unknown: build with a guess from the bounding box, measure the spacing on the grid,
-    // and rebuild only when the guess was far off.
-    vcg::Box3d box;
-    for (const P3& p : points) box.Add(p);
-    const double guess = 0.5 * roughSpacing(box, n);
+    // Spacing unknown: build with a guess from the bulk of the cloud (robustBox: one far point
+    // would make the bounding box's guess huge), measure the spacing on the grid, and rebuild
+    // only when the guess was far off. The robust box is the bulk's box widened by its extent on
+    // every side: a third of its diagonal is the bulk's.
+    const vcg::Box3d bulk = robustBox(points, 4096);
+    size_t inside = 0;
+    for (const P3& p : points) inside += bulk.IsIn(p) ? 1 : 0;
+    const double guess = 0.5 * roughSpacing(bulk, std::max<size_t>(inside, 2)) / 3.0;
     grid_.build(std::move(points), kCellSpacings * guess);
     spacing_ = sampleSpacing();
     const double cellWanted = kCellSpacings * spacing_;
@@ -61,6 +64,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   }
   if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
   pts_ = grid_.points().data();
+  grid_.setVisitCounter(&visited_);
   pem_.reset(n);
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));
@@ -76,21 +80,12 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
 }
 
 double Mesher::sampleSpacing() const {
-  // Mean nearest-neighbour distance over up to 4096 points at a fixed stride of the grid order
-  // (spread over the whole cloud), like growth::meanSpacing but on this grid.
-  const size_t n = grid_.size();
-  if (n < 2) return 0;
-  const size_t stride = std::max<size_t>(1, n / 4096);
-  double sum = 0;
-  size_t count = 0;
-  for (size_t i = 0; i < n; i += stride) {
-    double d2 = 0;
-    if (grid_.nearest(grid_.point(std::uint32_t(i)), std::int64_t(i), std::numeric_limits<double>::infinity(), &d2) >= 0) {
-      sum += std::sqrt(d2);
-      ++count;
-    }
-  }
-  return count > 0 ? sum / double(count) : 0;
+  // growth::meanSpacing (the trimmed mean of the nearest distances of a fixed stride of the
+  // caller's points, the spacing mesh_measures and the benchmark use), measured on this grid: the
+  // same samples, the same distances, the same number.
+  std::vector<double> d2;
+  grid_.nearestOtherSquaredDistances(std::max<size_t>(1, grid_.size() / kMeanSpacingSamples), d2);
+  return trimmedMeanSpacing(d2);
 }
 
 int Mesher::flatnessLevelOfCos(double cosBeta) const {
@@ -115,8 +110,8 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
                        std::uint32_t b, std::uint32_t c) const {
   // Gathered points: decided in float where they are farther than the float error from the
   // sphere, exactly otherwise (the three points on the sphere always go the exact way).
-  const double radius = std::sqrt(ball.radius2), slack = 2.0 * grid_.floatSlack();
-  const float inner = slack < 1e-9 * radius ? 0.f : float((radius - slack) * (radius - slack) * (1.0 - 1e-6));
+  const double radius = std::sqrt(ball.radius2), slack = 2.0 * grid_.floatSlack(ball.centre, radius);
+  const float inner = !(slack < radius) ? 0.f : float((radius - slack) * (radius - slack) * (1.0 - 1e-6));
   const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
   float cf[3];
   grid_.toFloat(ball.centre, cf);
@@ -359,7 +354,7 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
     float cf[3];
     grid_.toFloat(centre, cf);
-    const double slack = 2.0 * grid_.floatSlack();
+    const double slack = 2.0 * grid_.floatSlack(centre, radius);
     const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
     const std::uint32_t front[3] = {a, b, c};
     const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());

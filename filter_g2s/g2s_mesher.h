@@ -158,6 +158,9 @@ public:
   BoundaryCount boundary();
   size_t memoryBytes() const;
   double spacing() const { return spacing_; }
+  // Points the index scanned for the queries since construction: a deterministic measure of the
+  // search work (growth::PointIndex::setVisitCounter).
+  std::uint64_t pointsVisited() const { return visited_; }
   // One word per point that callers may use once the mesh is final (saves an allocation).
   std::vector<std::uint32_t>& scratch() { return scratch_; }
 
@@ -194,6 +197,7 @@ private:
   double spacing_ = 0;
   double seedMaxEdge_ = 0;
   MortonGrid grid_;
+  std::uint64_t visited_ = 0;          // grid_'s visit counter
   const P3* pts_ = nullptr;            // grid_.points().data()
   PointEdgeMap pem_;
   // Per point, during growth: the sum of the lengths of its edges, their number, and how many of

@@ -22,7 +22,7 @@ namespace g2s {
 constexpr std::size_t kNearPad = 16;
 
 // Points gathered around a query: grid indices and float coordinates relative to the grid's box
-// (MortonGrid::gatherNear). Every distance computed from them is within the grid's floatSlack() of
+// (MortonGrid::gatherNear, over growth::PointIndex). Every distance computed from them is within the grid's floatSlack(c, r) of
 // the exact one, so a scan decides most points in float and re-checks in double only those within
 // the slack of a sphere.
 struct NearList {

@@ -14,6 +14,7 @@
 #include <growth/mesh_normals.h>
 #include <growth/morton.h>
 #include <growth/parallel.h>
+#include <growth/point_grid.h>
 #include <growth/progress.h>
 #include <growth/radix_order.h>
 #include <growth/self_intersections.h>
@@ -44,6 +45,35 @@ constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
 // paper (a location on the surface is nearly always covered by a nearby point's splat as well).
 constexpr double kLargeSplatPerD = 1.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
+
+// Unoriented normals (a sign that changes from point to point) are told from thin parts and folds,
+// which also make boxes see two sides (BoxGrid's d-too-large count), by the points' nearest
+// neighbours: their normals point to opposite sides for about half of the points when the signs
+// are random, and for almost none on an oriented cloud (the nearest neighbour of a point of a thin
+// part lies on the same side). Checked when at least kTwoSidedBoxShareToCheck of the boxes see two
+// sides; the normals look unoriented when at least kOppositeNeighbourShare of the points have an
+// opposite nearest neighbour.
+constexpr double kTwoSidedBoxShareToCheck = 0.1;
+constexpr double kOppositeNeighbourShare = 0.2;
+constexpr size_t kOrientationSamples = 4096;
+
+// Share of the sampled points (a fixed stride) whose nearest other point has a normal with a
+// negative product with theirs. `cell`: the grid's cell size (about the spacing).
+double oppositeNeighbourShare(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+                              double cell) {
+  if (points.size() < 2 || !(cell > 0)) return 0;
+  PointGrid grid;
+  grid.build(points, cell);
+  const size_t stride = std::max<size_t>(1, points.size() / kOrientationSamples);
+  size_t sampled = 0, opposite = 0;
+  for (size_t i = 0; i < points.size(); i += stride) {
+    const int j = grid.nearest(points[i], nullptr, int(i));
+    if (j < 0) continue;
+    ++sampled;
+    opposite += normals[i] * normals[size_t(j)] < 0 ? 1 : 0;
+  }
+  return sampled > 0 ? double(opposite) / double(sampled) : 0;
+}
 
 std::string fmt(double v) {
   std::ostringstream s;
@@ -454,7 +484,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   check.allowFaces = false;
   check.minPoints = 3;
   InputCloud in = readCloud(cloud, check);
-  st.inputPoints = in.points.size();
+  st.inputPoints = static_cast<size_t>(cloud.vn);
   st.duplicatesDropped = in.duplicatesDropped;
 
   // Parameters.
@@ -476,9 +506,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   }
   if (!std::isfinite(d) || !(d > 0)) throw Error("The sphere diameter d must be a positive number.");
   if (d > 0.5 * diag) {
+    const double automatic = defaultDiameter(scale);
+    if (!(params.sphereDiameter > 0) || !(automatic <= 0.5 * diag))
+      // The cloud's own sampling asks for edges longer than the cloud.
+      throw Error("Too few points, or too sparse, for a mesh: the automatic sphere diameter d = " + fmt(automatic) +
+                  " (from the spacing of the " + std::to_string(in.points.size()) + " points) is larger than "
+                  "the cloud (bounding box diagonal " + fmt(diag) + "). Give a d below " + fmt(0.5 * diag) +
+                  " by hand, or use a denser cloud.");
     throw Error("The sphere diameter d = " + fmt(d) + " is larger than the cloud (bounding box diagonal " +
                 fmt(diag) + "): no mesh with edges that long fits on it. Use a smaller d, e.g. the default " +
-                fmt(defaultDiameter(scale)) + ".");
+                fmt(automatic) + ".");
   }
   double s = params.splatSize;
   if (!(s > 0)) s = defaultSplatSize(scale, d);
@@ -719,7 +756,17 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.vertices = used.size();
   st.faces = faces.size();
 
-  if (st.boxesDTooLarge > 0)
+  const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
+                              ? oppositeNeighbourShare(in.points, in.normals, scale.spacing)
+                              : 0.0;
+  if (opposite >= kOppositeNeighbourShare)
+    st.warnings.push_back("The normals look unoriented: for " + fmt(100 * opposite) + " % of the points the "
+                          "nearest point's normal points to the other side, and in " +
+                          std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) + " boxes the "
+                          "normals within d disagree, so the mesh has holes there. Orient them consistently "
+                          "(Filters > Normals, Curvatures and Orientation > Compute normals for point sets "
+                          "propagates one orientation) and run the filter again.");
+  else if (st.boxesDTooLarge > 0)
     st.warnings.push_back("In " + std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) +
                           " boxes the point normals within d disagree (the box sees two sides of the surface): "
                           "d = " + fmt(d) + " is too large there for the paper's manifold guarantee (section 4.1): "

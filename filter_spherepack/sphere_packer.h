@@ -70,8 +70,8 @@ std::string defaultDiameterReason(const CloudScale& scale);
 double defaultSplatSize(const CloudScale& scale, double d);
 
 struct Stat {
-  size_t inputPoints = 0;
-  size_t duplicatesDropped = 0;
+  size_t inputPoints = 0;         // live vertices of the layer (as g2s::Stat), duplicates included
+  size_t duplicatesDropped = 0;  // exact repeats (the first copy is used)
   double sphereDiameter = 0;     // d actually used
   double splatSize = 0;          // s actually used
   CloudScale scale;              // the cloud's estimated sampling and noise

@@ -111,6 +111,30 @@ TEST(InputCloud, TooFewAndCollinearPointsAreRefused) {
   CMeshO line;
   for (int i = 0; i < 10; ++i) addPoint(line, float(i), float(2 * i), 0);
   EXPECT_NE(errorOf(line, {}).find("one straight line"), std::string::npos);
+  CMeshO one;
+  addPoint(one, 1, 2, 3);
+  EXPECT_NE(errorOf(one, {}).find("only 1 point;"), std::string::npos) << errorOf(one, {});
+}
+
+// A line written in float is off the line by rounding (half a unit in the last place): still a
+// line. A cloud as thin as a few units in the last place of its coordinates is not.
+TEST(InputCloud, ALineInFloatIsALine) {
+  CMeshO line;
+  for (int i = 0; i < 200; ++i) addPoint(line, 0.01f * float(i), 0.02f * float(i), -0.03f * float(i));
+  bool offLine = false; // the float points are not exactly on one line in double
+  const vcg::Point3d a = vcg::Point3d::Construct(line.vert[0].P()), b = vcg::Point3d::Construct(line.vert[199].P());
+  for (const auto& v : line.vert)
+    offLine |= ((vcg::Point3d::Construct(v.P()) - a) ^ (b - a)).Norm() > 1e-9 * (b - a).SquaredNorm();
+  EXPECT_TRUE(offLine);
+  EXPECT_NE(errorOf(line, {}).find("one straight line"), std::string::npos);
+  // Far from the origin (a geo-referenced line): the same.
+  CMeshO far;
+  for (int i = 0; i < 200; ++i) addPoint(far, 1e6f + 0.37f * float(i), 1e6f + 0.71f * float(i), 1e6f - 0.13f * float(i));
+  EXPECT_NE(errorOf(far, {}).find("one straight line"), std::string::npos);
+  // A strip 1e-3 wide next to the line: a (thin) surface, accepted.
+  CMeshO strip;
+  for (int i = 0; i < 200; ++i) addPoint(strip, 0.01f * float(i), 0.001f * float(i % 2), 0);
+  EXPECT_EQ(errorOf(strip, {}), "");
 }
 
 TEST(InputCloud, DeletedVerticesAreIgnored) {

@@ -679,6 +679,41 @@ TEST(SpherePackerBadInput, DLargerThanTheCloud) {
   EXPECT_NE(e.find("larger than the cloud"), std::string::npos) << e;
 }
 
+// Three points: the automatic d (from their spacing) is larger than the cloud; the message says
+// the cloud is too sparse, and does not offer that same d as the way out.
+TEST(SpherePackerBadInput, TooFewPointsForTheAutomaticD) {
+  CMeshO m;
+  vcg::tri::Allocator<CMeshO>::AddVertices(m, 3);
+  m.vert[0].P() = CMeshO::CoordType(0, 0, 0);
+  m.vert[1].P() = CMeshO::CoordType(1, 0, 0);
+  m.vert[2].P() = CMeshO::CoordType(0, 1, 0);
+  for (auto& v : m.vert) v.N() = CMeshO::CoordType(0, 0, 1);
+  const std::string e = errorOf(m);
+  EXPECT_NE(e.find("Too few points, or too sparse"), std::string::npos) << e;
+  EXPECT_NE(e.find("Give a d below 0.7071"), std::string::npos) << e;
+  EXPECT_EQ(e.find("the default"), std::string::npos) << e;
+}
+
+// Normals whose sign changes from point to point: a mesh with holes (never a non-manifold one)
+// and a warning that names the cause and the MeshLab filter that orients them.
+TEST(SpherePackerBadInput, UnorientedNormalsAreNamedInTheWarning) {
+  CMeshO m;
+  smallSphere(m, 3000);
+  growth::Random rnd(3);
+  for (auto& v : m.vert)
+    if (rnd.uniform(0, 1) < 0.5) v.N() = -v.N();
+  CMeshO out;
+  sp::Stat st;
+  sp::build(m, out, sp::Params(), st);
+  EXPECT_GT(st.faces, 0u);
+  EXPECT_EQ(st.nonManifoldVertices, 0u);
+  EXPECT_EQ(st.nonManifoldEdges, 0u);
+  std::string warning;
+  for (const auto& w : st.warnings)
+    if (w.find("look unoriented") != std::string::npos) warning = w;
+  EXPECT_NE(warning.find("Compute normals for point sets"), std::string::npos) << warning;
+}
+
 TEST(SpherePackerBadInput, DSoSmallThatTheOutputWouldExplode) {
   CMeshO m;
   smallSphere(m);
@@ -733,9 +768,11 @@ TEST(SpherePackerBadInput, DTooLargeForAThinPlateIsWarnedAbout) {
   } catch (const growth::Error&) {
   }
   EXPECT_GT(st.boxesDTooLarge, 0u);
-  bool warned = false;
+  bool warned = false, unoriented = false;
   for (const auto& w : st.warnings) warned = warned || w.find("too large") != std::string::npos;
+  for (const auto& w : st.warnings) unoriented = unoriented || w.find("unoriented") != std::string::npos;
   EXPECT_TRUE(warned);
+  EXPECT_FALSE(unoriented); // the normals are oriented: the plate is thin
 }
 
 namespace {

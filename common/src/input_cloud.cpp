@@ -152,7 +152,9 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
 
   if (c.points.size() < check.minPoints) {
     std::ostringstream s;
-    if (c.points.size() == 1)
+    if (c.points.size() == 1 && mesh.vn == 1)
+      s << "The layer has only 1 point; at least " << check.minPoints << " are needed to reconstruct a surface.";
+    else if (c.points.size() == 1)
       s << "All " << mesh.vn << " points of the layer are identical: there is no surface to reconstruct.";
     else
       s << "The layer has only " << c.points.size() << " distinct points; at least " << check.minPoints
@@ -163,8 +165,12 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   c.box.SetNull();
   for (const auto& p : c.points) c.box.Add(p);
 
-  // All points on one line: no surface either.
+  // All points on one line: no surface either. Up to float storage (MeshLab's coordinates): the
+  // points of a line written in float are off it by up to half a unit in the last place of the
+  // largest coordinate, about 6e-8 of it, far more than any tolerance relative to the box.
   {
+    double magnitude = 0; // the largest |coordinate|, from the box
+    for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(c.box.min[k]), std::abs(c.box.max[k])});
     const vcg::Point3d a = c.points[0];
     size_t far = 0;
     double best = -1;
@@ -173,7 +179,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
       if (d > best) best = d, far = i;
     }
     const vcg::Point3d dir = (c.points[far] - a).Normalize();
-    const double tol = 1e-9 * c.box.Diag();
+    const double tol = std::max(1e-9 * c.box.Diag(), 4.0 * double(std::numeric_limits<float>::epsilon()) * magnitude);
     bool collinear = true;
     for (const auto& p : c.points) {
       if (((p - a) ^ dir).Norm() > tol) {
@@ -206,6 +212,10 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, i
   // their median.
   std::vector<double> d2;
   grid.nearestOtherSquaredDistances(stride, d2, threads);
+  return trimmedMeanSpacing(d2);
+}
+
+double trimmedMeanSpacing(const std::vector<double>& d2) {
   std::vector<double> valid;
   valid.reserve(d2.size());
   for (const double v : d2)

@@ -46,6 +46,11 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = 
 // The same value, computed on `threads` threads (0 = automatic, growth/parallel.h).
 double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads);
 
+// The trimmed mean of meanSpacing() from the samples' squared nearest distances (entries below 0:
+// no nearest point, ignored), summed in the given order: for callers that measure the distances on
+// their own index (Robust G2S on its grid) and must log the same number as meanSpacing().
+double trimmedMeanSpacing(const std::vector<double>& squaredNearest);
+
 // Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
 double roughSpacing(const vcg::Box3d& box, size_t n);
 
