@@ -87,7 +87,9 @@ void expectSameMesh(const CMeshO& a, const CMeshO& b) {
     for (int k = 0; k < 3; ++k)
       ASSERT_EQ(vcg::tri::Index(a, a.face[f].cV(k)), vcg::tri::Index(b, b.face[f].cV(k))) << "face " << f;
     ASSERT_TRUE(sameBits(a.face[f].cN(), b.face[f].cN())) << "face normal " << f;
-    if (a.face.IsQualityEnabled()) ASSERT_TRUE(sameBits(a.face[f].cQ(), b.face[f].cQ())) << "face quality " << f;
+    if (a.face.IsQualityEnabled()) {
+      ASSERT_TRUE(sameBits(a.face[f].cQ(), b.face[f].cQ())) << "face quality " << f;
+    }
   }
 }
 
