@@ -128,8 +128,9 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       st.inputPoints, st.duplicatesDropped, st.spacing, st.maxSearchRadiusFactor);
   Log("Robust G2S: %zu faces on %zu vertices (%zu points unused), %zu seeds", st.faces, st.vertices,
       st.unusedPoints, st.seeds);
-  Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces)",
-      st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved);
+  Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces), "
+      "%zu front edges left open at points with no room for another edge",
+      st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
   Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

@@ -77,6 +77,11 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
     stat.pointsVisited = mesher.pointsVisited();
+    stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
+    if (stat.edgesLeftAtFullPoints > 0)
+      stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "
+                              "that already had " + std::to_string(PointEdgeMap::kMaxEntries) +
+                              " neighbours (the most one point can hold): the mesh has holes there.");
 
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
     if (p.removeNonManifoldVertices) {

@@ -39,6 +39,8 @@ struct Stat {
   size_t nonManifoldVerticesRemoved = 0;  // sec. 4.2
   size_t facesRemoved = 0;                // faces of the extra fans removed by sec. 4.2
   size_t nonManifoldVertices = 0;         // left in the output (0 unless the removal is off)
+  size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
+                                          // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)
   std::uint64_t pointsVisited = 0;        // points the index scanned for the growth's queries
   double maxSearchRadiusFactor = 0;       // the factor used

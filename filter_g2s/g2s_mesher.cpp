@@ -17,6 +17,13 @@ namespace {
 // would otherwise test every point of a large ball.
 constexpr size_t kMaxSeedTriangles = 32;
 
+// The cylinder test walks at most this many slabs (each two circumradii high) on each side of the
+// seed triangle: its reach is 2048 circumradii, about 1200 local spacings, so the whole cylinder
+// through a clean cloud of up to a few million points is still seen, while a far point (which
+// stretches the bounding box) or a seed of almost no size (a few float steps across) costs at most
+// 2 x 1024 ball queries per seed attempt instead of box size / circumradius.
+constexpr long kMaxCylinderSlabs = 1024;
+
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 
 std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
@@ -61,7 +68,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   pem_.reset(n);
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));
-  assignHuge(freeEdges_, n, std::uint8_t(0));
+  assignHuge(freeEdges_, n, std::uint16_t(0));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
   // A closed surface has 2N − 4 + 4g triangles: room for 2N + 16, made resident at once (an
@@ -141,7 +148,8 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
   const double eps = 1e-6 * radius; // a point this close to the plane is on it (coplanar clouds)
   // The infinite cylinder is walked in slabs of height 2R along its axis, each covered by a ball
   // of radius R·√2, from the triangle outwards in both directions until the slabs leave the
-  // cloud's bounding box; the walk stops as soon as points on both sides were seen.
+  // cloud's bounding box or kMaxCylinderSlabs were walked (the bound on the work, see there); the
+  // walk stops as soon as points on both sides were seen.
   const double step = 2.0 * radius, queryRadius = radius * std::sqrt(2.0);
   vcg::Box3d bb = grid_.box();
   bb.Offset(queryRadius);
@@ -156,9 +164,10 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
     return above && below;
   };
   for (int side : {1, -1}) {
-    for (long j = side > 0 ? 0 : 1;; ++j) {
+    for (long j = side > 0 ? 0 : 1; j < kMaxCylinderSlabs; ++j) {
       const P3 centre = ball.centre + n * (double(side) * double(j) * step);
       if (!bb.IsIn(centre)) break;
+      ++cylinderQueries_;
       if (grid_.anyInBall(centre, queryRadius, bothSides)) return false;
     }
   }
@@ -167,13 +176,17 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
 
 bool Mesher::topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const {
   if (p == a || p == b || p == c) return false;
-  if (isolated(p)) return true; // no edge at p yet: nothing can conflict
-  if (interior(p)) return false;
-  // New triangle (b, a, p): half-edges b→a (free by construction), a→p and p→b must be unused.
-  return !pem_.used(a, p) && !pem_.used(p, b);
+  // No edge at p yet: nothing can conflict. New triangle (b, a, p): half-edges b→a (free by
+  // construction), a→p and p→b must be unused.
+  const bool allowed = isolated(p) || (!interior(p) && !pem_.used(a, p) && !pem_.used(p, b));
+  // The new edges need room at their points (PointEdgeMap::capacity): asked only once some point
+  // is near full; where one is full, the edge stays open (counted by queueEdge).
+  if (!allowed || !nearFullPoint_ || pem_.hasRoom(b, a, p)) return allowed;
+  roomRefused_ = true;
+  return false;
 }
 
-Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c, bool ears) {
   Candidate none;
   const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
   const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
@@ -187,7 +200,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // G2S or not. On a curved or noisy surface the G2S ball of such a triangle can hold a vertex of
   // a neighbouring triangle barely inside (the Gabriel test is not symmetric across an edge as
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
-  if (freeEdges_[b] >= 2) {
+  if (ears && freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
     pem_.forEachEdge(b, [&](std::uint32_t p, bool out, bool in) {
       if (ear < 0 && out && !in && p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
@@ -204,6 +217,96 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       return cand;
     }
   }
+  const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
+  if (grown.valid() || freeEdges_[b] < 2 || freeEdges_[a] < 2) return grown;
+  return quadClosure(a, b, c, frontNormal, frontNorm);
+}
+
+Candidate Mesher::quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,
+                              double frontNorm) const {
+  // The free edge a→b on a loop of four free edges a→b→p→q→a: a hole no search spans (on a
+  // curved surface the G2S balls of both its triangulations can hold a neighbouring vertex). It
+  // is closed by the diagonal whose two triangles have the larger smallest angle (grow() checks
+  // each of them for an unused point inside, as for any loop); the edge is queued last (size
+  // level n, flatness m), so it closes only if the growth around it did not.
+  std::int64_t p = -1, q = -1;
+  pem_.forEachEdge(b, [&](std::uint32_t x, bool out, bool in) {
+    if (q >= 0 || !out || in || x == a || x == c) return;
+    pem_.forEachEdge(x, [&](std::uint32_t y, bool out2, bool in2) {
+      if (q >= 0 || !out2 || in2 || y == a || y == b) return;
+      if (pem_.used(y, a) && !pem_.used(a, y)) {
+        p = x;
+        q = y;
+      }
+    });
+  });
+  if (q < 0) return Candidate();
+  const auto P = static_cast<std::uint32_t>(p), Q = static_cast<std::uint32_t>(q);
+  // Diagonal b–q: triangles (b, a, q) and (b, q, p); diagonal a–p: (b, a, p) and (a, q, p).
+  auto minSine = [&](std::uint32_t u, std::uint32_t v, std::uint32_t w) {
+    const P3 &U = pts_[u], &V = pts_[v], &W = pts_[w];
+    const double twiceArea = ((V - U) ^ (W - U)).Norm();
+    const double l2 = std::max({(V - U).SquaredNorm(), (W - V).SquaredNorm(), (U - W).SquaredNorm()});
+    return l2 > 0 ? twiceArea / l2 : 0.0; // grows with the smallest angle
+  };
+  const double viaQ = std::min(minSine(b, a, Q), minSine(b, Q, P));
+  const double viaP = std::min(minSine(b, a, P), minSine(a, Q, P));
+  const std::uint32_t first = viaQ >= viaP ? Q : P, second = viaQ >= viaP ? P : Q;
+  for (std::uint32_t x : {first, second}) {
+    if (!topologyAllows(a, b, c, x)) continue;
+    const P3 newNormal = (pts_[a] - pts_[b]) ^ (pts_[x] - pts_[b]);
+    Candidate cand;
+    cand.point = x;
+    cand.sizeLevel = params_.sizeLevels;
+    cand.cosBeta = (frontNormal * newNormal) / (frontNorm * newNormal.Norm());
+    cand.flatLevel = params_.flatnessLevels;
+    cand.closesLoop = true;
+    return cand;
+  }
+  return Candidate();
+}
+
+bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+  // An unused point whose projection on the plane of (a, b, c) falls inside the triangle, at most
+  // r from the plane, r the radius of the triangle's smallest enclosing ball (the circumball, or
+  // for an obtuse triangle the ball on its longest edge): the query stays at the triangle's own
+  // scale even for a sliver, whose circumball can be huge.
+  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
+  const P3 n = (B - A) ^ (C - A);
+  const double n2 = n.SquaredNorm();
+  if (!(n2 > 0)) return false;
+  const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
+  P3 centre;
+  double r2;
+  if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
+  else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
+  else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
+  else {
+    Ball ball;
+    if (!circumBall(A, B, C, ball)) return false;
+    centre = ball.centre;
+    r2 = ball.radius2;
+  }
+  return grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
+    if (!isolated(i)) return false;
+    const P3& X = pts_[i];
+    const double h = (X - A) * n;
+    if (h * h > r2 * n2) return false;
+    // Inside the prism over the triangle: on the inner side of its three edges' planes along n.
+    return ((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0;
+  });
+}
+
+// Inlined into its one caller, findCandidate, as it was before the ear and loop handling were
+// split off (a separate function cost 2.5 % of the growth's instructions on a clean sphere).
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
+                         double frontNorm) {
+  Candidate none;
+  const P3 &A = pts_[a], &B = pts_[b];
+  const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
   const P3 mid = (A + B) * 0.5;
   // Maximum search radius: a multiple of the local spacing, here the mean length of the mesh
   // edges already at a and b (sec. 3.2 leaves its choice open; edge lengths of the growing mesh
@@ -367,8 +470,11 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
       const float len = float((pts_[x] - pts_[y]).Norm());
       edgeLengthSum_[x] += len;
       edgeLengthSum_[y] += len;
-      if (edgeCount_[x] < 65535) ++edgeCount_[x];
-      if (edgeCount_[y] < 65535) ++edgeCount_[y];
+      // One entry per neighbour in the point-edge map (no triangle is removed while growing), so
+      // these are its entry counts: at most its capacity.
+      ++edgeCount_[x];
+      ++edgeCount_[y];
+      nearFullPoint_ |= std::max(edgeCount_[x], edgeCount_[y]) + 2u > pem_.capacity();
       ++freeEdges_[x];
       ++freeEdges_[y];
     } else {
@@ -387,17 +493,23 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
 }
 
 void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  roomRefused_ = false;
   const Candidate cand = findCandidate(a, b, c);
   // No candidate up to the maximum radius: a boundary edge (sec. 3.2 step 4.2); it stays free.
-  if (!cand.valid()) return;
+  if (!cand.valid()) {
+    edgesLeftAtFullPoints_ += roomRefused_;
+    return;
+  }
   queue_.push(cand.priority(params_.flatnessLevels) - 1,
-              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point)});
+              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u)});
 }
 
 void Mesher::grow(Progress* progress) {
   size_t tick = 0;
   while (!queue_.empty()) {
-    const FrontEdge e = queue_.pop();
+    FrontEdge e = queue_.pop();
+    const bool loop = (e.p & FrontEdge::kLoop) != 0;
+    e.p &= ~FrontEdge::kLoop;
     // Closed from the other side since it was queued: no longer a free edge.
     if (pem_.used(e.b, e.a)) continue;
     if (!topologyAllows(e.a, e.b, e.c, e.p)) {
@@ -405,6 +517,18 @@ void Mesher::grow(Progress* progress) {
       // points that pass the tests now, at the priority that gives (or make it a boundary edge).
       queueEdge(e.a, e.b, e.c);
       continue;
+    }
+    // The triangle closes a loop of free edges (findCandidate's closesLoop). An unused point
+    // inside it would be skipped for good: the edge grows to it by the ordinary search instead
+    // (sec. 3.2), and the loop closes only if that search finds nothing, so it is never left
+    // open. Checked here, once per loop, rather than for each of the loop's edges when queued.
+    if (loop && unusedPointInside(e.b, e.a, e.p)) {
+      const Candidate grown = findCandidate(e.a, e.b, e.c, /*ears=*/false);
+      if (grown.valid() && grown.point != e.p && !grown.closesLoop) {
+        queue_.push(grown.priority(params_.flatnessLevels) - 1,
+                    FrontEdge{e.a, e.b, e.c, static_cast<std::uint32_t>(grown.point)});
+        continue;
+      }
     }
     addTriangle(e.b, e.a, e.p);
     if (progress != nullptr && (++tick & 1023) == 0)
@@ -431,17 +555,32 @@ void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
   const P3 &A = pts_[tri[0]], &B = pts_[tri[1]], &C = pts_[tri[2]];
   const P3 n = (B - A) ^ (C - A);
   const P3 centroid = (A + B + C) / 3.0;
-  // Next to an existing part of the mesh (a seed inside a hole), agree with its orientation so
-  // that the two fronts can join (sec. 3.2: edges are shared only with consistent orientation).
+  // Next to an existing part of the same sheet (a seed inside a hole), agree with its
+  // orientation so that the two fronts can join (sec. 3.2: edges are shared only with consistent
+  // orientation). A triangle of another sheet (the far side of a thin part) must not be copied:
+  // its orientation is the opposite one. The reference is the nearest triangle that lies in the
+  // seed's plane as seen from both: the normals within 60° of parallel (either sign), and the
+  // offset between the two triangles within 30° of both planes.
   double best = std::numeric_limits<double>::infinity();
   std::array<std::uint32_t, 3> ref{};
   bool haveRef = false;
+  const double nNorm = n.Norm();
+  auto sameSheet = [&](const std::array<std::uint32_t, 3>& t) {
+    const P3 &X = pts_[t[0]], &Y = pts_[t[1]], &Z = pts_[t[2]];
+    const P3 m = (Y - X) ^ (Z - X);
+    const double mNorm = m.Norm();
+    if (!(mNorm > 0) || !(nNorm > 0)) return false;
+    if (std::abs(m * n) < 0.5 * mNorm * nNorm) return false;
+    const P3 offset = centroid - (X + Y + Z) / 3.0;
+    const double len = offset.Norm();
+    return std::abs(offset * m) <= 0.5 * len * mNorm && std::abs(offset * n) <= 0.5 * len * nNorm;
+  };
   for (size_t k = 0; k < near_.size; ++k) {
     const std::uint32_t id = near_.id[k];
     const double d2 = (pts_[id] - centroid).SquaredNorm();
     if (d2 >= best || isolated(id)) continue;
     std::array<std::uint32_t, 3> t;
-    if (triangleAt(id, t)) {
+    if (triangleAt(id, t) && sameSheet(t)) {
       best = d2;
       ref = t;
       haveRef = true;
@@ -595,22 +734,98 @@ void Mesher::orientComponents() {
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
-  if (std::none_of(volume.begin(), volume.end(), [](double x) { return x < 0; })) return; // nothing to flip
+  // Each component faces outwards of its own volume (positive signed volume) unless it is a
+  // closed shell nested inside an odd number of other closed shells: then it bounds a cavity of
+  // the material (the inner wall of a hollow ball) and faces into the cavity (negative volume).
+  std::vector<signed char> wanted(components, 1);
+  nestedShellSigns(component, components, wanted);
+  std::vector<char> flip(components, 0);
+  bool any = false;
+  for (size_t k = 0; k < components; ++k) {
+    flip[k] = volume[k] * double(wanted[k]) < 0;
+    any = any || flip[k];
+  }
+  if (!any) return;
   // The flipped components' triangles, then their half-edges in the point–edge map: every edge at
   // a vertex of a flipped component is one of that component's (its triangles are all flipped),
   // so reversing each such vertex's entries records the flip. A vertex with an edge carrying a
   // triangle lies on a live triangle, so it has a component.
   for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f] && volume[component(tri_[f][0])] < 0) std::swap(tri_[f][1], tri_[f][2]);
+    if (alive_[f] && flip[component(tri_[f][0])]) std::swap(tri_[f][1], tri_[f][2]);
   for (std::uint32_t v = 0; v < n; ++v)
-    if (pem_.degree(v) > 0 && volume[component(v)] < 0) pem_.reverseAt(v);
+    if (pem_.degree(v) > 0 && flip[component(v)]) pem_.reverseAt(v);
+}
+
+template <class ComponentOf>
+void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const {
+  if (components < 2) return;
+  // Closed components: no vertex with a boundary half-edge (a used half-edge whose twin is not).
+  std::vector<char> open(components, 0);
+  for (std::uint32_t v = 0; v < grid_.size(); ++v) {
+    bool boundary = false;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { boundary = boundary || (out && !in); });
+    if (boundary) open[component(v)] = 1; // a vertex with a used half-edge is on a live triangle
+  }
+  std::vector<std::uint32_t> closed;
+  for (size_t k = 0; k < components; ++k)
+    if (!open[k]) closed.push_back(static_cast<std::uint32_t>(k));
+  if (closed.size() < 2) return;
+  // Their bounding boxes, and their faces grouped by component (a counting sort).
+  std::vector<vcg::Box3d> box(components);
+  std::vector<size_t> faces(components + 1, 0);
+  for (size_t f = 0; f < tri_.size(); ++f) {
+    if (!alive_[f]) continue;
+    const std::uint32_t k = component(tri_[f][0]);
+    if (open[k]) continue;
+    ++faces[k + 1];
+    for (std::uint32_t w : tri_[f]) box[k].Add(pts_[w]);
+  }
+  for (size_t k = 0; k < components; ++k) faces[k + 1] += faces[k];
+  std::vector<std::uint32_t> byComponent(faces[components]);
+  {
+    std::vector<size_t> next(faces.begin(), faces.end() - 1);
+    for (size_t f = 0; f < tri_.size(); ++f)
+      if (alive_[f] && !open[component(tri_[f][0])])
+        byComponent[next[component(tri_[f][0])]++] = static_cast<std::uint32_t>(f);
+  }
+  // Parity of the crossings of a ray from q with shell j (Möller–Trumbore). The direction is a
+  // fixed unit vector off the axes and diagonals, so that a ray through an edge or a vertex of a
+  // shell, where a crossing would count twice or not at all, does not occur on real clouds.
+  const P3 dir(0.48, 0.6, 0.64);
+  auto inside = [&](const P3& q, std::uint32_t j) {
+    bool odd = false;
+    for (size_t i = faces[j]; i < faces[j + 1]; ++i) {
+      const Triangle& t = tri_[byComponent[i]];
+      const P3 &A = pts_[t[0]], e1 = pts_[t[1]] - A, e2 = pts_[t[2]] - A;
+      const P3 h = dir ^ e2;
+      const double det = e1 * h;
+      if (det == 0) continue;
+      const P3 s = q - A;
+      const double u = (s * h) / det;
+      if (u < 0 || u > 1) continue;
+      const P3 r = s ^ e1;
+      const double v = (dir * r) / det;
+      if (v < 0 || u + v > 1) continue;
+      odd ^= (e2 * r) / det > 0;
+    }
+    return odd;
+  };
+  // A shell's depth: the number of other closed shells around one of its vertices. Only shells
+  // whose box holds the vertex are tested, so shells side by side cost nothing.
+  for (std::uint32_t k : closed) {
+    const P3& q = pts_[tri_[byComponent[faces[k]]][0]];
+    int depth = 0;
+    for (std::uint32_t j : closed)
+      if (j != k && box[j].IsIn(q) && inside(q, j)) ++depth;
+    wanted[k] = (depth % 2 == 1) ? -1 : 1;
+  }
 }
 
 void Mesher::releaseGrowthState() {
   grid_.releaseSearch();
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
-  HugeVector<std::uint8_t>().swap(freeEdges_);
+  HugeVector<std::uint16_t>().swap(freeEdges_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
@@ -694,7 +909,7 @@ Mesher::BoundaryCount Mesher::boundary() {
 size_t Mesher::memoryBytes() const {
   return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
          edgeLengthSum_.capacity() * sizeof(float) +
-         edgeCount_.capacity() * sizeof(std::uint16_t) + freeEdges_.capacity() +
+         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) +
          tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }

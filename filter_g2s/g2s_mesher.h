@@ -29,8 +29,10 @@ namespace growth {
 namespace g2s {
 
 // A free edge in the front queue: half-edge a→b of the front triangle (a, b, c) is used, b→a is
-// not; p is the candidate point found for the new triangle (b, a, p).
+// not; p is the candidate point found for the new triangle (b, a, p) (point indices use at most
+// 29 bits, see PointEdgeMap::kMaxPoints, so the top bit carries a flag).
 struct FrontEdge {
+  static constexpr std::uint32_t kLoop = 1u << 31; // on p: the triangle closes a loop (closesLoop)
   std::uint32_t a, b, c, p;
 };
 
@@ -62,6 +64,10 @@ public:
 
   // --- The parts, exposed for the unit tests ---
 
+  // Neighbours one point may have (PointEdgeMap::setCapacity; kMaxEntries unless set): tests
+  // lower it (before meshAll) to reach the degraded case, where a full point's extra edges stay open.
+  void setMaxNeighboursPerPoint(std::uint32_t n) { pem_.setCapacity(n); }
+
   // Sec. 3.1: from point p (which must be unused), its nearest neighbour q and a third point
   // within k·|pq| of the midpoint: the first triangle, by increasing circumradius, that is a
   // Gabriel 2-simplex and passes the cylinder test. All three points must be unused. The triangle
@@ -74,27 +80,42 @@ public:
   void grow(Progress* progress = nullptr);
 
   // Sec. 3.2 steps 4.1–4.2 for the free edge a→b of front triangle (a, b, c), considering only
-  // points that pass the topological tests now (topologyAllows).
-  Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // points that pass the topological tests now (topologyAllows). With `ears`, an edge that
+  // closes a loop of three free edges takes the loop's third point (closesLoop); grow() checks
+  // for an unused point inside the loop (unusedPointInside) before it closes it, and then grows
+  // the edge by the ordinary search (ears off) so that the point is not skipped.
+  Candidate findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t c, bool ears = true);
+  // For a free edge a→b whose search found nothing, on a loop of four free edges: the point of
+  // the diagonal with the better triangles (closesLoop; queued last). Invalid otherwise.
+  Candidate quadClosure(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& frontNormal,
+                        double frontNorm) const;
+  // An unused point inside triangle (a, b, c): projecting inside it, at most the radius of the
+  // triangle's smallest enclosing ball from its plane.
+  bool unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
 
   // G2S criterion: no point other than a, b, c strictly inside the smallest ball through them.
   bool isGabriel(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Cylinder test (sec. 3.1, fig. 1): the points inside the infinite cylinder through the
-  // triangle's circumcircle, with axis along its normal, are all on one side of its plane.
+  // triangle's circumcircle, with axis along its normal, are all on one side of its plane. The
+  // cylinder is followed up to 2048 circumradii on each side (a bound on the work per seed).
   bool passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t c) const;
   // Sec. 3.2 step 4.3 for the new triangle (b, a, p) on the free edge a→b of front triangle
   // (a, b, c): p is a new point; its edges to a and b, where they exist, are traversed in the
   // opposite direction by their one triangle (point–edge map); and p is not an interior vertex
-  // (all of its edges already with two triangles), which would make it non-manifold.
+  // (all of its edges already with two triangles), which would make it non-manifold; and the
+  // points have room for the new edges (PointEdgeMap::hasRoom).
   bool topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const;
 
   // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts. Only the
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
-  // Flips every connected component whose signed volume (about its own centroid) is negative, so
-  // that closed surfaces face outwards. Each component was grown with one consistent orientation
-  // from its seed; flipping whole components keeps every edge consistent.
+  // Orients every connected component so that closed surfaces face out of the material: a
+  // component faces outwards of its own volume (positive signed volume about its centroid),
+  // except a closed shell inside an odd number of other closed shells (found by the parity of a
+  // ray's crossings), which bounds a cavity and faces into it (the inner wall of a hollow ball).
+  // Each component was grown with one consistent orientation from its seed; flipping whole
+  // components keeps every edge consistent. G2S has no normals: nesting is all it can go by.
   void orientComponents();
 
   // Frees what only the growth uses: the grid's search structure, the per-point edge counters,
@@ -123,6 +144,10 @@ public:
   const PointEdgeMap& edges() const { return pem_; }
   size_t seeds() const { return seeds_; }
   size_t seedAttempts() const { return seedAttempts_; }
+  size_t cylinderQueries() const { return cylinderQueries_; } // ball queries of the cylinder tests
+  // Front edges left open because a candidate had no room for another edge at one of its points
+  // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
+  size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
@@ -148,6 +173,9 @@ private:
   };
 
   double sampleSpacing() const;
+  // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
+  Candidate search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
+                   double frontNorm);
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
                  std::uint32_t b, std::uint32_t c) const; // G2S emptiness, using near_ then the grid
@@ -160,6 +188,10 @@ private:
   int flatnessLevelOfCos(double cosBeta) const;
   void orientSeed(std::array<std::uint32_t, 3>& tri) const;
   bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
+  // orientComponents: sets wanted[k] to -1 for each closed component nested inside an odd number
+  // of other closed components (component(v): v's component number, of `components`).
+  template <class ComponentOf>
+  void nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const;
 
   Params params_;
   double spacing_ = 0;
@@ -169,10 +201,12 @@ private:
   const P3* pts_ = nullptr;            // grid_.points().data()
   PointEdgeMap pem_;
   // Per point, during growth: the sum of the lengths of its edges, their number, and how many of
-  // them have one triangle only (free edges; an interior vertex has none).
+  // them have one triangle only (free edges; an interior vertex has none). Both counts are at most
+  // PointEdgeMap::kMaxEntries.
   HugeVector<float> edgeLengthSum_;
   HugeVector<std::uint16_t> edgeCount_;
-  HugeVector<std::uint8_t> freeEdges_;
+  HugeVector<std::uint16_t> freeEdges_;
+  static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
@@ -180,6 +214,10 @@ private:
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;
+  mutable size_t cylinderQueries_ = 0;
+  size_t edgesLeftAtFullPoints_ = 0;
+  bool nearFullPoint_ = false;       // some point has fewer than 2 free entries (PointEdgeMap::hasRoom)
+  mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
   NearList near_;                      // scratch: points of the last gathered ball
   std::vector<Scored> scored_;         // scratch: candidates being ranked

@@ -385,3 +385,73 @@ TEST(CloudGenerator, Genus2IsReproducibleAndTakesTheOptions) {
   // Density 0.2 + 0.8 t along z: the upper half holds clearly more (0.5 for a uniform cloud).
   EXPECT_GT(double(up) / 2000, 0.6);
 }
+
+TEST(CloudGenerator, LatLongSphereIsTheGridWithItsPoles) {
+  CloudSpec c = spec(Shape::LatLongSphere, 1);
+  c.latitudeRings = 7;
+  c.longitudeSegments = 12;
+  const auto cloud = growth::generateCloud(c);
+  ASSERT_EQ(cloud.points.size(), size_t(7 * 12 + 2));
+  EXPECT_EQ(cloud.points.front(), vcg::Point3d(0, 0, 1));
+  EXPECT_EQ(cloud.points.back(), vcg::Point3d(0, 0, -1));
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    EXPECT_LT(growth::distanceToShape(c, cloud.points[i]), 1e-15);
+    EXPECT_NEAR((cloud.normals[i] - cloud.points[i]).Norm(), 0.0, 1e-15); // unit sphere: n = p
+  }
+  // Ring i (1-based) at polar angle pi*i/8, point j at longitude 2*pi*j/12.
+  const vcg::Point3d p = cloud.points[1 + 2 * 12 + 3]; // ring 3, point 3
+  EXPECT_NEAR(std::acos(p[2]), M_PI * 3 / 8, 1e-12);
+  EXPECT_NEAR(std::atan2(p[1], p[0]), 2 * M_PI * 3 / 12, 1e-12);
+  EXPECT_DOUBLE_EQ(growth::shapeArea(c), 4 * M_PI);
+  // Outliers are a fraction of the grid's points; noise moves them.
+  c.outlierFraction = 0.5;
+  EXPECT_EQ(growth::generateCloud(c).points.size(), size_t(86 + 43));
+  c.nonUniform = true;
+  EXPECT_THROW(growth::generateCloud(c), growth::Error);
+  EXPECT_EQ(growth::parseShape("latlong"), Shape::LatLongSphere);
+}
+
+TEST(CloudGenerator, HollowBallHasBothShellsUniformByAreaWithNormalsOutOfTheMaterial) {
+  CloudSpec c = spec(Shape::HollowBall, 20000, 3);
+  const auto cloud = growth::generateCloud(c);
+  ASSERT_EQ(cloud.points.size(), 20000u);
+  size_t inner = 0;
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    const vcg::Point3d& p = cloud.points[i];
+    EXPECT_LT(growth::distanceToShape(c, p), 1e-12);
+    const bool isInner = p.Norm() < 0.9;
+    inner += isInner;
+    // Out of the material: away from the centre on the outer shell, towards it on the inner one.
+    EXPECT_NEAR((cloud.normals[i] - p / p.Norm() * (isInner ? -1.0 : 1.0)).Norm(), 0.0, 1e-12);
+  }
+  // Area fraction of the inner shell: 0.64 / 1.64.
+  EXPECT_NEAR(double(inner) / 20000.0, 0.64 / 1.64, 0.015);
+  EXPECT_DOUBLE_EQ(growth::shapeArea(c), 4 * M_PI * 1.64);
+  EXPECT_EQ(growth::parseShape("hollowball"), Shape::HollowBall);
+}
+
+TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
+  CloudSpec c = spec(Shape::Slab, 40000, 2);
+  c.slabThickness = 0.1;
+  const auto cloud = growth::generateCloud(c);
+  ASSERT_EQ(cloud.points.size(), 40000u);
+  size_t onSides = 0;
+  for (size_t i = 0; i < cloud.points.size(); ++i) {
+    const vcg::Point3d& p = cloud.points[i];
+    const vcg::Point3d& n = cloud.normals[i];
+    EXPECT_LT(growth::distanceToShape(c, p), 1e-15);
+    // On its face, with the face's outward normal.
+    for (int a = 0; a < 3; ++a) {
+      if (n[a] != 0) {
+        EXPECT_EQ(p[a], n[a] * (a == 2 ? 0.05 : 1.0));
+      }
+    }
+    onSides += n[2] == 0;
+  }
+  // The four sides hold 8 h t / (8 h^2 + 8 h t) = 0.1 / 1.1 of the area.
+  EXPECT_NEAR(double(onSides) / 40000.0, 0.1 / 1.1, 0.01);
+  EXPECT_DOUBLE_EQ(growth::shapeArea(c), 8.0 + 0.8);
+  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, vcg::Point3d(0, 0, 0)), 0.05);
+  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, vcg::Point3d(0.5, 0, 0.25)), 0.2);
+  EXPECT_EQ(growth::parseShape("slab"), Shape::Slab);
+}

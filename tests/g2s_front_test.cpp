@@ -169,6 +169,61 @@ TEST(G2SFront, ThreeFreeEdgesAroundAHoleAreClosedByTheirTriangle) {
   EXPECT_EQ(m.findCandidate(in[2], in[0], in[5]).point, in[1]);
 }
 
+// Issue 13 item 4: an unused point inside the loop is not skipped. The loop's edges grow to it
+// (by the G2S search) and it ends as a vertex of the three triangles that fill the loop.
+TEST(G2SFront, ALoopWithAnUnusedPointInsideGrowsToThePoint) {
+  std::vector<P3> pts{P3(0, 0, 0), P3(1, 0, 0), P3(0.5, -0.8, 0),         // a, b, p
+                      P3(0.5, 1.5, 0), P3(2, -1, 0), P3(-1, -1, 0),       // outer apexes
+                      P3(0.5, -0.3, 0.01)};                                // x, inside the loop
+  Mesher m(pts, defaults());
+  const auto in = internalIndex(m);
+  m.addSeed({in[0], in[1], in[3]}); // a→b
+  m.addSeed({in[1], in[2], in[4]}); // b→p
+  m.addSeed({in[2], in[0], in[5]}); // p→a
+  EXPECT_TRUE(m.unusedPointInside(in[1], in[0], in[2]));
+  // The edge's candidate is the loop's third point; without ears, the point inside.
+  EXPECT_TRUE(m.findCandidate(in[0], in[1], in[3]).closesLoop);
+  const Candidate c = m.findCandidate(in[0], in[1], in[3], /*ears=*/false);
+  ASSERT_TRUE(c.valid());
+  EXPECT_EQ(c.point, in[6]);
+  EXPECT_FALSE(c.closesLoop);
+  // The growth checks the loop before it closes it, and grows to the point.
+  m.grow();
+  EXPECT_FALSE(m.edges().isolated(in[6]));
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(m.edges().triangles(in[size_t(k)], in[size_t((k + 1) % 3)]), 2) << k;
+    EXPECT_EQ(m.edges().triangles(in[size_t(k)], in[6]), 2) << k;
+  }
+  // Once x is used the loop test finds nothing.
+  EXPECT_FALSE(m.unusedPointInside(in[1], in[0], in[2]));
+}
+
+// A loop of four free edges a→b→p→q→a (each with its outer triangle) is closed by the diagonal
+// whose two triangles have the larger smallest angle: in the parallelogram a, b, p, q the short
+// diagonal b–q. The candidate closes a loop and is queued last.
+TEST(G2SFront, AFourEdgeLoopClosesByItsBetterDiagonal) {
+  std::vector<P3> pts{P3(0, 0, 0), P3(1, 0, 0), P3(1.5, -0.9, 0), P3(0.5, -0.9, 0), // a, b, p, q
+                      P3(0.5, 1, 0), P3(2.3, -0.3, 0), P3(1, -1.9, 0), P3(-0.8, -0.6, 0)}; // outer apexes
+  Mesher m(pts, defaults());
+  const auto in = internalIndex(m);
+  m.addSeed({in[0], in[1], in[4]}); // a→b
+  m.addSeed({in[1], in[2], in[5]}); // b→p
+  m.addSeed({in[2], in[3], in[6]}); // p→q
+  m.addSeed({in[3], in[0], in[7]}); // q→a
+  const P3 frontNormal = (m.points()[in[1]] - m.points()[in[0]]) ^ (m.points()[in[4]] - m.points()[in[0]]);
+  const Candidate c = m.quadClosure(in[0], in[1], in[4], frontNormal, frontNormal.Norm());
+  ASSERT_TRUE(c.valid());
+  EXPECT_EQ(c.point, in[3]);
+  EXPECT_TRUE(c.closesLoop);
+  EXPECT_EQ(c.priority(defaults().flatnessLevels), defaults().sizeLevels * defaults().flatnessLevels);
+  // Not on such a loop (the q→a edge missing): nothing.
+  Mesher open(pts, defaults());
+  open.addSeed({in[0], in[1], in[4]});
+  open.addSeed({in[1], in[2], in[5]});
+  open.addSeed({in[2], in[3], in[6]});
+  EXPECT_FALSE(open.quadClosure(in[0], in[1], in[4], frontNormal, frontNormal.Norm()).valid());
+}
+
 TEST(G2STopology, PointEdgeMapTestsOfTheNewTriangle) {
   // New triangle (b, a, p) on the free edge a→b of front triangle (a, b, c).
   std::vector<P3> pts;

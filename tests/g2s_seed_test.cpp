@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <vector>
@@ -107,6 +108,72 @@ TEST(G2SSeed, CylinderTestRejectsPointsOnBothSidesEvenFarAway) {
   Mesher outside(pts, defaults());
   const auto in3 = internalIndex(outside);
   EXPECT_TRUE(outside.passesCylinderTest(in3[0], in3[1], in3[2]));
+}
+
+// Issue 13 item 3: the cylinder walk is bounded by the triangle's size, not by the bounding box.
+// Unbounded, a far point 10^6 away along the axis means 7 x 10^5 ball queries for one test, and a
+// triangle a few 10^-7 across on a unit sphere 1.4 x 10^7; bounded, at most 1024 per side.
+TEST(G2SSeed, TheCylinderWalkIsBoundedByTheTrianglesSize) {
+  std::vector<P3> pts;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 12; ++j) pts.push_back(P3(i + 0.01 * ((i * 7 + j * 3) % 5), j + 0.013 * ((i + j * 5) % 7), 0));
+  pts.push_back(P3(5.2, 5.3, 1e6)); // far above the patch, inside the cylinders of its middle
+  {
+    Mesher m(pts, defaults());
+    const auto in = internalIndex(m);
+    // The triangle of grid points (5, 5), (6, 5), (5, 6): the far point is in its cylinder.
+    EXPECT_TRUE(m.passesCylinderTest(in[5 * 12 + 5], in[6 * 12 + 5], in[5 * 12 + 6]));
+    EXPECT_GT(m.cylinderQueries(), 1000u); // it does walk towards the far point
+    EXPECT_LE(m.cylinderQueries(), 2048u);
+  }
+  // Three points a few 10^-7 apart at the north pole of a unit sphere.
+  CloudSpec spec;
+  spec.shape = Shape::Sphere;
+  spec.count = 2000;
+  std::vector<P3> sphere = growth::generateCloud(spec).points;
+  sphere.push_back(P3(0, 0, 1));
+  sphere.push_back(P3(3e-7, 0, 1));
+  sphere.push_back(P3(0, 3e-7, 1));
+  Mesher m(sphere, defaults());
+  const auto in = internalIndex(m);
+  const size_t n = sphere.size();
+  const auto start = std::chrono::steady_clock::now();
+  m.passesCylinderTest(in[n - 3], in[n - 2], in[n - 1]);
+  EXPECT_LE(m.cylinderQueries(), 2048u);
+  // The whole run too: a generous limit (unbounded, this cloud takes minutes).
+  m.meshAll();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 20.0);
+  EXPECT_LE(m.cylinderQueries(), 2048u * m.seedAttempts() + 2048u);
+}
+
+// Issue 13 item 5: a seed on one sheet of a thin part does not copy the orientation of the
+// nearest triangle when that triangle is on the other sheet. Two parallel grids 1.5 apart (unit
+// spacing); a triangle on the top one faces up (out of the part); a seed right below it, on the
+// bottom sheet, must face down (out of the part), not up like its nearest triangle.
+TEST(G2SSeed, ASeedDoesNotCopyTheOrientationOfTheOtherSheet) {
+  std::vector<P3> pts;
+  for (double z : {0.75, -0.75})
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) pts.push_back(P3(i + 0.01 * ((i * 7 + j * 3) % 5), j + 0.013 * ((i + j * 5) % 7), z));
+  Mesher m(pts, defaults());
+  const auto in = internalIndex(m);
+  // Top triangle (4,4), (5,4), (4,5): counter-clockwise seen from above, normal +z.
+  const std::uint32_t t0 = in[4 * 10 + 4], t1 = in[5 * 10 + 4], t2 = in[4 * 10 + 5];
+  ASSERT_GT((((m.points()[t1] - m.points()[t0]) ^ (m.points()[t2] - m.points()[t0])))[2], 0);
+  m.addSeed({t0, t1, t2});
+  std::array<std::uint32_t, 3> t;
+  ASSERT_TRUE(m.findSeedTriangle(in[100 + 4 * 10 + 4], t));
+  for (std::uint32_t v : t) EXPECT_LT(m.points()[v][2], 0) << "the seed is on the bottom sheet";
+  const P3 n = (m.points()[t[1]] - m.points()[t[0]]) ^ (m.points()[t[2]] - m.points()[t[0]]);
+  EXPECT_LT(n[2], 0);
+  // Beside a triangle of its own sheet a seed does agree with it (so that the fronts can join):
+  // with a top triangle turned to face down, a seed next to it on the top faces down as well.
+  Mesher same(pts, defaults());
+  same.addSeed({t0, t2, t1});
+  ASSERT_TRUE(same.findSeedTriangle(in[6 * 10 + 4], t));
+  for (std::uint32_t v : t) EXPECT_GT(same.points()[v][2], 0);
+  const P3 n2 = (same.points()[t[1]] - same.points()[t[0]]) ^ (same.points()[t[2]] - same.points()[t[0]]);
+  EXPECT_LT(n2[2], 0);
 }
 
 TEST(G2SSeed, CoplanarPointsDoNotFailTheCylinderTest) {

@@ -53,10 +53,31 @@ TEST(MeshNormals, MatchVcglibAngleWeightedNormals) {
     growth::updateNormals(*m);
     double worstFace = 0, worstVertex = 0;
     for (size_t f = 0; f < m->face.size(); ++f) worstFace = std::max(worstFace, double((m->face[f].cN() - face[f]).Norm()));
+    // How well a vertex normal is conditioned: |sum of the angle-weighted face normals| / sum of
+    // the angles, 1 on a flat fan. Where the faces fold around the vertex (a noisy point inside
+    // the triangle of its three neighbours) the sum nearly cancels and a relative error of the
+    // weights grows by 1 / that ratio, so the tolerance does too.
+    std::vector<vcg::Point3d> sum(m->vert.size(), vcg::Point3d(0, 0, 0));
+    std::vector<double> angles(m->vert.size(), 0.0);
+    for (const CFaceO& f : m->face) {
+      const vcg::Point3d p[3] = {vcg::Point3d::Construct(f.cP(0)), vcg::Point3d::Construct(f.cP(1)),
+                                 vcg::Point3d::Construct(f.cP(2))};
+      const vcg::Point3d n = ((p[1] - p[0]) ^ (p[2] - p[0])).Normalize();
+      for (int k = 0; k < 3; ++k) {
+        const double angle = vcg::Angle(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+        const size_t v = size_t(vcg::tri::Index(*m, f.cV(k)));
+        sum[v] += n * angle;
+        angles[v] += angle;
+      }
+    }
+    size_t wellConditioned = 0;
     for (size_t v = 0; v < m->vert.size(); ++v) {
       EXPECT_NEAR(m->vert[v].cN().Norm(), 1.0, 1e-6) << v;
-      worstVertex = std::max(worstVertex, double((m->vert[v].cN() - vert[v]).Norm()));
+      const double condition = angles[v] > 0 ? sum[v].Norm() / angles[v] : 1.0;
+      wellConditioned += condition > 0.5;
+      worstVertex = std::max(worstVertex, double((m->vert[v].cN() - vert[v]).Norm()) * std::min(1.0, condition));
     }
+    EXPECT_GT(double(wellConditioned), 0.99 * double(m->vert.size()));
     EXPECT_LT(worstFace, 1e-5);
     EXPECT_LT(worstVertex, 1e-4);
   }

@@ -151,13 +151,55 @@ TEST(PointEdgeMap, MarksAreSetPerHalfEdgeAndCleared) {
   EXPECT_TRUE(m.used(0, 1));
 }
 
-TEST(PointEdgeMap, TooManyEdgesAtOnePointThrowsInsteadOfCorrupting) {
-  PointEdgeMap m(300);
-  EXPECT_THROW(
-      {
-        for (std::uint32_t i = 1; i < 299; ++i) m.addTriangle(0, i, i + 1);
-      },
-      std::length_error);
+TEST(PointEdgeMap, APointHoldsHundredsOfNeighboursUpToItsCapacity) {
+  // The pole of a latitude-longitude sphere: a closed fan of 600 triangles around point 0.
+  const std::uint32_t rim = 600;
+  PointEdgeMap m(rim + 1);
+  for (std::uint32_t k = 0; k < rim; ++k) {
+    ASSERT_TRUE(m.canAddTriangle(0, 1 + k, 1 + (k + 1) % rim)) << k;
+    m.addTriangle(0, 1 + k, 1 + (k + 1) % rim);
+  }
+  EXPECT_EQ(m.degree(0), int(rim));
+  EXPECT_EQ(m.entries(0), rim);
+  EXPECT_TRUE(m.closed(0));
+  for (std::uint32_t k = 0; k < rim; ++k) EXPECT_EQ(m.triangles(0, 1 + k), 2);
+}
+
+TEST(PointEdgeMap, AFullPointRefusesNewEdgesButNotExistingOnes) {
+  // An open fan around point 0 until it holds kMaxEntries neighbours.
+  const std::uint32_t cap = PointEdgeMap::kMaxEntries;
+  PointEdgeMap m(cap + 3);
+  for (std::uint32_t k = 1; k < cap; ++k) {
+    ASSERT_TRUE(m.hasRoom(0, k, k + 1));
+    m.addTriangle(0, k, k + 1);
+  }
+  EXPECT_EQ(m.entries(0), cap);
+  // A triangle with a new edge at 0: no room; it is refused, not added.
+  EXPECT_FALSE(m.hasRoom(0, cap, cap + 1));
+  EXPECT_FALSE(m.canAddTriangle(0, cap, cap + 1));
+  EXPECT_THROW(m.addTriangle(0, cap, cap + 1), std::length_error);
+  // Closing the fan uses existing edges only ({0, cap} and {0, 1}) and a new one elsewhere.
+  EXPECT_TRUE(m.hasRoom(0, cap, 1));
+  ASSERT_TRUE(m.canAddTriangle(0, cap, 1));
+  m.addTriangle(0, cap, 1);
+  EXPECT_TRUE(m.closed(0));
+  // A point far from full is not affected.
+  EXPECT_TRUE(m.canAddTriangle(cap + 1, cap + 2, 2));
+}
+
+TEST(PointEdgeMap, ASmallerCapacityIsHonouredAndBounded) {
+  PointEdgeMap m(20);
+  EXPECT_EQ(m.capacity(), std::uint32_t{PointEdgeMap::kMaxEntries});
+  EXPECT_THROW(m.setCapacity(1), std::invalid_argument);
+  EXPECT_THROW(m.setCapacity(PointEdgeMap::kMaxEntries + 1), std::invalid_argument);
+  m.setCapacity(4);
+  m.addTriangle(0, 1, 2);
+  m.addTriangle(0, 2, 3); // 0 has 1, 2, 3
+  EXPECT_TRUE(m.hasRoom(0, 3, 4));  // one new entry at 0: four
+  m.addTriangle(0, 3, 4);
+  EXPECT_EQ(m.entries(0), 4u);
+  EXPECT_FALSE(m.canAddTriangle(0, 4, 5));
+  EXPECT_TRUE(m.canAddTriangle(0, 4, 1)); // closes the fan: no new entry at 0
 }
 
 TEST(PointEdgeMap, ReleaseFreesEverythingAndResetMakesItUsableAgain) {

@@ -169,6 +169,48 @@ TEST(SpherePacker, FacesAreOrientedLikeTheNormalsAndCarryQt) {
     EXPECT_LT((Point3d::Construct(copy.face[i].cN()) - Point3d::Construct(r->mesh.face[i].cN())).Norm(), 1e-6);
 }
 
+// Issue 13 item 5: the packer follows the input normals, which point out of the material, so
+// the inner wall of a hollow ball faces the hollow; a thin closed plate (0.05 thick, about 1.7 d)
+// faces out on both large faces.
+TEST(SpherePacker, HollowBallAndThinSlabFaceOutOfTheMaterial) {
+  growth::CloudSpec hollow;
+  hollow.shape = growth::Shape::HollowBall;
+  hollow.count = 20000;
+  const auto r = build("hollowball", hollow, sp::Params());
+  EXPECT_EQ(r->stat.holes, 0u);
+  EXPECT_EQ(r->m.components, 2u);
+  EXPECT_EQ(r->m.nonManifoldVertices + r->m.nonManifoldEdges, 0u);
+  size_t inner = 0, wrong = 0;
+  for (const auto& f : r->mesh.face) {
+    const Point3d a = Point3d::Construct(f.cP(0)), b = Point3d::Construct(f.cP(1)), c = Point3d::Construct(f.cP(2));
+    const Point3d g = (a + b + c) / 3.0;
+    const bool isInner = g.Norm() < 0.9;
+    inner += isInner;
+    wrong += (((b - a) ^ (c - a)) * g > 0) == isInner;
+  }
+  EXPECT_GT(inner, 1000u);
+  EXPECT_EQ(wrong, 0u);
+
+  growth::CloudSpec slab;
+  slab.shape = growth::Shape::Slab;
+  slab.count = 30000;
+  const auto s = build("slab", slab, sp::Params());
+  EXPECT_EQ(s->m.nonManifoldVertices + s->m.nonManifoldEdges, 0u);
+  EXPECT_EQ(s->m.inconsistentEdges, 0u);
+  size_t top = 0, bottom = 0, flipped = 0;
+  for (const auto& f : s->mesh.face) {
+    const Point3d a = Point3d::Construct(f.cP(0)), b = Point3d::Construct(f.cP(1)), c = Point3d::Construct(f.cP(2));
+    const Point3d n = ((b - a) ^ (c - a)).Normalize();
+    if (std::abs(n[2]) < 0.9) continue;
+    const bool up = (a[2] + b[2] + c[2]) > 0;
+    (up ? top : bottom) += 1;
+    flipped += (n[2] > 0) != up;
+  }
+  EXPECT_GT(top, 5000u);
+  EXPECT_GT(bottom, 5000u);
+  EXPECT_LE(flipped, 10u); // stray faces across the rim
+}
+
 TEST(SpherePacker, SameInputSameOutput) {
   const auto r = build("sphere", sphereSpec(), paperParams());
   CMeshO again;

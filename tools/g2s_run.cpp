@@ -1,8 +1,11 @@
 // g2s_run: runs the Robust G2S engine outside MeshLab and prints faces, defects, time and rate.
 //
 //   g2s_run cloud.ply [options]                      a PLY point cloud (binary or ASCII)
-//   g2s_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS]
-//           [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]         a generated cloud
+//   g2s_run --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]
+//           [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION] [--cluster FRACTION] [--far-points N]
+//           [--rings R --segments S] [--inner-radius r] [--thickness T] [options]   a generated cloud
+// adversarial addition to either: --near-triples K (K points of the cloud each get two more within a
+// few float rounding steps: seeds of almost no size)
 // options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --random-seed S
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
 //          -o out.ply (save the mesh)
@@ -27,13 +30,17 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: g2s_run <cloud.ply> | --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform]\n"
-               "               [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
+               "usage: g2s_run <cloud.ply> | --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N\n"
+               "               [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
+               "               [--rings R --segments S] [--inner-radius r] [--thickness T]\n"
+               "       [--near-triples K]\n"
                "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--random-seed S]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");
 }
@@ -62,6 +69,7 @@ int main(int argc, char** argv) {
   bool generated = false, measure = false;
   double gaussSpacings = 0;
   int repeat = 1;
+  int nearTriples = 0;
   growth::g2s::Params params;
   params.maxSearchRadiusFactor = 0;
   try {
@@ -79,6 +87,11 @@ int main(int argc, char** argv) {
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
       else if (a == "--cluster") spec.clusterFraction = std::atof(value());
       else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
+      else if (a == "--rings") spec.latitudeRings = std::atoi(value());
+      else if (a == "--segments") spec.longitudeSegments = std::atoi(value());
+      else if (a == "--inner-radius") spec.innerRadius = std::atof(value());
+      else if (a == "--thickness") spec.slabThickness = std::atof(value());
+      else if (a == "--near-triples") nearTriples = std::atoi(value());
       else if (a == "--k") params.seedSearchFactor = std::atof(value());
       else if (a == "--max-radius") params.maxSearchRadiusFactor = std::atof(value());
       else if (a == "--n") params.sizeLevels = std::atoi(value());
@@ -115,6 +128,21 @@ int main(int argc, char** argv) {
         cloud.fn = 0;
       }
     }
+    if (nearTriples > 0 && cloud.vn > 0) {
+      // Every (vn / K)-th point gets two companions a few float steps away along x and y.
+      const size_t n = cloud.vert.size(), stride = std::max<size_t>(1, n / size_t(nearTriples));
+      std::vector<vcg::Point3f> extra;
+      for (size_t i = 0; i < n && extra.size() < 2 * size_t(nearTriples); i += stride) {
+        const vcg::Point3f p = cloud.vert[i].cP();
+        vcg::Point3f q = p, r = p;
+        for (int k = 0; k < 3; ++k) q[0] = std::nextafter(q[0], 1e30f);
+        for (int k = 0; k < 3; ++k) r[1] = std::nextafter(r[1], 1e30f);
+        extra.push_back(q);
+        extra.push_back(r);
+      }
+      auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(cloud, extra.size());
+      for (const auto& p : extra) (vi++)->P() = p;
+    }
 
     CMeshO mesh;
     growth::g2s::Stat st;
@@ -143,6 +171,7 @@ int main(int argc, char** argv) {
     std::printf("non_manifold_vertices_removed: %zu\n", st.nonManifoldVerticesRemoved);
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
+    std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("seconds: %.4f\n", best);
     std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,
                 st.secondsGrowth, st.secondsCleanup, st.secondsOutput);

@@ -1,5 +1,5 @@
 // make_cloud: writes a seeded point cloud with exact normals as binary PLY.
-//   make_cloud --shape sphere|torus|patch|genus2 --points N [--seed S]
+//   make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S]
 //              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA] [--outliers FRACTION] [--cluster FRACTION] [--far-points N] -o out.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -11,7 +11,7 @@
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: make_cloud --shape sphere|torus|patch|genus2 --points N [--seed S]\n"
+               "usage: make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S]\n"
                "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA]\n"
                "                  [--outliers FRACTION] -o out.ply\n");
 }

@@ -1,7 +1,7 @@
 // spherepack_run: runs the sphere-packing engine outside MeshLab and prints its statistics.
 //
 //   spherepack_run cloud.ply [options]                  a PLY point cloud with normals
-//   spherepack_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--noise NU]
+//   spherepack_run --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform] [--noise NU]
 //                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
 //          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
@@ -29,7 +29,7 @@
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform]\n"
+               "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]\n"
                "                      [--noise NU] [--outliers FRACTION]\n"
                "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B] [--threads T]\n"
                "       [--spatial-order-min N]\n"

@@ -227,6 +227,37 @@ Sample sampleSurface(const CloudSpec& s, Random& rng) {
     }
   }
   case Shape::Genus2: return sampleGenus2(rng);
+  case Shape::LatLongSphere: {
+    // The grid is laid out in generateCloud; this is for the dense cluster's centre.
+    const vcg::Point3d n = rng.unitVector();
+    return {n * s.sphereRadius, n};
+  }
+  case Shape::HollowBall: {
+    // Uniform by area over both spheres: the inner one with probability r^2 / (R^2 + r^2).
+    const double R = s.sphereRadius, r = s.innerRadius;
+    const bool inner = rng.uniform() * (R * R + r * r) < r * r;
+    const vcg::Point3d n = rng.unitVector();
+    return inner ? Sample{n * r, -n} : Sample{n * R, n};
+  }
+  case Shape::Slab: {
+    // Uniform by area: a face with probability proportional to its area, then a uniform point on it.
+    const double h = s.slabHalfSize, t = s.slabThickness;
+    const double big = 4 * h * h, small = 2 * h * t; // each of the 2 large and 4 side faces
+    const double pick = rng.uniform() * (2 * big + 4 * small);
+    const double u = rng.uniform(-1, 1), v = rng.uniform(-1, 1);
+    if (pick < 2 * big) {
+      const double sign = pick < big ? 1.0 : -1.0;
+      return {vcg::Point3d(u * h, v * h, sign * 0.5 * t), vcg::Point3d(0, 0, sign)};
+    }
+    const int side = std::min(3, int((pick - 2 * big) / small));
+    const double z = v * 0.5 * t;
+    switch (side) {
+    case 0: return {vcg::Point3d(h, u * h, z), vcg::Point3d(1, 0, 0)};
+    case 1: return {vcg::Point3d(-h, u * h, z), vcg::Point3d(-1, 0, 0)};
+    case 2: return {vcg::Point3d(u * h, h, z), vcg::Point3d(0, 1, 0)};
+    default: return {vcg::Point3d(u * h, -h, z), vcg::Point3d(0, -1, 0)};
+    }
+  }
   }
   throw Error("unknown shape");
 }
@@ -237,6 +268,9 @@ double zRange(const CloudSpec& s, double& zmin) {
   case Shape::Torus: zmin = -s.torusMinor; return 2 * s.torusMinor;
   case Shape::Patch: zmin = -0.15; return 0.3;
   case Shape::Genus2: zmin = genus2Mesh().zmin; return genus2Mesh().zmax - zmin;
+  case Shape::LatLongSphere:
+  case Shape::HollowBall: zmin = -s.sphereRadius; return 2 * s.sphereRadius;
+  case Shape::Slab: zmin = -0.5 * s.slabThickness; return s.slabThickness;
   }
   zmin = 0;
   return 1;
@@ -282,7 +316,12 @@ Cloud generateCloud(const CloudSpec& spec) {
   if (spec.count == 0) throw Error("a cloud needs at least one point");
   Random rng(spec.seed);
   Cloud c;
-  const size_t outliers = static_cast<size_t>(std::llround(spec.outlierFraction * double(spec.count)));
+  // Outliers and the cluster are fractions of the surface's points (for the grid, its size).
+  const size_t surfaceCount =
+      spec.shape == Shape::LatLongSphere
+          ? size_t(std::max(spec.latitudeRings, 0)) * size_t(std::max(spec.longitudeSegments, 0)) + 2
+          : spec.count;
+  const size_t outliers = static_cast<size_t>(std::llround(spec.outlierFraction * double(surfaceCount)));
   c.points.reserve(spec.count + outliers);
   c.normals.reserve(spec.count + outliers);
   double zmin = 0;
@@ -292,7 +331,29 @@ Cloud generateCloud(const CloudSpec& spec) {
   // Accepted with probability 1/ratio at the bottom rising linearly to 1 at the top: for the
   // default ratio 4 exactly 0.25 + 0.75 t, as before densityRatio existed (the same clouds).
   const double bottom = 1.0 / spec.densityRatio, rise = 1.0 - bottom;
-  while (c.points.size() < spec.count) {
+  if (spec.shape == Shape::LatLongSphere) {
+    if (spec.latitudeRings < 1 || spec.longitudeSegments < 3)
+      throw Error("a latitude-longitude sphere needs at least 1 ring of at least 3 points");
+    if (spec.nonUniform) throw Error("a latitude-longitude sphere is a fixed grid: it has no non-uniform density");
+    const double R = spec.sphereRadius;
+    auto add = [&](const vcg::Point3d& n) {
+      vcg::Point3d p = n * R;
+      if (spec.noiseBound > 0) p += rng.inBall(spec.noiseBound);
+      if (spec.gaussianSigma > 0) p += vcg::Point3d(rng.gaussian(), rng.gaussian(), rng.gaussian()) * spec.gaussianSigma;
+      c.points.push_back(p);
+      c.normals.push_back(n);
+    };
+    add(vcg::Point3d(0, 0, 1));
+    for (int i = 1; i <= spec.latitudeRings; ++i) {
+      const double theta = kPi * double(i) / double(spec.latitudeRings + 1);
+      for (int j = 0; j < spec.longitudeSegments; ++j) {
+        const double phi = 2 * kPi * double(j) / double(spec.longitudeSegments);
+        add(vcg::Point3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+      }
+    }
+    add(vcg::Point3d(0, 0, -1));
+  }
+  while (c.points.size() < surfaceCount) {
     Sample s = sampleSurface(spec, rng);
     if (spec.nonUniform) {
       const double t = (s.p[2] - zmin) / zspan;
@@ -323,9 +384,9 @@ Cloud generateCloud(const CloudSpec& spec) {
   if (spec.clusterFraction > 0) {
     // A dense cluster on the surface: that fraction of `count` points, moved by at most a
     // hundredth of the surface's mean spacing about a surface sample (the normal of that sample).
-    const size_t k = static_cast<size_t>(std::llround(spec.clusterFraction * double(spec.count)));
+    const size_t k = static_cast<size_t>(std::llround(spec.clusterFraction * double(surfaceCount)));
     const Sample centre = sampleSurface(spec, rng);
-    const double spread = 0.01 * std::sqrt(shapeArea(spec) / double(spec.count));
+    const double spread = 0.01 * std::sqrt(shapeArea(spec) / double(surfaceCount));
     for (size_t i = 0; i < k; ++i) {
       c.points.push_back(centre.p + rng.inBall(spread));
       c.normals.push_back(centre.n);
@@ -342,7 +403,20 @@ Cloud generateCloud(const CloudSpec& spec) {
 
 double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
   switch (s.shape) {
-  case Shape::Sphere: return std::abs(p.Norm() - s.sphereRadius);
+  case Shape::Sphere:
+  case Shape::LatLongSphere: return std::abs(p.Norm() - s.sphereRadius);
+  case Shape::HollowBall: return std::min(std::abs(p.Norm() - s.sphereRadius), std::abs(p.Norm() - s.innerRadius));
+  case Shape::Slab: {
+    // Outside the box: the distance to it; inside: to the nearest face.
+    const double half[3] = {s.slabHalfSize, s.slabHalfSize, 0.5 * s.slabThickness};
+    double out2 = 0, inside = 1e300;
+    for (int a = 0; a < 3; ++a) {
+      const double d = std::abs(p[a]) - half[a];
+      if (d > 0) out2 += d * d;
+      inside = std::min(inside, -d);
+    }
+    return out2 > 0 ? std::sqrt(out2) : inside;
+  }
   case Shape::Torus: {
     const double rho = std::hypot(p[0], p[1]);
     return std::abs(std::hypot(rho - s.torusMajor, p[2]) - s.torusMinor);
@@ -371,7 +445,10 @@ double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
 // The shape's size: the radius of a ball around the origin holding it (for the far points).
 double shapeSize(const CloudSpec& s) {
   switch (s.shape) {
-  case Shape::Sphere: return s.sphereRadius;
+  case Shape::Sphere:
+  case Shape::LatLongSphere:
+  case Shape::HollowBall: return s.sphereRadius;
+  case Shape::Slab: return std::sqrt(2.0) * s.slabHalfSize + s.slabThickness;
   case Shape::Torus: return s.torusMajor + s.torusMinor;
   case Shape::Patch: return 2 * s.patchHalfSize;
   default: return 4.0; // genus 2: extent about 6.6 x 3.6 x 1.2
@@ -380,7 +457,10 @@ double shapeSize(const CloudSpec& s) {
 
 double shapeArea(const CloudSpec& s) {
   switch (s.shape) {
-  case Shape::Sphere: return 4 * kPi * s.sphereRadius * s.sphereRadius;
+  case Shape::Sphere:
+  case Shape::LatLongSphere: return 4 * kPi * s.sphereRadius * s.sphereRadius;
+  case Shape::HollowBall: return 4 * kPi * (s.sphereRadius * s.sphereRadius + s.innerRadius * s.innerRadius);
+  case Shape::Slab: return 8 * s.slabHalfSize * s.slabHalfSize + 8 * s.slabHalfSize * s.slabThickness;
   case Shape::Torus: return 4 * kPi * kPi * s.torusMajor * s.torusMinor;
   case Shape::Patch: {
     // Composite Simpson rule in x and y on the area element sqrt(1 + |grad h|^2).
@@ -419,7 +499,10 @@ Shape parseShape(const std::string& name) {
   if (name == "torus") return Shape::Torus;
   if (name == "patch") return Shape::Patch;
   if (name == "genus2") return Shape::Genus2;
-  throw Error("unknown shape '" + name + "' (sphere, torus, patch or genus2)");
+  if (name == "latlong") return Shape::LatLongSphere;
+  if (name == "hollowball") return Shape::HollowBall;
+  if (name == "slab") return Shape::Slab;
+  throw Error("unknown shape '" + name + "' (sphere, torus, patch, genus2, latlong, hollowball or slab)");
 }
 
 const char* shapeName(Shape s) {
@@ -428,6 +511,9 @@ const char* shapeName(Shape s) {
   case Shape::Torus: return "torus";
   case Shape::Patch: return "patch";
   case Shape::Genus2: return "genus2";
+  case Shape::LatLongSphere: return "latlong";
+  case Shape::HollowBall: return "hollowball";
+  case Shape::Slab: return "slab";
   }
   return "?";
 }

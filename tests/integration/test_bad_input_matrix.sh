@@ -35,7 +35,7 @@ collinear       | error:one straight line             | error:one straight line
 coplanar        | mesh                                | mesh
 regular-grid    | mesh                                | mesh
 cube-lattice    | mesh                                | closed
-uv-sphere       | changing:more than 255 edges        | closed
+uv-sphere       | closed                              | closed
 far-outlier     | closed                              | closed
 far-outlier-20k | mesh-to-closed                      | closed
 far-outliers    | mesh-to-closed                      | closed
@@ -48,9 +48,6 @@ nan-normal      | closed                              | error:1 of 3000 vertices
 mesh            | error:is a mesh                     | error:is a mesh
 '
 # EXPECTED TO CHANGE:
-# - uv-sphere, Robust G2S: "PointEdgeMap: more than 255 edges at one point" (each pole has 300
-#   neighbours); branch g2s-robust (issue 13 item 1) makes it mesh closed. Accepted: that error, or
-#   a closed mesh.
 # - far-outlier-20k, Robust G2S: a 20k-point sphere and one point 10^4 away: 61 holes instead of 0
 #   and 1.67 s instead of 0.10 s (build/g2s_run --repeat 3 on the cloud with and without the far
 #   point); branch spatial-index (issue 13 item 2). Accepted: a manifold mesh.

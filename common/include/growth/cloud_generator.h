@@ -3,7 +3,11 @@
 //
 // Shapes: the unit sphere, the torus (tube radius r swept around a circle of radius R, sphere-packing
 // paper sec. 5.2 uses R = 2, r = 1), an open, gently curved height-field patch and a closed genus-2
-// surface (two tori joined by a smooth blend, genus2Function below). Sampling is uniform by area,
+// surface (two tori joined by a smooth blend, genus2Function below). For the robustness tests of the
+// meshers: the sphere sampled on a latitude–longitude grid (a UV-sphere mesh's vertices, or a
+// turntable scan: hundreds of points around each pole), a hollow ball (two concentric spheres, the
+// inner one's normals pointing into the hollow, out of the material) and a thin closed slab (a flat
+// box sampled on all six faces). Sampling is uniform by area,
 // or non-uniform with a density ratio (4:1 unless asked otherwise) along z. Perturbations follow
 // the two papers' experiments: bounded noise (every point moved by a uniformly distributed vector of length
 // <= nu, sphere packing sec. 5.3), Gaussian noise (Robust G2S sec. 5.2) and uniformly scattered
@@ -20,7 +24,7 @@ class CMeshO;
 
 namespace growth {
 
-enum class Shape { Sphere, Torus, Patch, Genus2 };
+enum class Shape { Sphere, Torus, Patch, Genus2, LatLongSphere, HollowBall, Slab };
 
 struct CloudSpec {
   Shape shape = Shape::Sphere;
@@ -38,6 +42,14 @@ struct CloudSpec {
   double torusMajor = 2.0;      // R
   double torusMinor = 1.0;      // r
   double patchHalfSize = 1.0;   // the patch spans [-h, h]^2 in x, y
+  // LatLongSphere: latitudeRings rings of longitudeSegments points each, at polar angles
+  // pi*i/(rings + 1), i = 1..rings, and longitudes 2*pi*j/segments, plus the two poles; count is
+  // not used (the cloud has rings*segments + 2 points before outliers), nor is nonUniform.
+  int latitudeRings = 300;
+  int longitudeSegments = 600;
+  double innerRadius = 0.8;     // HollowBall: the inner sphere's radius (the outer one's is sphereRadius)
+  double slabHalfSize = 1.0;    // Slab: the box [-h, h]^2 x [-t/2, t/2], uniform by area on all faces
+  double slabThickness = 0.05;  // t
 };
 
 struct Cloud {
@@ -73,7 +85,8 @@ constexpr double kGenus2Major = 1.2, kGenus2Minor = 0.6, kGenus2Offset = 1.5, kG
 // F at p; its gradient in *gradient when not null.
 double genus2Function(const vcg::Point3d& p, vcg::Point3d* gradient = nullptr);
 
-// Parses "sphere", "torus", "patch", "genus2"; throws growth::Error otherwise.
+// Parses "sphere", "torus", "patch", "genus2", "latlong", "hollowball", "slab"; throws growth::Error
+// otherwise.
 Shape parseShape(const std::string& name);
 const char* shapeName(Shape s);
 

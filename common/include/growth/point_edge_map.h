@@ -13,6 +13,12 @@
 // neighbour's index plus two direction bits and one marker bit); a point with more neighbours
 // chains further blocks from a shared pool. Valences of interpolating meshes are about 6, so
 // almost every lookup is a scan of one cache line. No std::map/std::set, no per-point allocation.
+//
+// A point holds at most capacity() (kMaxEntries unless set) entries (one per neighbour it ever had an edge with). The pole
+// of a sphere sampled on a latitude–longitude grid has one per longitude, hundreds; lookups at a
+// point scan its entries, so the cap also bounds the work a single point can cost. A caller asks
+// hasRoom() before adding a triangle with new edges (canAddTriangle includes it) and leaves the
+// edge open where a point is full: the mesh degrades there, locally, instead of failing.
 #include <growth/huge_pages.h>
 
 #include <cassert>
@@ -31,6 +37,9 @@ class PointEdgeMap {
 public:
   // Largest number of points (indices use 29 bits of an entry).
   static constexpr std::uint32_t kMaxPoints = (1u << 29) - 1;
+  // Largest number of entries (neighbours) of one point: the default capacity, and the most
+  // setCapacity() allows (counts are 16-bit).
+  static constexpr std::uint32_t kMaxEntries = 4096;
 
   PointEdgeMap() = default;
   explicit PointEdgeMap(size_t points) { reset(points); }
@@ -38,20 +47,31 @@ public:
   void reset(size_t points) {
     if (points > kMaxPoints) throw std::length_error("PointEdgeMap: too many points");
     assignHuge(slot_, points * kInline, 0u);
-    assignHuge(count_, points, std::uint8_t(0));
+    assignHuge(count_, points, std::uint16_t(0));
     pool_.clear();
   }
 
   size_t pointCount() const { return count_.size(); }
 
+  // Entries one point may hold, in [2, kMaxEntries] (kMaxEntries unless set): a smaller capacity
+  // lets tests reach the degraded case with small clouds.
+  void setCapacity(std::uint32_t maxEntries) {
+    if (maxEntries < 2 || maxEntries > kMaxEntries) throw std::invalid_argument("PointEdgeMap: capacity out of range");
+    capacity_ = maxEntries;
+  }
+  std::uint32_t capacity() const { return capacity_; }
+
   // Frees all storage (the map is then empty, for no points); reset() makes it usable again.
   void release() {
     HugeVector<std::uint32_t>().swap(slot_);
-    HugeVector<std::uint8_t>().swap(count_);
+    HugeVector<std::uint16_t>().swap(count_);
     HugeVector<std::uint32_t>().swap(pool_);
   }
 
   // Half-edge a→b is traversed by a triangle.
+#if defined(__GNUC__)
+  __attribute__((always_inline)) // the mesher's most frequent test, see find()
+#endif
   bool used(std::uint32_t a, std::uint32_t b) const {
     const std::uint32_t* e = find(a, b);
     return e != nullptr && (*e & kOut) != 0;
@@ -80,14 +100,29 @@ public:
   bool closed(std::uint32_t v) const { return !isolated(v) && !hasFreeEdge(v); }
 
   // None of the half-edges a→b, b→c, c→a is used: adding the triangle keeps every edge at two
-  // triangles at most, traversed once in each direction.
+  // triangles at most, traversed once in each direction; and its new edges find room.
   bool canAddTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
-    return a != b && b != c && c != a && !used(a, b) && !used(b, c) && !used(c, a);
+    return a != b && b != c && c != a && !used(a, b) && !used(b, c) && !used(c, a) && hasRoom(a, b, c);
+  }
+
+  // Entries (neighbours, with or without triangles now) of v.
+  std::uint32_t entries(std::uint32_t v) const { return count_[v]; }
+  // v and w have an entry for each other (they share or shared an edge).
+  bool hasEntry(std::uint32_t v, std::uint32_t w) const { return find(v, w) != nullptr; }
+  // Every point of triangle (a, b, c) has room for the entries its edges would add.
+  bool hasRoom(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    // Almost always far from full: three loads decide.
+    const std::uint32_t cap = capacity_;
+    if (count_[a] + 2u <= cap && count_[b] + 2u <= cap && count_[c] + 2u <= cap) return true;
+    return hasRoomNearFull(a, b, c);
   }
 
   // Records triangle (a, b, c). Returns a bit mask of its edges that were new (had no triangle):
-  // bit 0 for {a,b}, bit 1 for {b,c}, bit 2 for {c,a}. Precondition: canAddTriangle(a, b, c).
+  // bit 0 for {a,b}, bit 1 for {b,c}, bit 2 for {c,a}. Precondition: canAddTriangle(a, b, c)
+  // (std::length_error, with the map unchanged, when a point has no room).
   unsigned addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    // Checked before anything changes, so a refused triangle leaves the map as it was.
+    if (!hasRoom(a, b, c)) throw std::length_error("PointEdgeMap: a triangle was added at a point with no room left");
     assert(canAddTriangle(a, b, c));
     unsigned fresh = 0;
     fresh |= addHalfEdge(a, b) ? 1u : 0u;
@@ -139,7 +174,8 @@ public:
   }
 
   size_t memoryBytes() const {
-    return slot_.capacity() * sizeof(std::uint32_t) + count_.capacity() + pool_.capacity() * sizeof(std::uint32_t);
+    return slot_.capacity() * sizeof(std::uint32_t) + count_.capacity() * sizeof(std::uint16_t) +
+           pool_.capacity() * sizeof(std::uint32_t);
   }
 
 private:
@@ -176,9 +212,25 @@ private:
     }
   }
 
+  // hasRoom where a point may be full: counts the entries the triangle would add. Kept out of
+  // line so that the hot callers (addTriangle, the mesher's tests) stay small.
+#if defined(__GNUC__)
+  __attribute__((noinline, cold))
+#endif
+  bool hasRoomNearFull(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    const std::uint32_t cap = capacity_;
+    const unsigned ab = !hasEntry(a, b), bc = !hasEntry(b, c), ca = !hasEntry(c, a);
+    return count_[a] + ab + ca <= cap && count_[b] + ab + bc <= cap && count_[c] + bc + ca <= cap;
+  }
+
   std::uint32_t* find(std::uint32_t v, std::uint32_t w) {
     return const_cast<std::uint32_t*>(static_cast<const PointEdgeMap*>(this)->find(v, w));
   }
+  // Inlined into the hot callers (used(), addTriangle) even where they grew past the compiler's
+  // limits: it is most of their work, usually a scan of one cache line.
+#if defined(__GNUC__)
+  __attribute__((always_inline))
+#endif
   const std::uint32_t* find(std::uint32_t v, std::uint32_t w) const {
     std::uint32_t n = count_[v];
     const std::uint32_t* blk = &slot_[size_t(v) * kInline];
@@ -211,7 +263,7 @@ private:
   // Appends an entry for w at v (no check for an existing one).
   std::uint32_t* append(std::uint32_t v, std::uint32_t w) {
     const std::uint32_t n = count_[v];
-    if (n == 255) throw std::length_error("PointEdgeMap: more than 255 edges at one point");
+    assert(n < capacity_); // addTriangle checked hasRoom()
     // Find the last block and how many entries it holds (at most kInline).
     bool inPool = false;
     size_t base = size_t(v) * kInline;
@@ -262,8 +314,9 @@ private:
   }
 
   HugeVector<std::uint32_t> slot_;    // kInline per point
-  HugeVector<std::uint8_t> count_;    // entries per point
+  HugeVector<std::uint16_t> count_;   // entries per point
   HugeVector<std::uint32_t> pool_;    // overflow blocks of kInline
+  std::uint32_t capacity_ = kMaxEntries;
 };
 
 } // namespace growth
