@@ -429,6 +429,7 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   options.maxSamples = 8000;
   options.maxNoiseSamples = 3000;
   const SamplingEstimate e = estimateSampling(points, options, threads);
+  sc.meanSpacing = meanSpacing(points, kMeanSpacingSamples, threads);
   if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
   sc.spacing = e.spacing;
   sc.areaSpacing = std::sqrt(e.areaPerPoint);

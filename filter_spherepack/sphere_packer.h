@@ -44,7 +44,9 @@ struct Params {
 // The scale of a cloud, from which the defaults are derived: robust estimates (medians over a
 // sample of the points, growth/cloud_scale.h), so that outliers and far points barely move them.
 struct CloudScale {
-  double spacing = 0;        // median nearest-neighbour distance
+  double spacing = 0;        // median nearest-neighbour distance (for the packer's own checks)
+  double meanSpacing = 0;    // growth::meanSpacing: the spacing Robust G2S, mesh_measures and the
+                             // benchmark report (trimmed mean), logged so that the numbers agree
   double areaSpacing = 0;    // sqrt(surface area per point): a sampling length that does not depend
                              // on how regular the sampling is (0.47 of it is the median spacing of
                              // a random sample, all of it that of a square lattice)

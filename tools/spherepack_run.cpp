@@ -124,6 +124,7 @@ int main(int argc, char** argv) {
                            st.secondsTriangulation, st.secondsCleanup, st.secondsOutput};
       for (int k = 0; k < 7; ++k) phase[k] = std::min(phase[k], t[k]);
     }
+    std::printf("spacing: %.6g\n", st.scale.meanSpacing);
     std::printf("median_spacing: %.6g\narea_spacing: %.6g\nnoise: %.6g\nd_reason: %s\n", st.scale.spacing,
                 st.scale.areaSpacing, st.scale.noise, st.diameterReason.c_str());
     std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",
