@@ -7,6 +7,9 @@
 namespace growth {
 namespace g2s {
 
+// The definition C++14 needs for a static constexpr member bound to a reference (std::min).
+constexpr std::int64_t MortonGrid::kMaxCoord;
+
 namespace {
 // Inverse of mortonSpread: gathers every third bit (bit 3i to bit i).
 std::uint64_t mortonCompact(std::uint64_t v) {

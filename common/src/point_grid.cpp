@@ -8,6 +8,10 @@
 
 namespace growth {
 
+// The definition C++14 needs for a static constexpr member that is bound to a reference
+// (std::min): without it the link fails when the compiler does not fold the call (clang -O1).
+constexpr std::int64_t PointGrid::kMaxCoord;
+
 void PointGrid::build(const std::vector<Point>& points, double cellSize) {
   cellKey_.clear();
   cellStart_.clear();
