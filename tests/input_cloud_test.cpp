@@ -140,3 +140,35 @@ TEST(InputCloud, MeanSpacingOfAGrid) {
   EXPECT_NEAR(growth::meanSpacing(pts), 0.5, 1e-12);
   EXPECT_EQ(growth::meanSpacing({vcg::Point3d(0, 0, 0)}), 0.0);
 }
+
+// The mean spacing is robust: one point far away, or 1 % of outliers scattered in a box around
+// the cloud, leave it as it is (within 1 %), and the clean cloud's value is the plain mean of its
+// samples' nearest distances (no sample of a clean sampling is beyond 5 times their median).
+TEST(InputCloud, MeanSpacingIgnoresFarPointsAndOutliers) {
+  growth::CloudSpec spec;
+  spec.count = 20000; // every point a sample (kMeanSpacingSamples)
+  spec.seed = 4;
+  const growth::Cloud clean = growth::generateCloud(spec);
+  const double s0 = growth::meanSpacing(clean.points);
+  // The plain mean, by brute force.
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < clean.points.size(); ++i, ++n) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < clean.points.size(); ++j)
+      if (j != i) best = std::min(best, (clean.points[j] - clean.points[i]).SquaredNorm());
+    sum += std::sqrt(best);
+  }
+  EXPECT_NEAR(s0, sum / double(n), 1e-12 * s0);
+
+  std::vector<vcg::Point3d> far = clean.points;
+  far.push_back(vcg::Point3d(1e4, 0, 0)); // the same samples, and one more: the far point
+  EXPECT_NEAR(growth::meanSpacing(far), s0, 1e-12 * s0);
+  growth::CloudSpec noisy = spec;
+  noisy.outlierFraction = 0.01;
+  EXPECT_NEAR(growth::meanSpacing(growth::generateCloud(noisy).points), s0, 0.01 * s0);
+  // The robust box holds the cloud, not the far point.
+  const vcg::Box3d box = growth::robustBox(far);
+  EXPECT_TRUE(box.IsIn(vcg::Point3d(0.99, 0, 0)));
+  EXPECT_FALSE(box.IsIn(vcg::Point3d(1e4, 0, 0)));
+}

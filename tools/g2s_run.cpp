@@ -2,7 +2,7 @@
 //
 //   g2s_run cloud.ply [options]                      a PLY point cloud (binary or ASCII)
 //   g2s_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS]
-//           [--outliers FRACTION] [options]         a generated cloud
+//           [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]         a generated cloud
 // options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --random-seed S
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
 //          -o out.ply (save the mesh)
@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
       else if (a == "--nonuniform") spec.nonUniform = true;
       else if (a == "--gauss") gaussSpacings = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
+      else if (a == "--cluster") spec.clusterFraction = std::atof(value());
+      else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--k") params.seedSearchFactor = std::atof(value());
       else if (a == "--max-radius") params.maxSearchRadiusFactor = std::atof(value());
       else if (a == "--n") params.sizeLevels = std::atoi(value());

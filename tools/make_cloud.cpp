@@ -1,6 +1,6 @@
 // make_cloud: writes a seeded point cloud with exact normals as binary PLY.
 //   make_cloud --shape sphere|torus|patch|genus2 --points N [--seed S]
-//              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA] [--outliers FRACTION] -o out.ply
+//              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA] [--outliers FRACTION] [--cluster FRACTION] [--far-points N] -o out.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
       else if (a == "--noise") spec.noiseBound = std::atof(value());
       else if (a == "--gauss") spec.gaussianSigma = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
+      else if (a == "--cluster") spec.clusterFraction = std::atof(value());
+      else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "-o") out = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else throw growth::Error("unknown argument " + a);

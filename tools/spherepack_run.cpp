@@ -2,7 +2,7 @@
 //
 //   spherepack_run cloud.ply [options]                  a PLY point cloud with normals
 //   spherepack_run --shape sphere|torus|patch|genus2 --points N [--seed S] [--nonuniform] [--noise NU]
-//                  [--outliers FRACTION] [options]      a generated cloud
+//                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
 //          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
 //          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
       else if (a == "--density-ratio") spec.densityRatio = std::atof(value());
       else if (a == "--noise") spec.noiseBound = std::atof(value());
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
+      else if (a == "--cluster") spec.clusterFraction = std::atof(value());
+      else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--d") params.sphereDiameter = std::atof(value());
       else if (a == "--d-spacings") dSpacings = std::atof(value());
       else if (a == "--s") params.splatSize = std::atof(value());

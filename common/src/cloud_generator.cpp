@@ -276,6 +276,8 @@ vcg::Point3d Random::unitVector() {
 
 vcg::Point3d Random::inBall(double radius) { return unitVector() * (radius * std::cbrt(uniform())); }
 
+double shapeSize(const CloudSpec& s);
+
 Cloud generateCloud(const CloudSpec& spec) {
   if (spec.count == 0) throw Error("a cloud needs at least one point");
   Random rng(spec.seed);
@@ -317,6 +319,24 @@ Cloud generateCloud(const CloudSpec& spec) {
       c.normals.push_back(rng.unitVector());
     }
   }
+  // Drawn after everything above, so the clouds without them are the same as before.
+  if (spec.clusterFraction > 0) {
+    // A dense cluster on the surface: that fraction of `count` points, moved by at most a
+    // hundredth of the surface's mean spacing about a surface sample (the normal of that sample).
+    const size_t k = static_cast<size_t>(std::llround(spec.clusterFraction * double(spec.count)));
+    const Sample centre = sampleSurface(spec, rng);
+    const double spread = 0.01 * std::sqrt(shapeArea(spec) / double(spec.count));
+    for (size_t i = 0; i < k; ++i) {
+      c.points.push_back(centre.p + rng.inBall(spread));
+      c.normals.push_back(centre.n);
+    }
+  }
+  for (size_t i = 0; i < spec.farPoints; ++i) {
+    // 10^4 times the shape's size away, in a random direction.
+    const vcg::Point3d dir = rng.unitVector();
+    c.points.push_back(dir * (1e4 * shapeSize(spec)));
+    c.normals.push_back(dir);
+  }
   return c;
 }
 
@@ -346,6 +366,16 @@ double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
   }
   }
   return 0;
+}
+
+// The shape's size: the radius of a ball around the origin holding it (for the far points).
+double shapeSize(const CloudSpec& s) {
+  switch (s.shape) {
+  case Shape::Sphere: return s.sphereRadius;
+  case Shape::Torus: return s.torusMajor + s.torusMinor;
+  case Shape::Patch: return 2 * s.patchHalfSize;
+  default: return 4.0; // genus 2: extent about 6.6 x 3.6 x 1.2
+  }
 }
 
 double shapeArea(const CloudSpec& s) {

@@ -31,6 +31,9 @@ struct CloudSpec {
   double noiseBound = 0.0;      // nu: each point moves by a uniform random vector of length <= nu
   double gaussianSigma = 0.0;   // standard deviation of isotropic Gaussian noise (absolute units)
   double outlierFraction = 0.0; // outliers added, as a fraction of count, uniform in the enlarged box
+  double clusterFraction = 0.0; // a dense cluster added, as a fraction of count: points within a
+                                // hundredth of the mean spacing of one surface sample
+  size_t farPoints = 0;         // points added 10^4 times the shape's size away (random directions)
   double sphereRadius = 1.0;
   double torusMajor = 2.0;      // R
   double torusMinor = 1.0;      // r
