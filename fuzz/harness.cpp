@@ -132,22 +132,35 @@ const std::string& scratchPath() {
   return path;
 }
 
-// Whether every "element <name> <count>" in the bytes declares at most kMaxPlyElements, and all
-// of them together too. Looked for anywhere in the bytes, not only in the header as parsed: vcglib
-// reads the header in chunks of 511 bytes, so a long line's tail counts as a line of its own.
-bool plyElementsWithinBounds(const std::uint8_t* data, size_t size) {
+// Whether every "element <name> <count>" in the bytes has its count on its line and declares at most
+// kMaxPlyElements, and all of them together too. Looked for anywhere in the bytes, not only in
+// the header as parsed: vcglib reads the header in chunks of 511 bytes, so a long line's tail
+// counts as a line of its own. A missing count is vcglib's bug, not the engines': its header
+// parser checks the name again where it means the count, and calls atoi(NULL), which crashes
+// (fuzz/regressions/ply/element_without_count_vcglib_atoi_null.ply), in MeshLab too.
+bool plyHeaderAccepted(const std::uint8_t* data, size_t size) {
   static const char kElement[] = "element";
   const size_t len = sizeof kElement - 1;
   long long total = 0;
   for (size_t i = 0; i + len <= size; ++i) {
     if (std::memcmp(data + i, kElement, len) != 0) continue;
-    const std::string rest(reinterpret_cast<const char*>(data) + i + len, std::min<size_t>(size - i - len, 200));
+    std::string rest(reinterpret_cast<const char*>(data) + i + len, std::min<size_t>(size - i - len, 200));
+    rest = rest.substr(0, rest.find_first_of(std::string("\n\r\0", 3))); // vcglib reads one line
     char name[201] = {0};
     long long count = 0;
-    if (std::sscanf(rest.c_str(), "%200s %lld", name, &count) != 2) continue;
+    if (std::sscanf(rest.c_str(), "%200s %lld", name, &count) != 2) return false;
     if (count < 0 || count > static_cast<long long>(kMaxPlyElements)) return false;
     total += count;
     if (total > static_cast<long long>(kMaxPlyElements)) return false;
+  }
+  // Lines of the header longer than vcglib's buffer are read in pieces, so a line's count could
+  // come in the next piece: such headers are skipped too.
+  const std::string bytes(reinterpret_cast<const char*>(data), size);
+  const size_t headerEnd = std::min(bytes.find("end_header"), size);
+  for (size_t start = 0; start < headerEnd;) {
+    const size_t end = std::min(bytes.find('\n', start), headerEnd);
+    if (end - start > 500) return false;
+    start = end + 1;
   }
   return true;
 }
@@ -174,7 +187,7 @@ void checkOutput(const CMeshO& out, size_t statVertices, size_t statFaces, const
 }
 
 void runPly(const std::uint8_t* data, size_t size) {
-  if (!plyElementsWithinBounds(data, size)) return;
+  if (!plyHeaderAccepted(data, size)) return;
   const std::string& path = scratchPath();
   {
     FILE* f = std::fopen(path.c_str(), "wb");
