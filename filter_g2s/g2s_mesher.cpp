@@ -17,6 +17,13 @@ namespace {
 // would otherwise test every point of a large ball.
 constexpr size_t kMaxSeedTriangles = 32;
 
+// The cylinder test walks at most this many slabs (each two circumradii high) on each side of the
+// seed triangle: its reach is 2048 circumradii, about 1200 local spacings, so the whole cylinder
+// through a clean cloud of up to a few million points is still seen, while a far point (which
+// stretches the bounding box) or a seed of almost no size (a few float steps across) costs at most
+// 2 x 1024 ball queries per seed attempt instead of box size / circumradius.
+constexpr long kMaxCylinderSlabs = 1024;
+
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 
 std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
@@ -146,7 +153,8 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
   const double eps = 1e-6 * radius; // a point this close to the plane is on it (coplanar clouds)
   // The infinite cylinder is walked in slabs of height 2R along its axis, each covered by a ball
   // of radius R·√2, from the triangle outwards in both directions until the slabs leave the
-  // cloud's bounding box; the walk stops as soon as points on both sides were seen.
+  // cloud's bounding box or kMaxCylinderSlabs were walked (the bound on the work, see there); the
+  // walk stops as soon as points on both sides were seen.
   const double step = 2.0 * radius, queryRadius = radius * std::sqrt(2.0);
   vcg::Box3d bb = grid_.box();
   bb.Offset(queryRadius);
@@ -161,7 +169,7 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
     return above && below;
   };
   for (int side : {1, -1}) {
-    for (long j = side > 0 ? 0 : 1;; ++j) {
+    for (long j = side > 0 ? 0 : 1; j < kMaxCylinderSlabs; ++j) {
       const P3 centre = ball.centre + n * (double(side) * double(j) * step);
       if (!bb.IsIn(centre)) break;
       if (grid_.anyInBall(centre, queryRadius, bothSides)) return false;
