@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs everything the project needs on a fresh Debian 12 (bookworm) machine:
 #   - Debian packages: MeshLab 2020.09 (meshlabserver, libmeshlab-common.so, plugins), the Qt5 and GL
-#     development headers MeshLab's plugin API includes, Eigen, GoogleTest, CMake, Xvfb, and the
-#     Python packages the benchmark plots use;
+#     development headers MeshLab's plugin API includes, Eigen, GoogleTest, CMake, Xvfb, clang with
+#     its sanitizer runtimes and libFuzzer, and the Python packages the benchmark plots use;
 #   - MeshLab's plugin API headers (src/common) and vcglib, from the Debian *source* package of the
 #     installed meshlab version, unpacked into third_party/ (ignored by git; never committed).
 # Idempotent: a second run only checks and returns.
@@ -22,6 +22,7 @@ packages=(
   build-essential cmake pkg-config
   qtbase5-dev libqt5opengl5-dev libqt5xmlpatterns5-dev libglew-dev   # what MeshLab's headers include
   libeigen3-dev libgtest-dev
+  clang-14 libclang-rt-14-dev                 # sanitizer build and fuzzers (scripts/sanitize.sh, fuzz.sh)
   xvfb xauth                                  # meshlabserver needs a display
   time                                        # /usr/bin/time -v: peak memory in the benchmark
   python3 python3-numpy python3-matplotlib    # benchmark tables and plots (/usr/bin/python3)

@@ -64,6 +64,21 @@ TEST(InputCloud, NonFiniteCoordinatesAreRefusedWithTheirCount) {
   EXPECT_NE(e.find("2 of 100 vertices have NaN or infinite"), std::string::npos) << e;
 }
 
+// A fuzz finding (fuzz/regressions/cloud/torus_1e38_g2s_nan_centre): a cloud 1e38 across overflowed
+// G2S's sums of edge lengths into a NaN search centre. Such coordinates are refused, with a count.
+TEST(InputCloud, HugeCoordinatesAreRefusedWithTheirCount) {
+  CMeshO m;
+  sphereMesh(m, 100);
+  m.vert[7].P()[1] = 2e15f;
+  m.vert[8].P()[0] = -1e38f;
+  m.vert[9].P()[2] = 9e14f; // within the bound
+  const std::string e = errorOf(m, {});
+  EXPECT_NE(e.find("2 of 100 vertices have a coordinate beyond"), std::string::npos) << e;
+  m.vert[7].P()[1] = 0;
+  m.vert[8].P()[0] = 0;
+  EXPECT_EQ(errorOf(m, {}).find("beyond"), std::string::npos);
+}
+
 TEST(InputCloud, MissingNormalsSayHowToComputeThem) {
   CMeshO m;
   for (int i = 0; i < 10; ++i) addPoint(m, float(i), float(i * i % 7), 0, 0, 0, 0);

@@ -22,7 +22,10 @@ void makeMesh(CMeshO& m, const std::vector<Point3d>& v, const std::vector<std::a
   m.Clear();
   auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(m, v.size());
   for (size_t i = 0; i < v.size(); ++i, ++vi) vi->P() = vcg::Point3f::Construct(v[i]);
-  for (const auto& t : f) vcg::tri::Allocator<CMeshO>::AddFace(m, &m.vert[size_t(t[0])], &m.vert[size_t(t[1])], &m.vert[size_t(t[2])]);
+  // Corners set by hand: Allocator::AddFace asserts they are distinct, and some faces here repeat one.
+  auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(m, f.size());
+  for (size_t i = 0; i < f.size(); ++i, ++fi)
+    for (int j = 0; j < 3; ++j) fi->V(j) = &m.vert[size_t(f[i][size_t(j)])];
 }
 
 // Regular tetrahedron, edge 2·√2, consistently oriented.

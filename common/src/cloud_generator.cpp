@@ -308,7 +308,13 @@ vcg::Point3d Random::unitVector() {
   return vcg::Point3d(r * std::cos(a), r * std::sin(a), z);
 }
 
-vcg::Point3d Random::inBall(double radius) { return unitVector() * (radius * std::cbrt(uniform())); }
+vcg::Point3d Random::inBall(double radius) {
+  // The radius is drawn before the direction (here and below, draws that were once the unsequenced
+  // operands of one expression are made statements in the order GCC evaluated them, so the seeded
+  // clouds are the same with every compiler, clang included).
+  const double r = radius * std::cbrt(uniform());
+  return unitVector() * r;
+}
 
 double shapeSize(const CloudSpec& s);
 
@@ -360,8 +366,10 @@ Cloud generateCloud(const CloudSpec& spec) {
       if (rng.uniform() > bottom + rise * t) continue;
     }
     if (spec.noiseBound > 0) s.p += rng.inBall(spec.noiseBound);
-    if (spec.gaussianSigma > 0)
-      s.p += vcg::Point3d(rng.gaussian(), rng.gaussian(), rng.gaussian()) * spec.gaussianSigma;
+    if (spec.gaussianSigma > 0) {
+      const double gz = rng.gaussian(), gy = rng.gaussian(), gx = rng.gaussian();
+      s.p += vcg::Point3d(gx, gy, gz) * spec.gaussianSigma;
+    }
     c.points.push_back(s.p);
     c.normals.push_back(s.n);
   }
@@ -376,7 +384,8 @@ Cloud generateCloud(const CloudSpec& spec) {
     lo -= margin;
     hi += margin;
     for (size_t i = 0; i < outliers; ++i) {
-      c.points.emplace_back(rng.uniform(lo[0], hi[0]), rng.uniform(lo[1], hi[1]), rng.uniform(lo[2], hi[2]));
+      const double z = rng.uniform(lo[2], hi[2]), y = rng.uniform(lo[1], hi[1]), x = rng.uniform(lo[0], hi[0]);
+      c.points.emplace_back(x, y, z);
       c.normals.push_back(rng.unitVector());
     }
   }

@@ -61,7 +61,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     throw Error(s.str());
   }
 
-  size_t nonFinite = 0, badNormals = 0;
+  size_t nonFinite = 0, huge = 0, badNormals = 0;
   reserveHuge(c.points, static_cast<size_t>(mesh.vn), true);
   reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn), true);
   if (check.needNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn), true);
@@ -73,6 +73,8 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
       ++nonFinite;
       continue;
     }
+    if (std::abs(p[0]) > kMaxAbsCoordinate || std::abs(p[1]) > kMaxAbsCoordinate || std::abs(p[2]) > kMaxAbsCoordinate)
+      ++huge;
     if (check.needNormals) {
       vcg::Point3d n = vcg::Point3d::Construct(v.cN());
       const double len = n.Norm();
@@ -93,6 +95,13 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
       << "first (select them with Filters > Selection > Conditional Vertex Selection, e.g. "
       << "'x!=x || y!=y || z!=z', then Filters > Selection > Delete Selected Vertices) and run the "
       << "filter again.";
+    throw Error(s.str());
+  }
+  if (huge > 0) {
+    std::ostringstream s;
+    s << huge << " of " << mesh.vn << " vertices have a coordinate beyond +-" << kMaxAbsCoordinate
+      << ", which this filter cannot mesh. Scale the layer down (Filters > Normals, Curvatures and "
+      << "Orientation > Transform: Scale, Normalize) or delete those vertices, and run the filter again.";
     throw Error(s.str());
   }
   if (check.needNormals && badNormals > 0) {

@@ -8,6 +8,10 @@
 
 namespace growth {
 
+// std::min/max bind their arguments to references, which odr-uses the member: C++14 needs a
+// definition (clang at -O1 with the sanitizers does not fold the call).
+constexpr std::int64_t PointIndex::kMaxCoord;
+
 namespace {
 // Inverse of mortonSpread: gathers every third bit (bit 3i to bit i).
 std::uint64_t mortonCompact(std::uint64_t v) {

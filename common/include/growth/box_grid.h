@@ -124,8 +124,15 @@ public:
 
   double side() const { return side_; }
   const vcg::Point3d& origin() const { return origin_; }
+  // Far outside the indexable range (and for NaN) the coordinate saturates at ±kFar, which
+  // valid() refuses and which a range of boxes spans once: converting a double beyond the range of
+  // int64 is undefined behaviour (a start point given at 1e235, fuzz/regressions/cloud/).
+  static constexpr std::int64_t kFar = std::int64_t(1) << 40;
   std::int64_t coord(double v, int axis) const {
-    return static_cast<std::int64_t>(std::floor((v - origin_[axis]) * inv_));
+    const double c = std::floor((v - origin_[axis]) * inv_);
+    if (c >= double(kFar)) return kFar;
+    if (!(c > -double(kFar))) return -kFar;
+    return static_cast<std::int64_t>(c);
   }
   static bool valid(std::int64_t x, std::int64_t y, std::int64_t z) {
     return x >= 0 && y >= 0 && z >= 0 && x <= kMax && y <= kMax && z <= kMax;

@@ -29,8 +29,13 @@ struct CloudCheck {
   size_t minPoints = 3;
 };
 
+// Coordinates beyond ±kMaxAbsCoordinate are refused: far beyond any scan (a kilometre in
+// nanometres is 1e12), and past it the engines' squared lengths, products of squared lengths and
+// float sums of lengths would overflow (a cloud 1e38 across gave a NaN search centre in G2S).
+constexpr double kMaxAbsCoordinate = 1e15;
+
 // Copies the live vertices of `mesh`; throws growth::Error (user-facing message) on: an empty
-// layer, fewer than check.minPoints distinct points, NaN or infinite coordinates, all points
+// layer, fewer than check.minPoints distinct points, NaN, infinite or huge coordinates, all points
 // identical or on one line, faces when !allowFaces, missing/zero/NaN normals when needNormals.
 InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check);
 

@@ -197,7 +197,7 @@ private:
   // equals floor for the non-negative values that matter; callers clamp to [0, maxCell_]).
   std::int64_t coord(double v, int axis) const {
     const double c = (v - origin_[axis]) * inv_;
-    return c < 0 ? -1 : (c > double(kMaxCoord) ? kMaxCoord + 1 : static_cast<std::int64_t>(c));
+    return !(c >= 0) ? -1 : (c > double(kMaxCoord) ? kMaxCoord + 1 : static_cast<std::int64_t>(c)); // NaN: -1
   }
   // Table index of a cell key: the 2×2×2 block of cells (key >> 3) is hashed, the cell's place
   // in its block (key & 7) kept, so the cells a query probes — neighbours in space — mostly share
