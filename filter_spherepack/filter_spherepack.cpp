@@ -10,23 +10,16 @@
 
 #include <new>
 
-FilterSpherePackPlugin::FilterSpherePackPlugin() {
-  typeList << FP_SPHERE_PACKING;
-  for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
-}
-
-FilterSpherePackPlugin::~FilterSpherePackPlugin() {
-  for (QAction* a : actionList) delete a;
-}
+FilterSpherePackPlugin::FilterSpherePackPlugin() { addFilter(FP_SPHERE_PACKING, this); }
 
 QString FilterSpherePackPlugin::pluginName() const { return "FilterSpherePack"; }
 
 // Frozen: this string is the key of the filter in .mlx scripts.
-QString FilterSpherePackPlugin::filterName(FilterIDType filter) const {
+QString FilterSpherePackPlugin::filterName(FilterID filter) const {
   return filter == FP_SPHERE_PACKING ? QString("Surface Reconstruction: Sphere Packing") : QString("Error!");
 }
 
-QString FilterSpherePackPlugin::filterInfo(FilterIDType filter) const {
+QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_SPHERE_PACKING) return QString("Error!");
   return QString(
       "Reconstructs a triangle mesh from a point cloud <b>with normals</b> by packing touching "
@@ -44,22 +37,18 @@ QString FilterSpherePackPlugin::filterInfo(FilterIDType filter) const {
       "Sections 3 and 4 of the paper.");
 }
 
-MeshFilterInterface::FilterClass FilterSpherePackPlugin::getClass(QAction*) {
-  return MeshFilterInterface::Remeshing;
-}
+FilterSpherePackPlugin::FilterClass FilterSpherePackPlugin::filterClass(FilterID) const { return Remeshing; }
 
-int FilterSpherePackPlugin::getPreConditions(QAction*) const { return MeshModel::MM_VERTNORMAL; }
+int FilterSpherePackPlugin::preConditions(FilterID) const { return MeshModel::MM_VERTNORMAL; }
 
-int FilterSpherePackPlugin::getRequirements(QAction*) { return MeshModel::MM_NONE; }
-
-int FilterSpherePackPlugin::postCondition(QAction*) const {
+int FilterSpherePackPlugin::postConditions(FilterID) const {
   return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
 }
 
-MeshFilterInterface::FILTER_ARITY FilterSpherePackPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
-
-void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
-  if (ID(action) != FP_SPHERE_PACKING) return;
+void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, RichParameterList& parlst) {
+  using growth::meshlab::RichLength;
+  using growth::meshlab::RichPoint;
+  if (filter != FP_SPHERE_PACKING) return;
   // Lengths default to 0 = automatic (like Ball Pivoting's radius): derived from each cloud when
   // the filter runs, so the same .mlx script suits clouds of any scale. The tooltips show what
   // "automatic" gives for the current layer.
@@ -67,11 +56,11 @@ void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, Ric
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
   const QString autoD = def.sphereDiameter > 0 ? QString(" For this layer: %1.").arg(def.sphereDiameter) : QString();
   const QString autoS = def.splatSize > 0 ? QString(" For this layer: %1.").arg(def.splatSize) : QString();
-  parlst.addParam(RichAbsPerc("sphereDiameter", 0.0f, 0.0f, diag,
+  parlst.addParam(RichLength("sphereDiameter", 0.0f, 0.0f, diag,
       "Sphere diameter d (target edge length)",
       "Every edge is at least d, most are close to it. 0 = automatic, from the point spacing and the "
       "noise." + autoD));
-  parlst.addParam(RichAbsPerc("splatSize", 0.0f, 0.0f, diag,
+  parlst.addParam(RichLength("splatSize", 0.0f, 0.0f, diag,
       "Splat radius s",
       "Largest radius of the disks on the points; they must cover the surface. 0 = automatic." + autoS));
   parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
@@ -87,15 +76,15 @@ void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, Ric
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
       "Start the growth from the two points below (projected onto the closest splats) instead of "
       "choosing them automatically near the highest point of the cloud."));
-  parlst.addParam(RichPoint3f("startPoint1", vcg::Point3f::Construct(def.startPoint[0]), "Starting point 1",
+  parlst.addParam(RichPoint("startPoint1", Point3m::Construct(def.startPoint[0]), "Starting point 1",
       "First starting vertex (used only when 'Use given starting points' is on)."));
-  parlst.addParam(RichPoint3f("startPoint2", vcg::Point3f::Construct(def.startPoint[1]), "Starting point 2",
+  parlst.addParam(RichPoint("startPoint2", Point3m::Construct(def.startPoint[1]), "Starting point 2",
       "Second starting vertex; its projection must lie between d and 2d from the first one."));
 }
 
-bool FilterSpherePackPlugin::applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par,
-                                         vcg::CallBackPos* cb) {
-  if (ID(filter) == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb);
+bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,
+                                   vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
+  if (filter == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb);
   errorMessage = "Unknown filter.";
   return false;
 }
