@@ -15,6 +15,11 @@ QString FilterG2SPlugin::filterName(FilterID filter) const {
   return filter == FP_ROBUST_G2S ? QString("Surface Reconstruction: Robust G2S") : QString("Error!");
 }
 
+// Frozen: the filter's name in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction filters.
+QString FilterG2SPlugin::pythonName(FilterID filter) const {
+  return filter == FP_ROBUST_G2S ? QString("generate_surface_reconstruction_robust_g2s") : QString();
+}
+
 QString FilterG2SPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_ROBUST_G2S) return QString("Error!");
   return QString(
@@ -64,12 +69,13 @@ void FilterG2SPlugin::addParameters(FilterID filter, const MeshModel& m, RichPar
 
 bool FilterG2SPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
                             growth::meshlab::Outputs& outputs) {
-  if (filter == FP_ROBUST_G2S) return applyRobustG2S(md, par, cb);
+  if (filter == FP_ROBUST_G2S) return applyRobustG2S(md, par, cb, outputs);
   errorMessage = "Unknown filter.";
   return false;
 }
 
-bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) {
+bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                                     growth::meshlab::Outputs& outputs) {
   MeshModel* in = md.mm();
   if (in == nullptr) {
     errorMessage = "No current layer: load a point cloud first.";
@@ -111,6 +117,13 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
     return false;
   }
   md.setCurrentMesh(out->id()); // (build() gave it its bounding box and normals)
+  // PyMeshLab's output dictionary of apply_filter.
+  outputs["vertices"] = int(st.vertices);
+  outputs["faces"] = int(st.faces);
+  outputs["holes"] = int(st.holes);
+  outputs["non_manifold_vertices_removed"] = int(st.nonManifoldVerticesRemoved);
+  outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
   Log("Robust G2S: %zu points (%zu duplicates dropped), mean spacing %g, maximum search radius %.2f x local spacing",

@@ -23,6 +23,7 @@ public:
   QString pluginName() const override;
   QString filterName(FilterID filter) const override;
   QString filterInfo(FilterID filter) const override;
+  QString pythonName(FilterID filter) const override;
   FilterClass filterClass(FilterID) const override;
   int postConditions(FilterID) const override;
   void addParameters(FilterID, const MeshModel& m, RichParameterList& parlst) override;
@@ -30,5 +31,6 @@ public:
              growth::meshlab::Outputs& outputs) override;
 
 private:
-  bool applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb);
+  bool applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                      growth::meshlab::Outputs& outputs);
 };

@@ -19,6 +19,11 @@ QString FilterSpherePackPlugin::filterName(FilterID filter) const {
   return filter == FP_SPHERE_PACKING ? QString("Surface Reconstruction: Sphere Packing") : QString("Error!");
 }
 
+// Frozen: the filter's name in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction filters.
+QString FilterSpherePackPlugin::pythonName(FilterID filter) const {
+  return filter == FP_SPHERE_PACKING ? QString("generate_surface_reconstruction_sphere_packing") : QString();
+}
+
 QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_SPHERE_PACKING) return QString("Error!");
   return QString(
@@ -84,13 +89,13 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
 
 bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,
                                    vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
-  if (filter == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb);
+  if (filter == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb, outputs);
   errorMessage = "Unknown filter.";
   return false;
 }
 
 bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichParameterList& par,
-                                                vcg::CallBackPos* cb) {
+                                                vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
   MeshModel* in = md.mm();
   if (in == nullptr) {
     errorMessage = "No current layer: load a point cloud first.";
@@ -131,6 +136,13 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   out->updateDataMask(MeshModel::MM_FACEQUALITY);
   vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
   vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  // PyMeshLab's output dictionary of apply_filter.
+  outputs["vertices"] = int(st.vertices);
+  outputs["faces"] = int(st.faces);
+  outputs["holes"] = int(st.boundaryLoops);
+  outputs["faces_removed"] = int(st.facesRemoved); // for a manifold mesh without intersections
+  outputs["sphere_diameter"] = double(st.sphereDiameter);
+  outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
   Log("Sphere Packing: %zu points (%zu duplicates dropped); median spacing %g, sqrt(area per point) %g, "

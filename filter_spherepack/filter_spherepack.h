@@ -23,6 +23,7 @@ public:
   QString pluginName() const override;
   QString filterName(FilterID filter) const override;
   QString filterInfo(FilterID filter) const override;
+  QString pythonName(FilterID filter) const override;
   FilterClass filterClass(FilterID) const override;
   int preConditions(FilterID) const override;
   int postConditions(FilterID) const override;
@@ -31,5 +32,6 @@ public:
              growth::meshlab::Outputs& outputs) override;
 
 private:
-  bool applySpherePacking(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb);
+  bool applySpherePacking(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                          growth::meshlab::Outputs& outputs);
 };

@@ -48,6 +48,8 @@ public:
 
   // --- Hooks, the same for both APIs -------------------------------------------------------------
   virtual FilterClass filterClass(FilterID) const = 0;
+  /// The filter's name in PyMeshLab (MeshLab 2025.07 derives one from filterName() when empty).
+  virtual QString pythonName(FilterID) const { return QString(); }
   virtual int preConditions(FilterID) const { return MeshModel::MM_NONE; }
   virtual int requirements(FilterID) const { return MeshModel::MM_NONE; }
   virtual int postConditions(FilterID) const = 0;
@@ -79,6 +81,11 @@ public:
   QString errorMessage;
 
   // --- FilterPlugin (MeshLab 2022.02 and later) -----------------------------------------------------
+  using FilterBase::pythonFilterName;
+  QString pythonFilterName(FilterID f) const override {
+    const QString name = pythonName(f);
+    return name.isEmpty() ? FilterBase::pythonFilterName(f) : name;
+  }
   FilterClass getClass(const QAction* a) const override { return filterClass(ID(a)); }
   int getPreConditions(const QAction* a) const override { return preConditions(ID(a)); }
   int getRequirements(const QAction* a) override { return requirements(ID(a)); }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Robust G2S in MeshLab 2025.07d, loaded and applied the way pymeshlab.load_plugin does
-# (build/meshlab-2025.07d/ml_apply): a closed torus cloud gives a closed, manifold, consistently
+# (build/meshlab-2025.07d/ml_apply, the filter named by its Python name): a closed torus cloud gives a closed, manifold, consistently
 # oriented mesh on (nearly) every point, with the counts of the 2020.09 plugin through
 # meshlabserver; the loader refuses the 2020.09 plugin.
 source "$(dirname "$0")/meshlab_prefix.sh"
@@ -8,7 +8,7 @@ source "$(dirname "$0")/ml2025_env.sh"
 plugin="$plugins2025/libfilter_g2s.so"
 
 "$GROWTH_BUILD_DIR/make_cloud" --shape torus --points 20000 --seed 3 -o "$work/torus.ply" >/dev/null
-ml_apply "$plugin" "Surface Reconstruction: Robust G2S" "$work/torus.ply" "$work/mesh.ply" randomSeed=1 \
+ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/torus.ply" "$work/mesh.ply" randomSeed=1 \
   > "$work/apply.log" 2>"$work/apply.err" || { cat "$work/apply.log" "$work/apply.err"; fail "ml_apply failed"; }
 grep -q "^plugin: FilterG2S, built for MeshLab 2025.07d, double precision" "$work/apply.log" \
   || { cat "$work/apply.log"; fail "the plugin does not report MeshLab 2025.07d, double"; }
@@ -17,6 +17,11 @@ verts=$(vertices_of "$work/mesh.ply")
 faces=$(faces_of "$work/mesh.ply")
 [ "$verts" -ge 19950 ] || fail "only $verts of 20000 points used"
 [ "$faces" -eq $((2 * verts)) ] || fail "$faces faces on $verts vertices: not a closed torus"
+# The output dictionary PyMeshLab returns from apply_filter.
+grep -qx "output vertices = $verts" "$work/apply.log" || { cat "$work/apply.log"; fail "output vertices is not $verts"; }
+grep -qx "output faces = $faces" "$work/apply.log" || { cat "$work/apply.log"; fail "output faces is not $faces"; }
+grep -qx "output holes = 0" "$work/apply.log" || { cat "$work/apply.log"; fail "output holes is not 0"; }
+grep -q "^output seconds = " "$work/apply.log" || { cat "$work/apply.log"; fail "no output seconds"; }
 "$GROWTH_BUILD_DIR/mesh_measures" "$work/mesh.ply" --no-min-vertex-distance > "$work/measures.json" \
   || fail "mesh_measures failed"
 python3 - "$work/measures.json" <<'PY' || fail "defects in the G2S mesh"

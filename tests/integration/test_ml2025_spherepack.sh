@@ -39,6 +39,10 @@ grep -q "^log: Sphere Packing: time [0-9.]* s" "$work/auto.log" || { cat "$work/
 d=$(sed -n 's/^log: Sphere Packing: sphere diameter d = \([0-9.eE+-]*\),.*/\1/p' "$work/auto.log")
 [ -n "$d" ] || fail "no d in the filter's log"
 check_mesh "$work/auto.ply" "$d"
+grep -qx "output vertices = $(vertices_of "$work/auto.ply")" "$work/auto.log" \
+  || { cat "$work/auto.log"; fail "output vertices differs from the saved mesh"; }
+grep -qx "output faces = $(faces_of "$work/auto.ply")" "$work/auto.log" \
+  || { cat "$work/auto.log"; fail "output faces differs from the saved mesh"; }
 
 # An absolute d through the RichPercentage parameter.
 ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$work/given.ply" \
