@@ -37,6 +37,17 @@ QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
       "is longer than the border limit stay open, so scans with holes keep them.<br>"
       "Needs per-vertex normals: compute them with <i>Filters &gt; Normals, Curvatures and "
       "Orientation &gt; Compute normals for point sets</i>.<br><br>"
+      "<b>Parameters.</b> <i>Sphere diameter d</i>: 0 chooses max(1.8 &times; &radic;(area per point), "
+      "3 &times; the estimated noise): the scan's resolution, at least twice the noise. <i>Splat "
+      "radius s</i>: the disks on the points must cover the surface; 0 chooses 2.5 &times; &radic;(area "
+      "per point). <i>Local splat sizes</i>: each point gets the radius of its tangent-plane "
+      "Delaunay/Voronoi neighbourhood, bounded by s (s is the radius at open boundaries); off uses s "
+      "everywhere. <i>Window size w</i>: how far (in border edges, each way) the growth looks along a "
+      "border to tell a split from a join when ranking candidates; 0 gives breadth-first growth with "
+      "seams, 8 or more all give the same quality. <i>Border limit</i>: regions bounded by more border "
+      "edges stay open instead of being triangulated, so the boundaries of open scans are kept. "
+      "<i>Starting points</i>: projected onto the closest splats; the second must lie between d and "
+      "2d from the first.<br><br>"
       "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
       "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b><br>"
       "Sections 3 and 4 of the paper.");
@@ -61,30 +72,26 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
   const QString autoD = def.sphereDiameter > 0 ? QString(" For this layer: %1.").arg(def.sphereDiameter) : QString();
   const QString autoS = def.splatSize > 0 ? QString(" For this layer: %1.").arg(def.splatSize) : QString();
+  // The help texts stay short (at most 100 characters with the value for the layer) so MeshLab
+  // 2020.09's dialog shows them whole; the details are in filterInfo().
   parlst.addParam(RichLength("sphereDiameter", 0.0f, 0.0f, diag,
       "Sphere diameter d (target edge length)",
-      "Every edge is at least d, most are close to it. 0 = automatic, from the point spacing and the "
-      "noise." + autoD));
+      "Every edge is at least d; most are close to it. 0 = automatic." + autoD));
   parlst.addParam(RichLength("splatSize", 0.0f, 0.0f, diag,
       "Splat radius s",
-      "Largest radius of the disks on the points; they must cover the surface. 0 = automatic." + autoS));
+      "Largest radius of the disks on the points. 0 = automatic." + autoS));
   parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
-      "Compute an individual splat radius for each point from its tangent-plane Delaunay/Voronoi "
-      "neighbourhood (paper, section 4.3); off uses the global splat radius everywhere."));
+      "A splat radius per point, from its tangent-plane Voronoi cell (sec. 4.3)."));
   parlst.addParam(RichInt("windowSize", def.windowSize, "Window size w",
-      "How far (in border edges, each way) the growth looks along a border to tell a split from a "
-      "join when ranking candidates (paper, section 4.2). 0 gives breadth-first growth with seams; "
-      "8 or more all give the same quality."));
+      "Border window of the candidate priorities (sec. 4.2); 0 = breadth-first."));
   parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
-      "Regions bounded by more border edges than this are left open as holes instead of being "
-      "triangulated (paper, section 3.7), so the boundaries of open scans are kept."));
+      "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
-      "Start the growth from the two points below (projected onto the closest splats) instead of "
-      "choosing them automatically near the highest point of the cloud."));
+      "Start the growth from the two points below, not near the highest point."));
   parlst.addParam(RichPoint("startPoint1", Point3m::Construct(def.startPoint[0]), "Starting point 1",
-      "First starting vertex (used only when 'Use given starting points' is on)."));
+      "First start point (used only with 'Use given starting points')."));
   parlst.addParam(RichPoint("startPoint2", Point3m::Construct(def.startPoint[1]), "Starting point 2",
-      "Second starting vertex; its projection must lie between d and 2d from the first one."));
+      "Second start point, between d and 2d from the first."));
 }
 
 bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,

@@ -36,6 +36,10 @@ ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$
 grep -q "^plugin: FilterSpherePack, built for MeshLab 2025.07d, double precision" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "the plugin does not report MeshLab 2025.07d, double"; }
 grep -q "^log: Sphere Packing: time [0-9.]* s" "$work/auto.log" || { cat "$work/auto.log"; fail "no filter log"; }
+# Help texts short enough for MeshLab 2020.09's dialog to show them whole (the same glue source).
+awk '/^help / { t = $0; sub(/^help [^:]*: [^:]*: /, "", t); if (length(t) > 100) { print; bad = 1 } }
+     END { exit bad }' "$work/auto.log" || fail "help texts longer than 100 characters"
+[ "$(grep -c '^help ' "$work/auto.log")" -eq 8 ] || fail "not 8 parameters with help texts"
 d=$(sed -n 's/^log: Sphere Packing: sphere diameter d = \([0-9.eE+-]*\),.*/\1/p' "$work/auto.log")
 [ -n "$d" ] || fail "no d in the filter's log"
 check_mesh "$work/auto.ply" "$d"

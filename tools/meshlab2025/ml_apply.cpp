@@ -10,7 +10,8 @@
 // name=value (RichPercentage parameters take absolute values, positions x,y,z, booleans
 // true/false); the filter's requirements are enabled, its preconditions checked, applyFilter runs
 // on the MeshDocument, and the current layer afterwards is saved as binary PLY (with per-face
-// quality when the layer has it). Prints the filter's log and its output values.
+// quality when the layer has it). Prints the parameters with their dialog texts, the filter's log
+// and its output values.
 // Exit status: 0 on success, 1 when the filter fails, 2 on bad usage or input.
 #include <common/GLLogStream.h>
 #include <common/globals.h>
@@ -157,6 +158,8 @@ int main(int argc, char** argv) {
     else if (v.isPoint3()) text = QString("%1,%2,%3").arg(v.getPoint3()[0]).arg(v.getPoint3()[1]).arg(v.getPoint3()[2]);
     else text = "(" + p.stringType() + ")";
     std::printf("parameter %s = %s\n", qUtf8Printable(p.name()), qUtf8Printable(text));
+    std::printf("help %s: %s: %s\n", qUtf8Printable(p.name()), qUtf8Printable(p.fieldDescription()),
+                qUtf8Printable(p.toolTip()));
   }
 
   mm->updateDataMask(fp->getRequirements(action));
