@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Robust G2S in MeshLab 2025.07d, loaded and applied the way pymeshlab.load_plugin does
-# (build/meshlab-2025.07d/ml_apply, the filter named by its Python name): a closed torus cloud gives a closed, manifold, consistently
-# oriented mesh on (nearly) every point, with the counts of the 2020.09 plugin through
-# meshlabserver; the loader refuses the 2020.09 plugin.
+# (build/meshlab-2025.07d/ml_apply, the filter named by its Python name): a closed torus cloud
+# gives a closed, manifold, consistently oriented mesh on (nearly) every point, with the counts of
+# the 2020.09 plugin through meshlabserver and the output dictionary; the loader refuses the
+# 2020.09 plugin; a refused input fails with its message.
 source "$(dirname "$0")/meshlab_prefix.sh"
 source "$(dirname "$0")/ml2025_env.sh"
 plugin="$plugins2025/libfilter_g2s.so"
@@ -47,3 +48,14 @@ if ml_apply "$GROWTH_BUILD_DIR/plugins/libfilter_g2s.so" "Surface Reconstruction
   fail "ml_apply accepted the 2020.09 plugin"
 fi
 grep -q "the plugin was refused" "$work/refused.log" || { cat "$work/refused.log"; fail "no refusal message"; }
+
+# A refused input: applyFilter throws MLException (PyMeshLab raises it in Python); no mesh is saved.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n2 0 0\n' \
+  > "$work/line.ply"
+if ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/line.ply" "$work/line_mesh.ply" \
+     > "$work/line.log" 2>&1; then
+  fail "ml_apply succeeded on three points on a line"
+fi
+grep -q "the filter failed: Robust G2S: All points of the layer lie on one straight line" "$work/line.log" \
+  || { cat "$work/line.log"; fail "no clear error for points on a line"; }
+[ ! -e "$work/line_mesh.ply" ] || fail "a mesh was saved although the filter failed"
