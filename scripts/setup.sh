@@ -161,4 +161,5 @@ for f in /usr/bin/meshlabserver /usr/lib/x86_64-linux-gnu/meshlab/libmeshlab-com
          "$ml25_build/src/distrib/libmeshlab-common.so"; do
   [ -e "$f" ] || { echo "setup.sh: $f is missing after set-up" >&2; exit 1; }
 done
-echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build"
+echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build" \
+     "(add -DGROWTH_MESHLAB_2025D=ON for the MeshLab 2025.07d plugins)"
