@@ -6,23 +6,21 @@
 
 #include <new>
 
-FilterG2SPlugin::FilterG2SPlugin() {
-  typeList << FP_ROBUST_G2S;
-  for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
-}
-
-FilterG2SPlugin::~FilterG2SPlugin() {
-  for (QAction* a : actionList) delete a;
-}
+FilterG2SPlugin::FilterG2SPlugin() { addFilter(FP_ROBUST_G2S, this); }
 
 QString FilterG2SPlugin::pluginName() const { return "FilterG2S"; }
 
 // Frozen: this string is the key of the filter in .mlx scripts.
-QString FilterG2SPlugin::filterName(FilterIDType filter) const {
+QString FilterG2SPlugin::filterName(FilterID filter) const {
   return filter == FP_ROBUST_G2S ? QString("Surface Reconstruction: Robust G2S") : QString("Error!");
 }
 
-QString FilterG2SPlugin::filterInfo(FilterIDType filter) const {
+// Frozen: the filter's name in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction filters.
+QString FilterG2SPlugin::pythonName(FilterID filter) const {
+  return filter == FP_ROBUST_G2S ? QString("generate_surface_reconstruction_robust_g2s") : QString();
+}
+
+QString FilterG2SPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_ROBUST_G2S) return QString("Error!");
   return QString(
       "Interpolating mesh growing by the <b>Gabriel 2-simplex</b> criterion: from a seed triangle, "
@@ -37,18 +35,14 @@ QString FilterG2SPlugin::filterInfo(FilterIDType filter) const {
       "Computer-Aided Design &amp; Applications 10(2), 2013, 197-220.");
 }
 
-MeshFilterInterface::FilterClass FilterG2SPlugin::getClass(QAction*) { return MeshFilterInterface::Remeshing; }
+FilterG2SPlugin::FilterClass FilterG2SPlugin::filterClass(FilterID) const { return Remeshing; }
 
-int FilterG2SPlugin::getRequirements(QAction*) { return MeshModel::MM_NONE; }
-
-int FilterG2SPlugin::postCondition(QAction*) const {
+int FilterG2SPlugin::postConditions(FilterID) const {
   return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
 }
 
-MeshFilterInterface::FILTER_ARITY FilterG2SPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
-
-void FilterG2SPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
-  if (ID(action) != FP_ROBUST_G2S) return;
+void FilterG2SPlugin::addParameters(FilterID filter, const MeshModel& m, RichParameterList& parlst) {
+  if (filter != FP_ROBUST_G2S) return;
   const growth::g2s::Params def = growth::g2s::suggestParams(m.cm);
   parlst.addParam(RichFloat("seedSearchFactor", float(def.seedSearchFactor), "Seed search factor k",
       "A seed triangle's third point is searched within k times the length of its first edge from "
@@ -73,14 +67,15 @@ void FilterG2SPlugin::initParameterSet(QAction* action, MeshModel& m, RichParame
       "Seed of the random choice of seed points: the same seed gives the same mesh."));
 }
 
-bool FilterG2SPlugin::applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par,
-                                  vcg::CallBackPos* cb) {
-  if (ID(filter) == FP_ROBUST_G2S) return applyRobustG2S(md, par, cb);
+bool FilterG2SPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                            growth::meshlab::Outputs& outputs) {
+  if (filter == FP_ROBUST_G2S) return applyRobustG2S(md, par, cb, outputs);
   errorMessage = "Unknown filter.";
   return false;
 }
 
-bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb) {
+bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                                     growth::meshlab::Outputs& outputs) {
   MeshModel* in = md.mm();
   if (in == nullptr) {
     errorMessage = "No current layer: load a point cloud first.";
@@ -115,13 +110,20 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
     failure = QString("Robust G2S failed: ") + e.what();
   }
   if (!failure.isEmpty()) {
-    md.delMesh(out);
+    removeLayer(md, out);
     md.setCurrentMesh(in->id());
     errorMessage = failure;
     Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
     return false;
   }
   md.setCurrentMesh(out->id()); // (build() gave it its bounding box and normals)
+  // PyMeshLab's output dictionary of apply_filter.
+  outputs["vertices"] = int(st.vertices);
+  outputs["faces"] = int(st.faces);
+  outputs["holes"] = int(st.holes);
+  outputs["non_manifold_vertices_removed"] = int(st.nonManifoldVerticesRemoved);
+  outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
   Log("Robust G2S: %zu points (%zu duplicates dropped), mean spacing %g, maximum search radius %.2f x local spacing",

@@ -10,23 +10,21 @@
 
 #include <new>
 
-FilterSpherePackPlugin::FilterSpherePackPlugin() {
-  typeList << FP_SPHERE_PACKING;
-  for (FilterIDType tt : types()) actionList << new QAction(filterName(tt), this);
-}
-
-FilterSpherePackPlugin::~FilterSpherePackPlugin() {
-  for (QAction* a : actionList) delete a;
-}
+FilterSpherePackPlugin::FilterSpherePackPlugin() { addFilter(FP_SPHERE_PACKING, this); }
 
 QString FilterSpherePackPlugin::pluginName() const { return "FilterSpherePack"; }
 
 // Frozen: this string is the key of the filter in .mlx scripts.
-QString FilterSpherePackPlugin::filterName(FilterIDType filter) const {
+QString FilterSpherePackPlugin::filterName(FilterID filter) const {
   return filter == FP_SPHERE_PACKING ? QString("Surface Reconstruction: Sphere Packing") : QString("Error!");
 }
 
-QString FilterSpherePackPlugin::filterInfo(FilterIDType filter) const {
+// Frozen: the filter's name in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction filters.
+QString FilterSpherePackPlugin::pythonName(FilterID filter) const {
+  return filter == FP_SPHERE_PACKING ? QString("generate_surface_reconstruction_sphere_packing") : QString();
+}
+
+QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_SPHERE_PACKING) return QString("Error!");
   return QString(
       "Reconstructs a triangle mesh from a point cloud <b>with normals</b> by packing touching "
@@ -39,27 +37,34 @@ QString FilterSpherePackPlugin::filterInfo(FilterIDType filter) const {
       "is longer than the border limit stay open, so scans with holes keep them.<br>"
       "Needs per-vertex normals: compute them with <i>Filters &gt; Normals, Curvatures and "
       "Orientation &gt; Compute normals for point sets</i>.<br><br>"
+      "<b>Parameters.</b> <i>Sphere diameter d</i>: 0 chooses max(1.8 &times; &radic;(area per point), "
+      "3 &times; the estimated noise): the scan's resolution, at least twice the noise. <i>Splat "
+      "radius s</i>: the disks on the points must cover the surface; 0 chooses 2.5 &times; &radic;(area "
+      "per point). <i>Local splat sizes</i>: each point gets the radius of its tangent-plane "
+      "Delaunay/Voronoi neighbourhood, bounded by s (s is the radius at open boundaries); off uses s "
+      "everywhere. <i>Window size w</i>: how far (in border edges, each way) the growth looks along a "
+      "border to tell a split from a join when ranking candidates; 0 gives breadth-first growth with "
+      "seams, 8 or more all give the same quality. <i>Border limit</i>: regions bounded by more border "
+      "edges stay open instead of being triangulated, so the boundaries of open scans are kept. "
+      "<i>Starting points</i>: projected onto the closest splats; the second must lie between d and "
+      "2d from the first.<br><br>"
       "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
       "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b><br>"
       "Sections 3 and 4 of the paper.");
 }
 
-MeshFilterInterface::FilterClass FilterSpherePackPlugin::getClass(QAction*) {
-  return MeshFilterInterface::Remeshing;
-}
+FilterSpherePackPlugin::FilterClass FilterSpherePackPlugin::filterClass(FilterID) const { return Remeshing; }
 
-int FilterSpherePackPlugin::getPreConditions(QAction*) const { return MeshModel::MM_VERTNORMAL; }
+int FilterSpherePackPlugin::preConditions(FilterID) const { return MeshModel::MM_VERTNORMAL; }
 
-int FilterSpherePackPlugin::getRequirements(QAction*) { return MeshModel::MM_NONE; }
-
-int FilterSpherePackPlugin::postCondition(QAction*) const {
+int FilterSpherePackPlugin::postConditions(FilterID) const {
   return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
 }
 
-MeshFilterInterface::FILTER_ARITY FilterSpherePackPlugin::filterArity(QAction*) const { return SINGLE_MESH; }
-
-void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, RichParameterList& parlst) {
-  if (ID(action) != FP_SPHERE_PACKING) return;
+void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, RichParameterList& parlst) {
+  using growth::meshlab::RichLength;
+  using growth::meshlab::RichPoint;
+  if (filter != FP_SPHERE_PACKING) return;
   // Lengths default to 0 = automatic (like Ball Pivoting's radius): derived from each cloud when
   // the filter runs, so the same .mlx script suits clouds of any scale. The tooltips show what
   // "automatic" gives for the current layer.
@@ -67,41 +72,37 @@ void FilterSpherePackPlugin::initParameterSet(QAction* action, MeshModel& m, Ric
   const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
   const QString autoD = def.sphereDiameter > 0 ? QString(" For this layer: %1.").arg(def.sphereDiameter) : QString();
   const QString autoS = def.splatSize > 0 ? QString(" For this layer: %1.").arg(def.splatSize) : QString();
-  parlst.addParam(RichAbsPerc("sphereDiameter", 0.0f, 0.0f, diag,
+  // The help texts stay short (at most 100 characters with the value for the layer) so MeshLab
+  // 2020.09's dialog shows them whole; the details are in filterInfo().
+  parlst.addParam(RichLength("sphereDiameter", 0.0f, 0.0f, diag,
       "Sphere diameter d (target edge length)",
-      "Every edge is at least d, most are close to it. 0 = automatic, from the point spacing and the "
-      "noise." + autoD));
-  parlst.addParam(RichAbsPerc("splatSize", 0.0f, 0.0f, diag,
+      "Every edge is at least d; most are close to it. 0 = automatic." + autoD));
+  parlst.addParam(RichLength("splatSize", 0.0f, 0.0f, diag,
       "Splat radius s",
-      "Largest radius of the disks on the points; they must cover the surface. 0 = automatic." + autoS));
+      "Largest radius of the disks on the points. 0 = automatic." + autoS));
   parlst.addParam(RichBool("localSplatSizes", def.localSplatSizes, "Local splat sizes",
-      "Compute an individual splat radius for each point from its tangent-plane Delaunay/Voronoi "
-      "neighbourhood (paper, section 4.3); off uses the global splat radius everywhere."));
+      "A splat radius per point, from its tangent-plane Voronoi cell (sec. 4.3)."));
   parlst.addParam(RichInt("windowSize", def.windowSize, "Window size w",
-      "How far (in border edges, each way) the growth looks along a border to tell a split from a "
-      "join when ranking candidates (paper, section 4.2). 0 gives breadth-first growth with seams; "
-      "8 or more all give the same quality."));
+      "Border window of the candidate priorities (sec. 4.2); 0 = breadth-first."));
   parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
-      "Regions bounded by more border edges than this are left open as holes instead of being "
-      "triangulated (paper, section 3.7), so the boundaries of open scans are kept."));
+      "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
-      "Start the growth from the two points below (projected onto the closest splats) instead of "
-      "choosing them automatically near the highest point of the cloud."));
-  parlst.addParam(RichPoint3f("startPoint1", vcg::Point3f::Construct(def.startPoint[0]), "Starting point 1",
-      "First starting vertex (used only when 'Use given starting points' is on)."));
-  parlst.addParam(RichPoint3f("startPoint2", vcg::Point3f::Construct(def.startPoint[1]), "Starting point 2",
-      "Second starting vertex; its projection must lie between d and 2d from the first one."));
+      "Start the growth from the two points below, not near the highest point."));
+  parlst.addParam(RichPoint("startPoint1", Point3m::Construct(def.startPoint[0]), "Starting point 1",
+      "First start point (used only with 'Use given starting points')."));
+  parlst.addParam(RichPoint("startPoint2", Point3m::Construct(def.startPoint[1]), "Starting point 2",
+      "Second start point, between d and 2d from the first."));
 }
 
-bool FilterSpherePackPlugin::applyFilter(QAction* filter, MeshDocument& md, const RichParameterList& par,
-                                         vcg::CallBackPos* cb) {
-  if (ID(filter) == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb);
+bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,
+                                   vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
+  if (filter == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb, outputs);
   errorMessage = "Unknown filter.";
   return false;
 }
 
 bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichParameterList& par,
-                                                vcg::CallBackPos* cb) {
+                                                vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
   MeshModel* in = md.mm();
   if (in == nullptr) {
     errorMessage = "No current layer: load a point cloud first.";
@@ -142,6 +143,13 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   out->updateDataMask(MeshModel::MM_FACEQUALITY);
   vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
   vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  // PyMeshLab's output dictionary of apply_filter.
+  outputs["vertices"] = int(st.vertices);
+  outputs["faces"] = int(st.faces);
+  outputs["holes"] = int(st.boundaryLoops);
+  outputs["faces_removed"] = int(st.facesRemoved); // for a manifold mesh without intersections
+  outputs["sphere_diameter"] = double(st.sphereDiameter);
+  outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
   Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "

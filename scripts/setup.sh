@@ -4,7 +4,10 @@
 #     development headers MeshLab's plugin API includes, Eigen, GoogleTest, CMake, Xvfb, clang with
 #     its sanitizer runtimes and libFuzzer, and the Python packages the benchmark plots use;
 #   - MeshLab's plugin API headers (src/common) and vcglib, from the Debian *source* package of the
-#     installed meshlab version, unpacked into third_party/ (ignored by git; never committed).
+#     installed meshlab version, unpacked into third_party/ (ignored by git; never committed);
+#   - MeshLab 2025.07's src/common and vcglib, from Debian unstable's source package (a deb-src entry
+#     only: no binary package changes), unpacked into third_party/meshlab-2025.07/, where its
+#     libmeshlab-common is built in double precision (the SDK of PyMeshLab 2025.7 and MeshLab 2025.07d).
 # Idempotent: a second run only checks and returns.
 # Usage: scripts/setup.sh            (as root, or as a user with sudo)
 set -euo pipefail
@@ -36,8 +39,10 @@ done
 
 # A deb-src entry for bookworm main, beside the binary one, so that `apt-get source` finds meshlab.
 src_list=/etc/apt/sources.list.d/growth-meshlab-src.sources
+src_list_2025=/etc/apt/sources.list.d/growth-meshlab2025-src.sources
 need_update=0
-if ! grep -rqsE '^(Types:.*deb-src|deb-src )' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+if ! grep -rqsE --exclude="$(basename "$src_list_2025")" '^(Types:.*deb-src|deb-src )' \
+       /etc/apt/sources.list /etc/apt/sources.list.d/; then
   echo "setup.sh: adding a deb-src entry for bookworm main ($src_list)"
   $SUDO tee "$src_list" >/dev/null <<'EOF'
 Types: deb-src
@@ -82,9 +87,80 @@ else
   echo "setup.sh: MeshLab SDK unpacked into $sdk"
 fi
 
+# MeshLab 2025.07 SDK (the plugins for MeshLab 2025.07 and PyMeshLab 2025.7): Debian unstable's
+# source package. Only the orig tarball is needed; the mirror serves it while the .dsc may be
+# missing, so it is fetched by itself (apt's own transport, checksum from the source index), with
+# the pinned copy in ../shared/third_party as the fallback. The checksum is verified either way.
+ml25_version="2025.07~dfsg-4"
+ml25_orig="meshlab_2025.07~dfsg.orig.tar.xz"
+ml25_sha256="d22c98d362f2a284e481af8dbfc272b2222f5b9c67b3cf8bec57d1c3161886f4"
+ml25="$third_party/meshlab-2025.07"
+ml25_build="$ml25/build-double"
+ml25_stamp="$ml25/.complete"
+ml25_want="$ml25_version $ml25_sha256 double"
+pinned="$here/../shared/third_party"
+if [ -f "$ml25_stamp" ] && [ "$(cat "$ml25_stamp")" = "$ml25_want" ] && \
+   [ -f "$ml25_build/src/distrib/libmeshlab-common.so" ]; then
+  echo "setup.sh: MeshLab 2025.07d SDK already in $ml25"
+else
+  t0=$(date +%s)
+  if [ ! -f "$src_list_2025" ]; then
+    echo "setup.sh: adding a deb-src entry for unstable main ($src_list_2025; sources only)"
+    $SUDO tee "$src_list_2025" >/dev/null <<'EOF'
+Types: deb-src
+URIs: http://deb.debian.org/debian
+Suites: unstable
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+  fi
+  work25=$(mktemp -d)
+  got=""
+  uri_of() { apt-get source --print-uris "meshlab=$ml25_version" 2>/dev/null |
+             awk -v f="$ml25_orig" '$2 == f { gsub("\047", "", $1); print $1 }'; }
+  uri=$(uri_of || true)
+  if [ -z "$uri" ]; then
+    # Refresh only the unstable source index; keep every other list as it is.
+    $SUDO apt-get update -qq -o Dir::Etc::SourceList="$src_list_2025" -o Dir::Etc::SourceParts=- \
+        -o APT::Get::List-Cleanup=0 || true
+    uri=$(uri_of || true)
+  fi
+  if [ -n "$uri" ] && /usr/lib/apt/apt-helper download-file "$uri" "$work25/$ml25_orig" \
+       "SHA256:$ml25_sha256" >/dev/null 2>&1; then
+    got="$work25/$ml25_orig"; echo "setup.sh: downloaded $ml25_orig from the package mirror"
+  elif [ -f "$pinned/$ml25_orig" ]; then
+    got="$pinned/$ml25_orig"; echo "setup.sh: the mirror did not serve $ml25_orig; using $got"
+  else
+    echo "setup.sh: cannot get $ml25_orig (mirror failed, no copy in $pinned)" >&2; exit 1
+  fi
+  echo "$ml25_sha256  $got" | sha256sum -c --quiet - || {
+    echo "setup.sh: checksum mismatch for $got" >&2; exit 1; }
+  # What building libmeshlab-common with MeshLab's own CMake needs: the top CMakeLists, src/common,
+  # vcglib, and the small src/{cmake,external,common_gui} it configures (nothing else is built).
+  rm -rf "$ml25" && mkdir -p "$ml25"
+  tar -xf "$got" -C "$ml25" --strip-components=1 --wildcards \
+      '*/CMakeLists.txt' '*/ML_VERSION' '*/LICENSE.txt' '*/src/common/*' '*/src/vcglib/*' \
+      '*/src/cmake/*' '*/src/external/*' '*/src/common_gui/*' \
+      --exclude='*/src/meshlabplugins/*' --exclude='*/src/meshlab/*' --exclude='*/docs/*' \
+      --exclude='*/scripts/*' --exclude='*/.devcontainer/*'
+  rm -rf "$work25"
+  ln -sfn /usr/include/eigen3 "$ml25/src/vcglib/eigenlib"   # Debian removed the bundled Eigen
+  echo "setup.sh: building libmeshlab-common 2025.07 in double precision (a few minutes)"
+  nice cmake -S "$ml25" -B "$ml25_build" -DCMAKE_BUILD_TYPE=Release \
+      -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=ON -DMESHLAB_BUILD_ONLY_LIBRARIES=ON -DMESHLAB_BUILD_MINI=ON \
+      -DMESHLAB_PLUGINS="" -DEIGEN3_INCLUDE_DIR=/usr/include/eigen3 >"$ml25/configure.log" 2>&1 || {
+    tail -20 "$ml25/configure.log" >&2; exit 1; }
+  nice cmake --build "$ml25_build" --target meshlab-common -j"$(nproc)" >"$ml25/build.log" 2>&1 || {
+    tail -30 "$ml25/build.log" >&2; exit 1; }
+  echo "$ml25_want" > "$ml25_stamp"
+  echo "setup.sh: MeshLab 2025.07d SDK built in $ml25 ($(( $(date +%s) - t0 )) s)"
+fi
+
 for f in /usr/bin/meshlabserver /usr/lib/x86_64-linux-gnu/meshlab/libmeshlab-common.so \
          "$sdk/src/common/interfaces.h" "$sdk/vcglib/vcg/complex/complex.h" \
-         /usr/include/eigen3/Eigen/Core; do
+         /usr/include/eigen3/Eigen/Core "$ml25/src/common/plugins/interfaces/filter_plugin.h" \
+         "$ml25_build/src/distrib/libmeshlab-common.so"; do
   [ -e "$f" ] || { echo "setup.sh: $f is missing after set-up" >&2; exit 1; }
 done
-echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build"
+echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build" \
+     "(add -DGROWTH_MESHLAB_2025D=ON for the MeshLab 2025.07d plugins)"

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Robust G2S in MeshLab 2025.07d, loaded and applied the way pymeshlab.load_plugin does
+# (build/meshlab-2025.07d/ml_apply, the filter named by its Python name): a closed torus cloud
+# gives a closed, manifold, consistently oriented mesh on (nearly) every point, with the counts of
+# the 2020.09 plugin through meshlabserver and the output dictionary; the loader refuses the
+# 2020.09 plugin; a refused input fails with its message.
+source "$(dirname "$0")/meshlab_prefix.sh"
+source "$(dirname "$0")/ml2025_env.sh"
+plugin="$plugins2025/libfilter_g2s.so"
+
+"$GROWTH_BUILD_DIR/make_cloud" --shape torus --points 20000 --seed 3 -o "$work/torus.ply" >/dev/null
+ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/torus.ply" "$work/mesh.ply" randomSeed=1 \
+  > "$work/apply.log" 2>"$work/apply.err" || { cat "$work/apply.log" "$work/apply.err"; fail "ml_apply failed"; }
+grep -q "^plugin: FilterG2S, built for MeshLab 2025.07d, double precision" "$work/apply.log" \
+  || { cat "$work/apply.log"; fail "the plugin does not report MeshLab 2025.07d, double"; }
+grep -q "^log: Robust G2S: .* faces on" "$work/apply.log" || { cat "$work/apply.log"; fail "no filter log"; }
+verts=$(vertices_of "$work/mesh.ply")
+faces=$(faces_of "$work/mesh.ply")
+[ "$verts" -ge 19950 ] || fail "only $verts of 20000 points used"
+[ "$faces" -eq $((2 * verts)) ] || fail "$faces faces on $verts vertices: not a closed torus"
+# The output dictionary PyMeshLab returns from apply_filter.
+grep -qx "output vertices = $verts" "$work/apply.log" || { cat "$work/apply.log"; fail "output vertices is not $verts"; }
+grep -qx "output faces = $faces" "$work/apply.log" || { cat "$work/apply.log"; fail "output faces is not $faces"; }
+grep -qx "output holes = 0" "$work/apply.log" || { cat "$work/apply.log"; fail "output holes is not 0"; }
+grep -q "^output seconds = " "$work/apply.log" || { cat "$work/apply.log"; fail "no output seconds"; }
+"$GROWTH_BUILD_DIR/mesh_measures" "$work/mesh.ply" --no-min-vertex-distance > "$work/measures.json" \
+  || fail "mesh_measures failed"
+python3 - "$work/measures.json" <<'PY' || fail "defects in the G2S mesh"
+import json, sys
+m = json.load(open(sys.argv[1]))
+bad = {k: m[k] for k in ("non_manifold_edges", "non_manifold_vertices", "inconsistent_edges",
+                         "boundary_edges", "boundary_loops", "duplicate_faces") if m[k] != 0}
+if bad or m["euler_characteristic"] != 0:
+    print("FAIL:", bad, "Euler characteristic", m["euler_characteristic"]); sys.exit(1)
+print("ok: %d vertices, %d faces, closed manifold torus" % (m["vertices"], m["faces"]))
+PY
+
+# The 2020.09 plugin (float) through meshlabserver on the same cloud: the same counts.
+cp "$GROWTH_SOURCE_DIR/scripts/mlx/g2s.mlx" "$work/g2s.mlx"
+mlserver -i torus.ply -o mesh2020.ply -s g2s.mlx > "$work/server.log" 2>&1 \
+  || { cat "$work/server.log"; fail "meshlabserver failed"; }
+same_counts vertices "$verts" "$(vertices_of "$work/mesh2020.ply")"
+same_counts faces "$faces" "$(faces_of "$work/mesh2020.ply")"
+
+# The loader's checks run: MeshLab 2025.07 refuses the 2020.09 plugin.
+if ml_apply "$GROWTH_BUILD_DIR/plugins/libfilter_g2s.so" "Surface Reconstruction: Robust G2S" \
+     "$work/torus.ply" "$work/refused.ply" > "$work/refused.log" 2>&1; then
+  fail "ml_apply accepted the 2020.09 plugin"
+fi
+grep -q "the plugin was refused" "$work/refused.log" || { cat "$work/refused.log"; fail "no refusal message"; }
+
+# A refused input: applyFilter throws MLException (PyMeshLab raises it in Python); no mesh is saved.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n1 0 0\n2 0 0\n' \
+  > "$work/line.ply"
+if ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/line.ply" "$work/line_mesh.ply" \
+     > "$work/line.log" 2>&1; then
+  fail "ml_apply succeeded on three points on a line"
+fi
+grep -q "the filter failed: Robust G2S: All points of the layer lie on one straight line" "$work/line.log" \
+  || { cat "$work/line.log"; fail "no clear error for points on a line"; }
+[ ! -e "$work/line_mesh.ply" ] || fail "a mesh was saved although the filter failed"
