@@ -74,8 +74,13 @@ void Mesher::mergeClumps() {
   }
   if (cores == 0) return;
   // 3. The clumps, from the core points in index order (deterministic): a core point's points
-  //    within r join its clump, and the core ones among them carry it on.
+  //    within 1.25r join its clump, and the core ones among them carry it on, except those within
+  //    r/4 of it (core = 2: their own points within r are within its 1.25r). So a point joins
+  //    when it is within r of a core point (and never farther than 1.25r from one), and the
+  //    expanded points are r/4 apart: a clump of m points far smaller than r costs O(m), where
+  //    expanding every core point would cost O(m^2) (0.5 s for 5,000 points).
   constexpr std::uint32_t kNone = ~0u;
+  const double reach = 1.25 * r, near2 = 0.0625 * r * r;
   std::vector<std::uint32_t> clumpOf(n, kNone), stack, members;
   std::vector<char> drop(n, 0);
   for (std::uint32_t s = 0; s < n; ++s) {
@@ -88,8 +93,10 @@ void Mesher::mergeClumps() {
       const std::uint32_t q = stack.back();
       stack.pop_back();
       members.push_back(q);
-      if (!core[q]) continue;
-      grid_.forEachInBall(grid_.point(q), r, [&](std::uint32_t i, double) {
+      if (core[q] != 1) continue;
+      core[q] = 2;
+      grid_.forEachInBall(grid_.point(q), reach, [&](std::uint32_t i, double d2) {
+        if (d2 <= near2 && core[i] == 1) core[i] = 2;
         if (clumpOf[i] == kNone) {
           clumpOf[i] = id;
           stack.push_back(i);
