@@ -126,8 +126,9 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
-  Log("Robust G2S: %zu points (%zu duplicates dropped), mean spacing %g, maximum search radius %.2f x local spacing",
-      st.inputPoints, st.duplicatesDropped, st.spacing, st.maxSearchRadiusFactor);
+  Log("Robust G2S: %zu points (%zu duplicates dropped), %zu dense clumps meshed as one point each (%zu points "
+      "not used), mean spacing %g, maximum search radius %.2f x local spacing",
+      st.inputPoints, st.duplicatesDropped, st.clumps, st.clumpPointsMerged, st.spacing, st.maxSearchRadiusFactor);
   Log("Robust G2S: %zu faces on %zu vertices (%zu points unused), %zu seeds", st.faces, st.vertices,
       st.unusedPoints, st.seeds);
   Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces), "

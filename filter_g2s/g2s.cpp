@@ -68,6 +68,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     progress.phase("Robust G2S: growing the mesh", 3, 92);
     Mesher mesher(std::move(input.points), p);
     stat.spacing = mesher.spacing();
+    stat.clumps = mesher.clumps();
+    stat.clumpPointsMerged = mesher.clumpPointsMerged();
     stat.secondsSetup = watch.lap();
     mesher.meshAll(&progress);
     stat.secondsGrowth = watch.lap();

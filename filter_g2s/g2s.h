@@ -29,6 +29,8 @@ constexpr double kDefaultMaxSearchRadiusFactor = 2.5;
 struct Stat {
   size_t inputPoints = 0;                 // live vertices of the layer
   size_t duplicatesDropped = 0;           // exact repeats (the first copy is used)
+  size_t clumps = 0;                      // dense clumps meshed as one point (Mesher::kClumpNeighbours)
+  size_t clumpPointsMerged = 0;           // their other points, not used (nor counted in unusedPoints)
   size_t vertices = 0;                    // output vertices: the input points used by faces
   size_t unusedPoints = 0;                // distinct input points in no face
   size_t faces = 0;

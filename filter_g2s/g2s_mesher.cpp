@@ -38,7 +38,7 @@ std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
 
 Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
     : params_(params), spacing_(spacing), queue_(std::max(1, params.sizeLevels * params.flatnessLevels)) {
-  const size_t n = points.size();
+  const size_t given = points.size();
   if (spacing_ > 0) {
     grid_.build(std::move(points), kCellSpacings * spacing_);
   } else {
@@ -57,12 +57,14 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
     if (spacing_ > 0 && (ratio < 0.5 || ratio > 2.0)) {
       const std::vector<std::uint32_t> first = grid_.order();
       grid_.build(std::vector<P3>(grid_.points()), cellWanted);
-      std::vector<std::uint32_t> composed(n);
-      for (size_t i = 0; i < n; ++i) composed[i] = first[grid_.order()[i]];
+      std::vector<std::uint32_t> composed(given);
+      for (size_t i = 0; i < given; ++i) composed[i] = first[grid_.order()[i]];
       grid_.setOrder(std::move(composed));
     }
   }
   if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
+  mergeClumps();
+  const size_t n = grid_.size();
   pts_ = grid_.points().data();
   grid_.setVisitCounter(&visited_);
   pem_.reset(n);

@@ -54,6 +54,14 @@ public:
   // spacings; larger cells scan more points but probe fewer cells, and probes cost more
   // (measured with tools/g2s_grid_bench.cpp and callgrind: 6–8 best, 8 slightly ahead).
   static constexpr double kCellSpacings = 8.0;
+  // Dense clumps (a scanner dwelling on a spot; not in the paper): a point with at least
+  // kClumpNeighbours others within kClumpRadius spacings is a clump's core point, impossible on a
+  // uniform or Poisson sampling of a surface (even a noisy one) and true of every point of a ball
+  // of points far denser than the cloud. Each clump (core points joined within that radius, with
+  // the points within it of a core point, as in DBSCAN) is meshed as one point: its member nearest
+  // the clump's centroid (ties: the lower input index); the others are left out of the mesh.
+  static constexpr std::uint32_t kClumpNeighbours = 8;
+  static constexpr double kClumpRadius = 0.05;
 
   // `points`: distinct, finite (at least one). `spacing`: the cloud's mean nearest-neighbour
   // spacing, or <= 0 to measure it on a sample. `params` must be valid (checkParams in g2s.cpp).
@@ -158,6 +166,10 @@ public:
   BoundaryCount boundary();
   size_t memoryBytes() const;
   double spacing() const { return spacing_; }
+  // Dense clumps merged at construction (see kClumpNeighbours) and the points they left out: the
+  // mesher's points are the others (order() maps them to the caller's indices).
+  size_t clumps() const { return clumps_; }
+  size_t clumpPointsMerged() const { return clumpPointsMerged_; }
   // Points the index scanned for the queries since construction: a deterministic measure of the
   // search work (growth::PointIndex::setVisitCounter).
   std::uint64_t pointsVisited() const { return visited_; }
@@ -173,6 +185,8 @@ private:
   };
 
   double sampleSpacing() const;
+  // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).
+  void mergeClumps();
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
   Candidate search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
                    double frontNorm);
@@ -196,6 +210,7 @@ private:
   Params params_;
   double spacing_ = 0;
   double seedMaxEdge_ = 0;
+  size_t clumps_ = 0, clumpPointsMerged_ = 0;
   MortonGrid grid_;
   std::uint64_t visited_ = 0;          // grid_'s visit counter
   const P3* pts_ = nullptr;            // grid_.points().data()

@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
     }
     std::printf("points: %zu\n", st.inputPoints);
     std::printf("duplicates_dropped: %zu\n", st.duplicatesDropped);
+    std::printf("clumps: %zu\nclump_points_merged: %zu\n", st.clumps, st.clumpPointsMerged);
     std::printf("spacing: %.6g\n", st.spacing);
     std::printf("faces: %zu\n", st.faces);
     std::printf("faces_per_point: %.4f\n", double(st.faces) / double(st.inputPoints));

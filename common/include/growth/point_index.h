@@ -127,6 +127,28 @@ public:
     return visitCells(c, radius, range);
   }
 
+  // Calls f(begin, end) for the point range of every occupied cell (the far points, kept apart,
+  // excluded): from the bricks, or the table when there is one (it then holds every cell).
+  template <class F>
+  void forEachCell(F&& f) const {
+    if (!table_.empty()) {
+      for (const Slot& s : table_)
+        if (s.key != kEmpty) f(s.begin, s.end);
+      return;
+    }
+    for (size_t b = 0; b < brickBase_.size(); ++b)
+      for (size_t k = 0; k < 64; ++k) {
+        const std::uint16_t* off = &brickOff_[b * 65 + k];
+        if (off[0] != off[1]) f(brickBase_[b] + off[0], brickBase_[b] + off[1]);
+      }
+  }
+  // The corner (lowest coordinates) of the cell that holds point i (not a far point).
+  P3 cellCorner(std::uint32_t i) const {
+    P3 c;
+    for (int a = 0; a < 3; ++a) c[a] = origin_[a] + double(coord(pts_[i][a], a)) * cell_;
+    return c;
+  }
+
   // The point's coordinates relative to floatOrigin(), in float.
   float fx(std::uint32_t i) const { return coords_[i]; }
   float fy(std::uint32_t i) const { return coords_[stride_ + i]; }
