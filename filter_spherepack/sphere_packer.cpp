@@ -429,9 +429,9 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   options.maxSamples = 8000;
   options.maxNoiseSamples = 3000;
   const SamplingEstimate e = estimateSampling(points, options, threads);
-  sc.meanSpacing = meanSpacing(points, kMeanSpacingSamples, threads);
   if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
   sc.spacing = e.spacing;
+  sc.meanSpacing = e.meanSpacing;
   sc.areaSpacing = std::sqrt(e.areaPerPoint);
   sc.area = e.areaPerPoint * double(points.size());
   sc.noise = std::isfinite(e.noise) ? e.noise : 0.0;

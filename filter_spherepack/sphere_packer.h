@@ -45,8 +45,8 @@ struct Params {
 // sample of the points, growth/cloud_scale.h), so that outliers and far points barely move them.
 struct CloudScale {
   double spacing = 0;        // median nearest-neighbour distance (for the packer's own checks)
-  double meanSpacing = 0;    // growth::meanSpacing: the spacing Robust G2S, mesh_measures and the
-                             // benchmark report (trimmed mean), logged so that the numbers agree
+  double meanSpacing = 0;    // the robust (trimmed) mean spacing, growth::meanSpacing's estimator
+                             // on the estimate's samples: what Robust G2S and mesh_measures report
   double areaSpacing = 0;    // sqrt(surface area per point): a sampling length that does not depend
                              // on how regular the sampling is (0.47 of it is the median spacing of
                              // a random sample, all of it that of a square lattice)

@@ -464,11 +464,13 @@ TEST(SpherePacker, DefaultDiameterFollowsTheNoise) {
   sp::build(cloud, out, sp::Params(), st);
   EXPECT_NEAR(st.scale.noise, nu, 0.25 * nu);
   EXPECT_NEAR(st.sphereDiameter, sp::kDefaultDiameterPerNoise * st.scale.noise, 1e-12);
-  // The spacing it logs is growth::meanSpacing of the layer's points, the number Robust G2S and
-  // mesh_measures report (issue 13: one spacing estimator).
+  // The spacing it logs is growth::meanSpacing's estimator (the trimmed mean) on the estimate's
+  // 8,000 samples: within sampling error of the number Robust G2S and mesh_measures report from
+  // 20,000 (issue 13: one spacing estimator).
   std::vector<Point3d> layer;
   for (const auto& v : cloud.vert) layer.push_back(Point3d::Construct(v.cP()));
-  EXPECT_EQ(st.scale.meanSpacing, growth::meanSpacing(layer));
+  const double reference = growth::meanSpacing(layer);
+  EXPECT_NEAR(st.scale.meanSpacing, reference, 0.02 * reference);
   EXPECT_GT(st.scale.meanSpacing, 0.0);
   EXPECT_NE(st.diameterReason.find("noise"), std::string::npos) << st.diameterReason;
   const auto m = growth::measure(out);

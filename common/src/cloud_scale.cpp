@@ -1,4 +1,5 @@
 #include <growth/cloud_scale.h>
+#include <growth/input_cloud.h>
 #include <growth/morton.h>
 #include <growth/parallel.h>
 #include <growth/point_grid.h>
@@ -341,6 +342,8 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
   est.isolated = outside + (samples.size() - kth2.size());
   est.noiseSamples = noise2.size();
   if (kth2.empty()) return est;
+  // The trimmed mean first (median() reorders): growth::meanSpacing's estimator on these samples.
+  est.meanSpacing = trimmedMeanSpacing(nearest);
   est.spacing = std::sqrt(median(nearest));
   est.areaPerPoint = kPi * median(kth2) / (double(k) - 1.0 / 3.0);
   if (!noise2.empty()) {

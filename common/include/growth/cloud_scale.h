@@ -53,6 +53,9 @@ struct SamplingOptions {
 
 struct SamplingEstimate {
   double spacing = 0;      // median nearest-neighbour distance over the samples
+  double meanSpacing = 0;  // growth::trimmedMeanSpacing of the samples' nearest distances: the
+                           // estimator of growth::meanSpacing (mesh_measures, Robust G2S) on these
+                           // samples, within sampling error of it
   double areaPerPoint = 0; // pi median(r_k)^2 / (k - 1/3): surface area per point, Poisson-calibrated
   double noiseSigma = 0;   // robust standard deviation of the offsets normal to the local surface
   double noise = 0;        // nu = sqrt(5) noiseSigma: bound of a uniform-in-ball noise (sec. 5.3)
