@@ -39,6 +39,7 @@ void PointIndex::build(std::vector<P3> points, double cellSize) {
   brickOff_.clear();
   sub_.clear();
   splitCells_ = 0;
+  bricksOnly_ = false;
   cells_ = 0;
   farBegin_ = 0;
   box_.SetNull();
@@ -188,6 +189,8 @@ void PointIndex::build(std::vector<P3> points, double cellSize) {
   // Cell lookups: bricks of 4×4×4 cells over the bulk where that is compact (see brickOf_), and
   // a hash table of the occupied cells when some lie outside the bricks.
   if (!buildBricks(key, farBegin_)) buildTable(key, farBegin_);
+  // The common case of a cloud on a surface without far points: every point in the bricks.
+  bricksOnly_ = !brickOf_.empty() && table_.empty() && farBegin_ == pts_.size();
 }
 
 void PointIndex::splitCrowdedCells(const HugeVector<std::uint64_t>& key, size_t cellPoints) {

@@ -77,6 +77,7 @@ public:
     HugeVector<std::uint32_t>().swap(brickBase_);
     HugeVector<std::uint16_t>().swap(brickOff_);
     HugeVector<std::uint64_t>().swap(sub_);
+    bricksOnly_ = false;
   }
   // Frees the points too: only order() is left (size() is then 0).
   void releasePoints() { std::vector<P3>().swap(pts_); }
@@ -263,6 +264,15 @@ private:
       lo[a] = coord(c[a] - radius, a);
       hi[a] = coord(c[a] + radius, a);
     }
+    if (__builtin_expect(bricksOnly_, 1)) {
+      // Every point in the bricks (no far points, no table): clamp to them, no other test.
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::max(lo[a], brickCellLo_[a]);
+        hi[a] = std::min(hi[a], brickCellHi_[a]);
+        if (lo[a] > hi[a]) return false;
+      }
+      return splitCells_ == 0 ? visitBricks<false>(lo, hi, c, radius, cell) : visitBricks<true>(lo, hi, c, radius, cell);
+    }
     if (__builtin_expect(farBegin_ < pts_.size(), 0) &&
         (lo[0] < 0 || lo[1] < 0 || lo[2] < 0 || hi[0] > kMaxCoord || hi[1] > kMaxCoord || hi[2] > kMaxCoord) &&
         range(std::uint32_t(farBegin_), std::uint32_t(pts_.size()), cell))
@@ -277,6 +287,40 @@ private:
     // (Two instances: the test for split cells costs the common loop a tenth of its time.)
     return splitCells_ == 0 ? visitCellRange<false>(lo, hi, c, radius, cell)
                             : visitCellRange<true>(lo, hi, c, radius, cell);
+  }
+
+  // The cells [lo, hi], all inside the bricks: three loads per cell (or a walk of the occupied
+  // cells when the box holds more cells than are occupied).
+  template <bool Split, class F>
+  __attribute__((always_inline)) bool visitBricks(const std::int64_t* lo, const std::int64_t* hi, const P3& c,
+                                                  double radius, F&& cell) const {
+    auto visit = [&](std::uint32_t begin, std::uint32_t end) {
+      if (!Split || end - begin <= kSplitPoints) return range(begin, end, cell);
+      return visitSplit(begin, end, c, radius, cell);
+    };
+    if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
+      // More cells in the box than occupied ones: walk the occupied cells instead.
+      for (size_t b = 0; b < brickBase_.size(); ++b)
+        for (int k = 0; k < 64; ++k) {
+          const std::uint16_t* off = &brickOff_[b * 65 + size_t(k)];
+          if (off[0] != off[1] && visit(brickBase_[b] + off[0], brickBase_[b] + off[1])) return true;
+        }
+      return false;
+    }
+    // Morton place of a cell in its brick from the low two bits of each coordinate.
+    static constexpr unsigned kPlace[4] = {0, 1, 8, 9};
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const size_t row = brickIndex(x >> 2, y >> 2, 0) - brickBias_; // (unsigned: wraps back)
+        const unsigned xy = kPlace[x & 3] | kPlace[y & 3] << 1;
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const std::uint32_t b = brickOf_[row + size_t(z >> 2)];
+          if (b == 0) continue;
+          const std::uint16_t* off = &brickOff_[size_t(b - 1) * 65 + (xy | kPlace[z & 3] << 2)];
+          if (off[0] != off[1] && visit(brickBase_[b - 1] + off[0], brickBase_[b - 1] + off[1])) return true;
+        }
+      }
+    return false;
   }
 
   // visitCells for the cells [lo, hi] (clamped to the occupied ones), split cells only if Split.
@@ -301,31 +345,7 @@ private:
       }
       const double boxCells = double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1);
       // (A box of more cells than are occupied is walked through the table when there is one.)
-      if (inBricks && (table_.empty() || !(boxCells > double(cells_)))) {
-        if (boxCells > double(cells_)) {
-          // More cells in the box than occupied ones: walk the occupied cells instead.
-          for (size_t b = 0; b < brickBase_.size(); ++b)
-            for (int k = 0; k < 64; ++k) {
-              const std::uint16_t* off = &brickOff_[b * 65 + size_t(k)];
-              if (off[0] != off[1] && visit(brickBase_[b] + off[0], brickBase_[b] + off[1])) return true;
-            }
-          return false;
-        }
-        // Morton place of a cell in its brick from the low two bits of each coordinate.
-        static constexpr unsigned kPlace[4] = {0, 1, 8, 9};
-        for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-          for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-            const size_t row = brickIndex(x >> 2, y >> 2, 0) - brickBias_; // (unsigned: wraps back)
-            const unsigned xy = kPlace[x & 3] | kPlace[y & 3] << 1;
-            for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-              const std::uint32_t b = brickOf_[row + size_t(z >> 2)];
-              if (b == 0) continue;
-              const std::uint16_t* off = &brickOff_[size_t(b - 1) * 65 + (xy | kPlace[z & 3] << 2)];
-              if (off[0] != off[1] && visit(brickBase_[b - 1] + off[0], brickBase_[b - 1] + off[1])) return true;
-            }
-          }
-        return false;
-      }
+      if (inBricks && (table_.empty() || !(boxCells > double(cells_)))) return visitBricks<Split>(lo, hi, c, radius, cell);
     }
     if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
       // More cells in the box than occupied ones: walk the occupied cells instead.
@@ -487,6 +507,7 @@ private:
   std::int64_t brickCellLo_[3] = {0, 0, 0}, brickCellHi_[3] = {-1, -1, -1}; // its cells, inclusive
   // brickOf_[brickIndex(X, Y, Z) − brickBias_] is the entry of brick (X, Y, Z) of the range.
   size_t brickBias_ = 0;
+  bool bricksOnly_ = false; // every point in the bricks: visitCells' fast path
   size_t brickIndex(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return static_cast<size_t>((x * brickDim_[1] + y) * brickDim_[2] + z);
   }
