@@ -1,0 +1,32 @@
+# growth_add_filter(NAME ENGINE): the filter's engine (every .cpp of the current directory but the
+# glue NAME.cpp) as the static library ENGINE, and the MeshLab plugin NAME from the glue, for
+# MeshLab 2020.09 into build/plugins/ and, with GROWTH_MESHLAB_2025D, the same sources again as
+# ENGINE_2025d and NAME_2025d for MeshLab 2025.07d / PyMeshLab 2025.7 into ${GROWTH_2025D_DIR}/plugins.
+function(growth_add_filter name engine)
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
+  list(REMOVE_ITEM sources "${CMAKE_CURRENT_SOURCE_DIR}/${name}.cpp")
+  set(variants "")
+  list(APPEND variants "|growth|MeshLab::common|${PROJECT_BINARY_DIR}/plugins")
+  if(GROWTH_MESHLAB_2025D)
+    list(APPEND variants "_2025d|growth_2025d|MeshLab2025d::common|${GROWTH_2025D_DIR}/plugins")
+  endif()
+  foreach(variant IN LISTS variants)
+    string(REPLACE "|" ";" parts "${variant}")
+    list(GET parts 0 suffix)
+    list(GET parts 1 growth)
+    list(GET parts 2 common)
+    list(GET parts 3 outdir)
+    add_library(${engine}${suffix} STATIC ${sources})
+    target_include_directories(${engine}${suffix} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+    target_link_libraries(${engine}${suffix} PUBLIC ${growth} PRIVATE growth_warnings)
+    if(GROWTH_BUILD_PLUGINS)
+      add_library(${name}${suffix} MODULE ${name}.cpp ${name}.h)
+      set_target_properties(${name}${suffix} PROPERTIES AUTOMOC ON PREFIX "lib" OUTPUT_NAME ${name}
+                            LIBRARY_OUTPUT_DIRECTORY "${outdir}")
+      target_link_libraries(${name}${suffix} PRIVATE ${engine}${suffix} ${common} meshlab_compat growth_warnings)
+      if(suffix STREQUAL "")
+        install(TARGETS ${name} LIBRARY DESTINATION "${MeshLab_PLUGIN_DIR}")
+      endif()
+    endif()
+  endforeach()
+endfunction()
