@@ -200,6 +200,14 @@ private:
 
   std::uint32_t insertVertex(const vcg::Point3d& x, std::uint32_t splat, const vcg::Point3d* normal = nullptr,
                              bool enumerateLater = false) {
+    // The limit checked before the growth bounds the surface area estimated from the points; the
+    // splats can cover more (large splats on a noisy or thick cloud: a fuzz input estimated at
+    // under 10,000 vertices grew 51,000), so it is enforced here too.
+    if (graph_.vertexCount() >= params_.maxOutputVertices)
+      throw Error("The mesh grew past the limit of " + std::to_string(params_.maxOutputVertices) +
+                  " vertices (the estimate from the cloud's surface area was about " + fmt(double(expected_)) +
+                  "): the splats cover more than the points' surface. Use a larger sphere diameter d or a "
+                  "smaller splat size.");
     const std::uint32_t v = graph_.addVertex(x, normal != nullptr ? *normal : normalAt(x, splat));
     vgrid_.insert(v, x);
     if (!enumerateLater) enumerate(v);
@@ -265,17 +273,27 @@ private:
   };
   std::vector<Found> found_;
 
+  // The positions are doubles: a distance between two of them is exact only to a few units in the
+  // last place of their coordinates, which on far-off clouds (geo-referenced, or 7e13 from the
+  // origin with d = 1.6e10, fuzz/regressions/cloud/spherepack_invariant_1e10) is more than a
+  // relative 1e-12 of d. The tolerances add 16 such units of the largest coordinate involved.
   void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
     const auto& pos = graph_.positions();
+    const auto ulps = [&](std::uint32_t v) {
+      double m = 0;
+      for (std::uint32_t u : {v, c})
+        for (int k = 0; k < 3; ++k) m = std::max(m, std::abs(pos[u][k]));
+      return 16 * std::numeric_limits<double>::epsilon() * m;
+    };
     for (std::uint32_t v = 0; v < c; ++v) {
       const double dist = (pos[v] - pos[c]).Norm();
-      if (dist < d_ * (1 - 1e-12))
+      if (dist < d_ * (1 - 1e-12) - ulps(v))
         throw std::logic_error("sphere packing invariant: vertices " + std::to_string(v) + " and " +
                                std::to_string(c) + " are " + fmt(dist) + " < d apart");
     }
     for (std::uint32_t p : {a, b}) {
       const double len = (pos[p] - pos[c]).Norm();
-      if (std::abs(len - d_) > 1e-9 * d_)
+      if (std::abs(len - d_) > 1e-9 * d_ + ulps(p))
         throw std::logic_error("sphere packing invariant: edge of length " + fmt(len) + " != d");
     }
   }

@@ -862,3 +862,28 @@ TEST(SpherePackerProgress, CancelLeavesNothing) {
   }
   g_cancelAt = -1;
 }
+
+// The limit on the output is checked again while the mesh grows: the estimate before the growth
+// comes from the points' surface area, and large splats on a thick noisy cloud cover more
+// (fuzz/regressions/cloud/spherepack_output_past_estimate grew 51,000 vertices where about 10,000
+// were estimated).
+TEST(SpherePackerBadInput, OutputPastTheEstimateStopsWithAClearError) {
+  growth::CloudSpec s = sphereSpec();
+  s.count = 2000;
+  s.gaussianSigma = 0.05;
+  CMeshO m;
+  growth::toMesh(growth::generateCloud(s), m);
+  sp::Params p;
+  p.sphereDiameter = 0.04;
+  p.splatSize = 0.3;
+  CMeshO out;
+  sp::Stat st;
+  sp::build(m, out, p, st); // 18,500 vertices where the area estimate says 10,400
+  const double estimate = st.scale.area / (p.sphereDiameter * p.sphereDiameter * std::sqrt(3.0) / 2);
+  ASSERT_GT(double(st.vertices), 1.5 * estimate);
+  p.maxOutputVertices = size_t(1.25 * estimate); // passes the check before the growth
+  const std::string e = errorOf(m, p);
+  EXPECT_NE(e.find("grew past the limit of " + std::to_string(p.maxOutputVertices) + " vertices"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("larger sphere diameter"), std::string::npos) << e;
+}
