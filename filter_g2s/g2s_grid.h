@@ -21,28 +21,31 @@ public:
   void gatherNear(const P3& c, double radius, NearList& out) const {
     out.clear();
     if (size() == 0 || !(radius >= 0)) return;
-    const double slack = floatSlack(c, radius);
-    const float r2f = float((radius + slack) * (radius + slack));
     float fc[3];
     toFloat(c, fc);
+    const double slack = floatSlack(fc, radius);
+    const float r2f = float((radius + slack) * (radius + slack));
     // The ranges are collected first and scanned in one call (one call per cell costs as much as
     // the scan of a small cell).
     constexpr std::size_t kBatch = 32;
     std::uint32_t range[2 * kBatch];
-    std::size_t ranges = 0, points = 0;
-    auto flush = [&]() {
-      out.appendWithin(floatX(), floatY(), floatZ(), range, ranges, points, fc, r2f);
-      ranges = points = 0;
-    };
-    forEachRange(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
-      if (ranges == kBatch) flush();
+    std::size_t ranges = 0, points = 0, scanned = 0;
+    const float *x = floatX(), *y = floatY(), *z = floatZ();
+    forEachRangeUncounted(c, radius, [&](std::uint32_t begin, std::uint32_t end) {
+      if (ranges == kBatch) {
+        out.appendWithin(x, y, z, range, ranges, points, fc, r2f);
+        scanned += points;
+        ranges = points = 0;
+      }
       range[2 * ranges] = begin;
       range[2 * ranges + 1] = end;
       ++ranges;
       points += end - begin;
       return false;
     });
-    if (ranges > 0) flush();
+    if (ranges > 0) out.appendWithin(x, y, z, range, ranges, points, fc, r2f);
+    scanned += points;
+    countVisited(scanned);
   }
 };
 

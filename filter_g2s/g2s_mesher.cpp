@@ -112,11 +112,11 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
                        std::uint32_t b, std::uint32_t c) const {
   // Gathered points: decided in float where they are farther than the float error from the
   // sphere, exactly otherwise (the three points on the sphere always go the exact way).
-  const double radius = std::sqrt(ball.radius2), slack = 2.0 * grid_.floatSlack(ball.centre, radius);
-  const float inner = !(slack < radius) ? 0.f : float((radius - slack) * (radius - slack) * (1.0 - 1e-6));
-  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
   float cf[3];
   grid_.toFloat(ball.centre, cf);
+  const double radius = std::sqrt(ball.radius2), slack = 2.0 * grid_.floatSlack(cf, radius);
+  const float inner = !(slack < radius) ? 0.f : float((radius - slack) * (radius - slack) * (1.0 - 1e-6));
+  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
   // Each point within the float error of the sphere (or inside) is decided: inside by more than
   // that error in float, otherwise exactly in double.
   const std::uint32_t skip[3] = {a, b, c};
@@ -356,7 +356,7 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
     float cf[3];
     grid_.toFloat(centre, cf);
-    const double slack = 2.0 * grid_.floatSlack(centre, radius);
+    const double slack = 2.0 * grid_.floatSlack(cf, radius);
     const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
     const std::uint32_t front[3] = {a, b, c};
     const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());
