@@ -323,7 +323,7 @@ private:
       if (!Split || end - begin <= kSplitPoints) return range(begin, end, cell);
       return visitSplit(begin, end, c, radius, cell);
     };
-    if (double(hi[0] - lo[0] + 1) * double(hi[1] - lo[1] + 1) * double(hi[2] - lo[2] + 1) > double(cells_)) {
+    if (moreCellsThanOccupied(lo, hi)) {
       // More cells in the box than occupied ones: walk the occupied cells instead.
       for (size_t b = 0; b < brickBase_.size(); ++b)
         for (int k = 0; k < 64; ++k) {
@@ -402,6 +402,15 @@ private:
       }
     }
     return false;
+  }
+
+  // The box [lo, hi] (non-empty) holds more cells than are occupied. (In integers for the usual
+  // small boxes: the conversions to double cost a query's scan of a cell.)
+  __attribute__((always_inline)) bool moreCellsThanOccupied(const std::int64_t* lo, const std::int64_t* hi) const {
+    const std::uint64_t sx = std::uint64_t(hi[0] - lo[0] + 1), sy = std::uint64_t(hi[1] - lo[1] + 1),
+                        sz = std::uint64_t(hi[2] - lo[2] + 1);
+    if ((sx | sy | sz) < 1024) return sx * sy * sz > cells_;
+    return double(sx) * double(sy) * double(sz) > double(cells_);
   }
 
   template <class F>
