@@ -1,15 +1,24 @@
 # growth_add_filter(NAME ENGINE): the filter's engine (every .cpp of the current directory but the
 # glue NAME.cpp) as the static library ENGINE, and the MeshLab plugin NAME from the glue, for
-# MeshLab 2020.09 into build/plugins/ and, with GROWTH_MESHLAB_2025D, the same sources again as
-# ENGINE_2025d and NAME_2025d for MeshLab 2025.07d / PyMeshLab 2025.7 into ${GROWTH_2025D_DIR}/plugins.
+# MeshLab 2020.09 into build/plugins/ and, for each precision P (d, f) of GROWTH_2025_PRECISIONS,
+# the same sources again as ENGINE_2025P and NAME_2025P for MeshLab 2025.07 into
+# ${GROWTH_2025P_DIR}/plugins (build/meshlab-2025.07d/plugins, build/meshlab-2025.07/plugins).
+#
+# Install components: meshlab-2020.09 (into the installed MeshLab's plugin folder, an absolute path),
+# meshlab-2025.07d and meshlab-2025.07 (into PREFIX/lib/meshlab-2025.07d/plugins and
+# PREFIX/lib/meshlab-2025.07/plugins).
+#
+# The 2025.07 plugins carry no RUNPATH and name libmeshlab-common and Qt by soname only (linked
+# --as-needed), so in PyMeshLab or the GUI they bind to the host's own, already loaded libraries.
 function(growth_add_filter name engine)
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
   list(REMOVE_ITEM sources "${CMAKE_CURRENT_SOURCE_DIR}/${name}.cpp")
   set(variants "")
   list(APPEND variants "|growth|MeshLab::common|${PROJECT_BINARY_DIR}/plugins")
-  if(GROWTH_MESHLAB_2025D)
-    list(APPEND variants "_2025d|growth_2025d|MeshLab2025d::common|${GROWTH_2025D_DIR}/plugins")
-  endif()
+  foreach(p IN LISTS GROWTH_2025_PRECISIONS)
+    string(TOUPPER ${p} P)
+    list(APPEND variants "_2025${p}|growth_2025${p}|MeshLab2025${p}::common|${GROWTH_2025${P}_DIR}/plugins")
+  endforeach()
   foreach(variant IN LISTS variants)
     string(REPLACE "|" ";" parts "${variant}")
     list(GET parts 0 suffix)
@@ -25,7 +34,14 @@ function(growth_add_filter name engine)
                             LIBRARY_OUTPUT_DIRECTORY "${outdir}")
       target_link_libraries(${name}${suffix} PRIVATE ${engine}${suffix} ${common} meshlab_compat growth_warnings)
       if(suffix STREQUAL "")
-        install(TARGETS ${name} LIBRARY DESTINATION "${MeshLab_PLUGIN_DIR}")
+        install(TARGETS ${name} LIBRARY DESTINATION "${MeshLab_PLUGIN_DIR}" COMPONENT meshlab-2020.09)
+      else()
+        get_filename_component(layout "${outdir}" DIRECTORY)
+        get_filename_component(layout "${layout}" NAME) # meshlab-2025.07d or meshlab-2025.07
+        set_target_properties(${name}${suffix} PROPERTIES SKIP_BUILD_RPATH ON INSTALL_RPATH "")
+        target_link_options(${name}${suffix} PRIVATE "LINKER:--as-needed")
+        install(TARGETS ${name}${suffix} LIBRARY DESTINATION "lib/${layout}/plugins"
+                COMPONENT ${layout})
       endif()
     endif()
   endforeach()

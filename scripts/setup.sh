@@ -7,7 +7,8 @@
 #     installed meshlab version, unpacked into third_party/ (ignored by git; never committed);
 #   - MeshLab 2025.07's src/common and vcglib, from Debian unstable's source package (a deb-src entry
 #     only: no binary package changes), unpacked into third_party/meshlab-2025.07/, where its
-#     libmeshlab-common is built in double precision (the SDK of PyMeshLab 2025.7 and MeshLab 2025.07d).
+#     libmeshlab-common is built in double precision (the SDK of PyMeshLab 2025.7 and MeshLab 2025.07d)
+#     and in single precision (the SDK of the plain MeshLab 2025.07 GUI).
 # Idempotent: a second run only checks and returns.
 # Usage: scripts/setup.sh            (as root, or as a user with sudo)
 set -euo pipefail
@@ -156,11 +157,31 @@ EOF
   echo "setup.sh: MeshLab 2025.07d SDK built in $ml25 ($(( $(date +%s) - t0 )) s)"
 fi
 
+# The same libmeshlab-common in single precision (the SDK of the plain MeshLab 2025.07 GUI builds),
+# built beside the double one from the same sources into build-float/.
+ml25_float="$ml25/build-float"
+ml25_float_stamp="$ml25/.complete-float"
+if [ -f "$ml25_float_stamp" ] && [ "$(cat "$ml25_float_stamp")" = "$ml25_version $ml25_sha256 float" ] && \
+   [ -f "$ml25_float/src/distrib/libmeshlab-common.so" ]; then
+  echo "setup.sh: MeshLab 2025.07 (float) SDK already in $ml25"
+else
+  t0=$(date +%s)
+  echo "setup.sh: building libmeshlab-common 2025.07 in single precision (a few minutes)"
+  nice cmake -S "$ml25" -B "$ml25_float" -DCMAKE_BUILD_TYPE=Release \
+      -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=OFF -DMESHLAB_BUILD_ONLY_LIBRARIES=ON -DMESHLAB_BUILD_MINI=ON \
+      -DMESHLAB_PLUGINS="" -DEIGEN3_INCLUDE_DIR=/usr/include/eigen3 >"$ml25/configure-float.log" 2>&1 || {
+    tail -20 "$ml25/configure-float.log" >&2; exit 1; }
+  nice cmake --build "$ml25_float" --target meshlab-common -j"$(nproc)" >"$ml25/build-float.log" 2>&1 || {
+    tail -30 "$ml25/build-float.log" >&2; exit 1; }
+  echo "$ml25_version $ml25_sha256 float" > "$ml25_float_stamp"
+  echo "setup.sh: MeshLab 2025.07 (float) SDK built in $ml25_float ($(( $(date +%s) - t0 )) s)"
+fi
+
 for f in /usr/bin/meshlabserver /usr/lib/x86_64-linux-gnu/meshlab/libmeshlab-common.so \
          "$sdk/src/common/interfaces.h" "$sdk/vcglib/vcg/complex/complex.h" \
          /usr/include/eigen3/Eigen/Core "$ml25/src/common/plugins/interfaces/filter_plugin.h" \
-         "$ml25_build/src/distrib/libmeshlab-common.so"; do
+         "$ml25_build/src/distrib/libmeshlab-common.so" "$ml25_float/src/distrib/libmeshlab-common.so"; do
   [ -e "$f" ] || { echo "setup.sh: $f is missing after set-up" >&2; exit 1; }
 done
 echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build" \
-     "(add -DGROWTH_MESHLAB_2025D=ON for the MeshLab 2025.07d plugins)"
+     "(add -DGROWTH_MESHLAB_2025D=ON -DGROWTH_MESHLAB_2025F=ON for the MeshLab 2025.07d and 2025.07 plugins)"

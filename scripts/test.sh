@@ -10,7 +10,8 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/setup.sh
-cmake -S . -B build -DGROWTH_MESHLAB_2025D=ON   # also the MeshLab 2025.07d / PyMeshLab 2025.7 plugins
+# Also the MeshLab 2025.07d / PyMeshLab 2025.7 (double) and the MeshLab 2025.07 (float) plugins.
+cmake -S . -B build -DGROWTH_MESHLAB_2025D=ON -DGROWTH_MESHLAB_2025F=ON
 cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 scripts/sanitize.sh

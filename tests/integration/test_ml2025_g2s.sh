@@ -1,18 +1,29 @@
 #!/usr/bin/env bash
-# Robust G2S in MeshLab 2025.07d, loaded and applied the way pymeshlab.load_plugin does
-# (build/meshlab-2025.07d/ml_apply, the filter named by its Python name): a closed torus cloud
+# Robust G2S in MeshLab 2025.07d (and, as integration.test_ml2025_g2s.float, in the single-precision
+# 2025.07), loaded and applied the way pymeshlab.load_plugin does (build/meshlab-2025.07d/ml_apply,
+# the filter named by its Python name): a closed torus cloud
 # gives a closed, manifold, consistently oriented mesh on (nearly) every point, with the counts of
 # the 2020.09 plugin through meshlabserver and the output dictionary; the loader refuses the
 # 2020.09 plugin; a refused input fails with its message.
+# ctest: once per MeshLab 2025.07 precision
 source "$(dirname "$0")/meshlab_prefix.sh"
 source "$(dirname "$0")/ml2025_env.sh"
 plugin="$plugins2025/libfilter_g2s.so"
 
 "$GROWTH_BUILD_DIR/make_cloud" --shape torus --points 20000 --seed 3 -o "$work/torus.ply" >/dev/null
-ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/torus.ply" "$work/mesh.ply" randomSeed=1 \
+ml_apply "$plugin" generate_surface_reconstruction_robust_g2s "$work/torus.ply" "$work/mesh.ply" randomseed=1 \
   > "$work/apply.log" 2>"$work/apply.err" || { cat "$work/apply.log" "$work/apply.err"; fail "ml_apply failed"; }
-grep -q "^plugin: FilterG2S, built for MeshLab 2025.07d, double precision" "$work/apply.log" \
-  || { cat "$work/apply.log"; fail "the plugin does not report MeshLab 2025.07d, double"; }
+grep -qF "plugin: FilterG2S, built for MeshLab $ml_version, $ml_precision precision" "$work/apply.log" \
+  || { cat "$work/apply.log"; fail "the plugin does not report MeshLab $ml_version, $ml_precision"; }
+# The keywords of PyMeshLab's apply_filter (listed in the README); randomseed=1 above used one.
+python_names="seedSearchFactor: seedsearchfactor: float
+maxSearchRadius: maxsearchradius: float
+sizeLevels: sizelevels: int
+flatnessLevels: flatnesslevels: int
+removeNonManifoldVertices: removenonmanifoldvertices: bool
+randomSeed: randomseed: int"
+[ "$(sed -n 's/^python //p' "$work/apply.log")" = "$python_names" ] \
+  || { grep '^python ' "$work/apply.log"; fail "the Python parameter names differ from the README's"; }
 grep -q "^log: Robust G2S: .* faces on" "$work/apply.log" || { cat "$work/apply.log"; fail "no filter log"; }
 verts=$(vertices_of "$work/mesh.ply")
 faces=$(faces_of "$work/mesh.ply")

@@ -1,5 +1,7 @@
 // ml_apply: loads a filter plugin the way PyMeshLab 2025.7's pymeshlab.load_plugin does and applies
-// one of its filters to a PLY file, on MeshLab 2025.07's libmeshlab-common (double precision).
+// one of its filters to a PLY file, on MeshLab 2025.07's libmeshlab-common: built against the
+// double-precision SDK (build/meshlab-2025.07d/ml_apply, as PyMeshLab 2025.7 and MeshLab 2025.07d)
+// or the single-precision one (build/meshlab-2025.07/ml_apply, as the plain MeshLab 2025.07 GUI).
 //
 //   ml_apply PLUGIN.so "FILTER NAME" IN.ply OUT.ply [name=value ...]
 //
@@ -7,11 +9,11 @@
 // precision, same first six characters of the MeshLab version, valid filter plugin), then
 // PluginManager::loadPlugin; the filter is found by its name or its Python name; its parameters are
 // the plugin's defaults for the loaded mesh (initParameterList on the MeshDocument), overridden by
-// name=value (RichPercentage parameters take absolute values, positions x,y,z, booleans
-// true/false); the filter's requirements are enabled, its preconditions checked, applyFilter runs
+// name=value, by MeshLab or Python name (RichPercentage parameters take absolute values, positions
+// x,y,z, booleans true/false); the filter's requirements are enabled, its preconditions checked, applyFilter runs
 // on the MeshDocument, and the current layer afterwards is saved as binary PLY (with per-face
-// quality when the layer has it). Prints the parameters with their dialog texts, the filter's log
-// and its output values.
+// quality when the layer has it). Prints the parameters with their dialog texts and their Python
+// names and types (as PyMeshLab derives them), the filter's log and its output values.
 // Exit status: 0 on success, 1 when the filter fails, 2 on bad usage or input.
 #include <common/GLLogStream.h>
 #include <common/globals.h>
@@ -43,11 +45,16 @@ int usage() {
 }
 
 // Sets one parameter from its text; returns an error message, empty on success.
-QString setParameter(RichParameterList& par, const QString& name, const QString& text) {
-  if (!par.hasParameter(name)) {
+// `given` is the parameter's MeshLab name or its Python name (RichParameter::pythonName(), the
+// keyword of PyMeshLab's apply_filter).
+QString setParameter(RichParameterList& par, const QString& given, const QString& text) {
+  QString name;
+  for (const RichParameter& p : par)
+    if (p.name() == given || p.pythonName() == given) name = p.name();
+  if (name.isEmpty()) {
     QStringList names;
     for (const RichParameter& p : par) names << p.name();
-    return "no parameter '" + name + "'; the filter has: " + names.join(", ");
+    return "no parameter '" + given + "'; the filter has: " + names.join(", ");
   }
   const Value& v = par.getParameterByName(name).value();
   bool ok = true;
@@ -158,6 +165,8 @@ int main(int argc, char** argv) {
     else if (v.isPoint3()) text = QString("%1,%2,%3").arg(v.getPoint3()[0]).arg(v.getPoint3()[1]).arg(v.getPoint3()[2]);
     else text = "(" + p.stringType() + ")";
     std::printf("parameter %s = %s\n", qUtf8Printable(p.name()), qUtf8Printable(text));
+    std::printf("python %s: %s: %s\n", qUtf8Printable(p.name()), qUtf8Printable(p.pythonName()),
+                qUtf8Printable(p.pythonType()));
     std::printf("help %s: %s: %s\n", qUtf8Printable(p.name()), qUtf8Printable(p.fieldDescription()),
                 qUtf8Printable(p.toolTip()));
   }
