@@ -598,7 +598,8 @@ def run_afsr(cloud, ctx, row, work, edge_max):
             best = run
     row.update({"wall": best["wall"], "rc": 0, "load_after": os.getloadavg()[0]})
     row["time"], row["time_source"] = best["seconds"], "afsr_run"
-    row["info"].update({"seconds_total": best["total"], "cgal_version": best["kv"].get("cgal_version"),
+    row["info"].update({"seconds_total": best["total"], "cpu_seconds": float(best["kv"].get("cpu_seconds", "nan")),
+                        "cgal_version": best["kv"].get("cgal_version"),
                         "unused_points": int(best["kv"].get("unused_points", 0)),
                         "tool_peak_rss_kb": best["rss_kb"],
                         "tool_peak_bytes_per_point": (best["rss_kb"] * 1024.0 / cloud["points"]
@@ -1082,11 +1083,13 @@ def peer_section(clouds, rows, level):
     md = ["%s Robust G2S against CGAL's advancing front" % ("#" * level), "",
           "Each cell: Robust G2S / CGAL's Advancing Front Surface Reconstruction (defaults) on the same cloud. "
           "Times as in the tables (Robust G2S: in process up to 100k points, the filter's log above; CGAL: "
-          "afsr_run's clock around the library call). Holes = boundary loops; noise in % of the clean "
-          "cloud's mean spacing, outliers in % of its points.", "",
-          "| cloud | points | time [s] | CGAL time / G2S time | faces | holes | boundary edges "
+          "afsr_run's clock around the library call, with its process CPU time in brackets: on a loaded "
+          "machine the wall clock of a long run grows beyond it). Vertices: the input points the mesh uses (on the -out "
+          "clouds, a mesher that uses more than the surface's points has meshed outliers in). Holes = boundary "
+          "loops; noise in % of the clean cloud's mean spacing, outliers in % of its surface points.", "",
+          "| cloud | points | time [s] | CGAL time / G2S time | faces | vertices | holes | boundary edges "
           "| non-manifold V / E | self-intersecting pairs | μd % | G2S holes ≤ CGAL's | same run |",
-          "|---|" + "---|" * 11]
+          "|---|" + "---|" * 12]
 
     def pair(g, a, key, spec=None):
         one = lambda m: count_text(m.get(key)) if spec is None else fmt(m.get(key), spec)
@@ -1095,10 +1098,11 @@ def peer_section(clouds, rows, level):
     for c in both:
         g, a = ok_row(rows, c, "g2s"), ok_row(rows, c, AFSR)
         gm, am = g["measures"], a["measures"]
-        md.append("| %s | %s | %s / %s | %s | %s | %s | %s | %d / %d, %d / %d | %s | %s | %s | %s |" % (
-            c, "{:,}".format(g["points"]), timed(g), timed(a),
+        cpu = a.get("info", {}).get("cpu_seconds")
+        md.append("| %s | %s | %s / %s%s | %s | %s | %s | %s | %s | %d / %d, %d / %d | %s | %s | %s | %s |" % (
+            c, "{:,}".format(g["points"]), timed(g), timed(a), " (CPU %s)" % fmt(cpu, "#.3g") if cpu else "",
             ("×%.1f" % (a["time"] / g["time"])) if g["time"] > 0 else "—",
-            pair(gm, am, "faces"), pair(gm, am, "boundary_loops"), pair(gm, am, "boundary_edges"),
+            pair(gm, am, "faces"), pair(gm, am, "vertices"), pair(gm, am, "boundary_loops"), pair(gm, am, "boundary_edges"),
             gm["non_manifold_vertices"], gm["non_manifold_edges"], am["non_manifold_vertices"], am["non_manifold_edges"],
             pair(gm, am, "self_intersecting_pairs"), pair(gm, am, "mu_d_percent", ".2f"),
             "yes" if gm["boundary_loops"] <= am["boundary_loops"] else "**no**",
