@@ -15,8 +15,10 @@ run of the cloud, the baseline), measures the mesh with build/mesh_measures, and
 
 Methods: Ball Pivoting with auto radius ("bpa"), with r = 3 × the mean spacing ("bpa3"), bpa's mesh
 remeshed ("bpa_re"); the sphere packer at its default d ("spherepack") and at d = 2.5 × the mean
-spacing ("spherepack25"); Robust G2S ("g2s"). Clouds: generated (sphere-10k, torus-1M, ...), the
-scans of the data folder (bunny, hand, horse), .ply paths, and any of those but a path with "-ml"
+spacing ("spherepack25"); Robust G2S ("g2s"); and, not through meshlabserver, CGAL's Advancing Front
+Surface Reconstruction with its defaults ("cgal-afsr", build/afsr_run, built when CGAL is found). Clouds: generated (sphere-10k, torus-1M, ...), the
+scans of the data folder (bunny, hand, horse), generated ones with Gaussian noise or outliers
+(sphere-100k-gauss25, torus-50k-out10; the groups "noisy" and "noisy-<size>"), .ply paths, and any of those but a path with "-ml"
 appended (hand-ml, sphere-10k-ml): the same points with MeshLab's own normals (Compute normals for
 point sets, K = 10, no smoothing, no flip), made by the scratch meshlabserver into OUT/clouds/.
 
@@ -53,10 +55,17 @@ METHODS = {
     "spherepack": ("Sphere Packing (ours)", "Sphere Packing"),
     "spherepack25": ("Sphere Packing (ours, d = 2.5 × spacing)", "Sphere Packing d 2.5s"),
     "g2s": ("Robust G2S (ours)", "Robust G2S"),
+    "cgal-afsr": ("CGAL Advancing Front (defaults)", "CGAL AFSR"),
 }
+# The peer that is not a MeshLab filter: CGAL's Advancing Front Surface Reconstruction with its
+# defaults (radius_ratio_bound 5, beta 0.52), run by build/afsr_run (tools/cgal/afsr_run.cpp, built
+# when CGAL is found). Timed by the tool itself: the reconstruction call alone (Delaunay
+# triangulation included, reading and writing not), the fastest of the row's repeats.
+AFSR = "cgal-afsr"
+NOT_MESHLAB = (AFSR,)
 # Run order within a cloud: the sphere packer first, its d is the remeshing target of "bpa_re".
-RUN_ORDER = ["spherepack", "spherepack25", "g2s", "bpa", "bpa3", "bpa_re"]
-TABLE_ORDER = ["bpa", "bpa3", "bpa_re", "spherepack", "spherepack25", "g2s"]
+RUN_ORDER = ["spherepack", "spherepack25", "g2s", "bpa", "bpa3", "bpa_re", AFSR]
+TABLE_ORDER = ["bpa", "bpa3", "bpa_re", AFSR, "spherepack", "spherepack25", "g2s"]
 OURS = ("spherepack", "spherepack25", "g2s")
 SPHERE_PACKERS = ("spherepack", "spherepack25")
 SPHEREPACK25_SPACINGS = 2.5      # "spherepack25": sphereDiameter = 2.5 × the cloud's mean spacing
@@ -74,6 +83,13 @@ ML_NORMALS_PARAMS = {"K": 10, "smoothIter": 0, "flipFlag": "false", "viewPos": (
 ML_NORMALS_TEXT = "MeshLab's Compute normals for point sets (K = 10, smoothIter 0, flipFlag false, viewPos 0,0,0)"
 DATA_CLOUDS = [n for d in DATA for n in (d, d + ML_NORMALS_SUFFIX)]
 QUICK_DATA_CLOUDS = ["hand", "hand" + ML_NORMALS_SUFFIX]
+# Perturbed generated clouds: "<shape>-<size>-gauss<P>" has isotropic Gaussian noise of standard
+# deviation P % of the clean cloud's mean spacing (Robust G2S sec. 5.2), "<shape>-<size>-out<P>" P %
+# outliers on top of the surface points, uniform in the enlarged box (make_cloud --outliers).
+# The group "noisy" (or "noisy-<size>", default 100k) is every one of NOISE_LEVELS on every shape of
+# --shapes; "scans" is the clouds of the data folder with their own normals.
+NOISE_LEVELS = ["gauss10", "gauss25", "gauss50", "out5", "out10", "out20"]
+NOISY_GROUP_SIZE = 100000
 FULL_SIZES = [10000, 30000, 100000, 300000, 1000000]
 QUICK_SIZES = [10000, 30000]
 EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, max(6 × mean spacing, 1.5 × d)], same for all
@@ -189,7 +205,7 @@ def prepare_cloud(spec, ctx):
     """Returns a dict with name, path, kind, shape, points, spacing, diagonal, normals."""
     clouds_dir = os.path.join(ctx.out, "clouds")
     os.makedirs(clouds_dir, exist_ok=True)
-    shape, normals = None, "own"
+    shape, normals, perturbation = None, "own", None
     if spec.endswith(ML_NORMALS_SUFFIX) and not spec.endswith(".ply"):
         base = prepare_cloud(spec[:-len(ML_NORMALS_SUFFIX)], ctx)
         if base is None:
@@ -214,23 +230,37 @@ def prepare_cloud(spec, ctx):
         path, kind = os.path.abspath(spec), "file"
         name = os.path.splitext(os.path.basename(spec))[0]
     else:
-        m = re.match(r"^(sphere|torus|patch)-([0-9.]+[kKmM]?)$", spec)
+        m = re.match(r"^(sphere|torus|patch)-([0-9.]+[kKmM]?)(?:-(gauss|out)([0-9.]+))?$", spec)
         if not m:
-            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s, a .ply path, or any "
-                             "of these but a path with %s for MeshLab's normals)"
+            raise SystemExit("unknown cloud '%s' (use sphere-10k, torus-1M, patch-30000, %s, a .ply path, any "
+                             "of these but a path with %s for MeshLab's normals, a generated one with -gauss<P> "
+                             "or -out<P> appended (sphere-100k-gauss25: noise of 25 %% of the spacing, "
+                             "sphere-100k-out10: 10 %% outliers), or the groups noisy[-<size>] and scans)"
                              % (spec, ", ".join(DATA), ML_NORMALS_SUFFIX))
         shape, n = m.group(1), parse_size(m.group(2))
         name, kind = "%s-%s" % (shape, size_label(n)), "generated"
+        extra = []
+        if m.group(3):
+            # Perturbed: no shape, so that the per-shape fits and plots keep to the clean clouds.
+            clean = prepare_cloud(name, ctx)
+            level = float(m.group(4))
+            name = "%s-%s%s" % (name, m.group(3), m.group(4))
+            shape, perturbation = None, m.group(3) + m.group(4)
+            if m.group(3) == "gauss":
+                extra = ["--gauss", "%.9g" % (level / 100.0 * clean["spacing"])]
+            else:
+                extra = ["--outliers", "%.9g" % (level / 100.0)]
         path = os.path.join(clouds_dir, name + ".ply")
         if not os.path.exists(path):
-            subprocess.run([ctx.tool("make_cloud"), "--shape", shape, "--points", str(n), "--seed", "1",
-                            "-o", path], check=True, stdout=subprocess.DEVNULL)
+            subprocess.run([ctx.tool("make_cloud"), "--shape", m.group(1), "--points", str(n), "--seed", "1"]
+                           + extra + ["-o", path], check=True, stdout=subprocess.DEVNULL)
     # Spacing and size from mesh_measures run on the cloud itself (no faces: distances are null).
     r = subprocess.run([ctx.tool("mesh_measures"), path, "--cloud", path, "--no-min-vertex-distance"],
                        check=True, stdout=subprocess.PIPE, universal_newlines=True)
     j = json.loads(r.stdout)
     return {"name": name, "path": path, "kind": kind, "shape": shape, "points": j["cloud_points"],
-            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"], "normals": normals}
+            "spacing": j["cloud_spacing"], "diagonal": j["box_diagonal"], "normals": normals,
+            "perturbation": perturbation}
 
 
 # --- Filter scripts -------------------------------------------------------------------------
@@ -524,6 +554,70 @@ def spherepack_log_info(log_text):
     return info
 
 
+def parse_key_values(text):
+    """The "key: value" lines of build/g2s_run and build/afsr_run."""
+    out = {}
+    for line in text.splitlines():
+        k, sep, v = line.partition(": ")
+        if sep:
+            out[k.strip()] = v.strip()
+    return out
+
+
+def run_afsr(cloud, ctx, row, work, edge_max):
+    """The "cgal-afsr" row: build/afsr_run (CGAL's advancing front with its defaults) on the cloud,
+    ctx.repeat times; the time is the tool's own of the reconstruction call alone, the fastest run's
+    (its mesh is the one measured; the method is deterministic). Peak memory: the tool's own process
+    (/usr/bin/time -v), per input point, kept apart from the meshlabserver rows' extra peak."""
+    tool = ctx.tool("afsr_run")
+    if not os.path.exists(tool):
+        row["status"] = ("skipped: %s not built (CGAL not found at configure time: install libcgal-dev, "
+                         "scripts/setup.sh, and configure again)" % tool)
+        return row
+    row["info"] = {}
+    best = None
+    for _ in range(ctx.repeat):
+        tfile = os.path.join(work, "time.txt")
+        cmd = ["/usr/bin/time", "-v", "-o", tfile, tool, cloud["path"], "-o", os.path.join(work, "mesh.ply")]
+        try:
+            proc = subprocess.run(cmd, cwd=work, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                  universal_newlines=True, timeout=ctx.timeout)
+        except subprocess.TimeoutExpired:
+            row["status"] = "timed out after %d s" % ctx.timeout
+            return row
+        with open(os.path.join(work, "afsr_run.log"), "a") as f:
+            f.write(proc.stdout)
+        wall, rss, status = parse_time_report(tfile)
+        kv = parse_key_values(proc.stdout)
+        if proc.returncode != 0 or "seconds" not in kv:
+            row["status"] = "failed: " + failure_reason(proc.stdout)
+            return row
+        run = {"seconds": float(kv["seconds"]), "total": float(kv["seconds_total"]), "wall": wall, "rss_kb": rss,
+               "kv": kv}
+        if best is None or run["seconds"] < best["seconds"]:
+            best = run
+    row.update({"wall": best["wall"], "rc": 0, "load_after": os.getloadavg()[0]})
+    row["time"], row["time_source"] = best["seconds"], "afsr_run"
+    row["info"].update({"seconds_total": best["total"], "cpu_seconds": float(best["kv"].get("cpu_seconds", "nan")),
+                        "cgal_version": best["kv"].get("cgal_version"),
+                        "unused_points": int(best["kv"].get("unused_points", 0)),
+                        "tool_peak_rss_kb": best["rss_kb"],
+                        "tool_peak_bytes_per_point": (best["rss_kb"] * 1024.0 / cloud["points"]
+                                                      if best["rss_kb"] is not None else None)})
+    mesh = os.path.join(work, "mesh.ply")
+    if ply_face_count(mesh) == 0:
+        row["status"] = "no faces in the mesh of afsr_run"
+        return row
+    row["status"] = "ok"
+    measures = measure_mesh(ctx, mesh, cloud["path"], work, edge_max)
+    if measures is None:
+        row["status"] = "mesh_measures failed on the mesh"
+        return row
+    row["measures"] = measures
+    row["edge_histogram_max"] = edge_max
+    return row
+
+
 def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     """Runs one method on one cloud and returns its row. "bpa_re" remeshes the mesh of `bpa_row`
     (Ball Pivoting with auto radius, already run on this cloud) when there is one, and counts
@@ -535,7 +629,12 @@ def run_method(method, cloud, base, ctx, d_info, bpa_row=None):
     row = {"cloud": cloud["name"], "cloud_kind": cloud["kind"], "shape": cloud["shape"],
            "points": cloud["points"], "spacing": cloud["spacing"], "normals": cloud["normals"], "method": method,
            "label": METHODS[method][0], "run": ctx.run_stamp, "base_wall": base["wall"],
-           "base_rss_kb": base["rss_kb"], "noop_rss_kb": base.get("noop_rss_kb"), "repeat": ctx.repeat, "load_before": os.getloadavg()[0]}
+           "base_rss_kb": base["rss_kb"], "noop_rss_kb": base.get("noop_rss_kb"), "repeat": ctx.repeat, "load_before": os.getloadavg()[0],
+           "perturbation": cloud.get("perturbation")}
+    if method == AFSR:
+        # The same edge histogram range as the other methods of the cloud.
+        return run_afsr(cloud, ctx, row, work, edge_histogram_max(
+            cloud["spacing"], d_info["d"] if "sphere packer" in d_info["source"] else 0))
     if (method in ("bpa", "bpa_re") and ctx.bpa_max_points and cloud["kind"] == "generated"
             and cloud["points"] > ctx.bpa_max_points):
         row["status"] = "skipped: generated cloud of more than %s points (--bpa-max-points)" % "{:,}".format(
@@ -653,7 +752,7 @@ def retime(rows, ctx, clouds=None, methods=None):
     """Times again, in process, the rows of clouds up to --inproc-max-points (their meshes and
     memory kept): for rows measured before in-process timing existed."""
     for r in rows:
-        if r.get("status") != "ok" or r["points"] > ctx.inproc_max_points:
+        if r.get("status") != "ok" or r["points"] > ctx.inproc_max_points or r["method"] in NOT_MESHLAB:
             continue
         if (clouds and r["cloud"] not in clouds) or (methods and r["method"] not in methods):
             continue
@@ -702,7 +801,8 @@ def merge_row(rows, row):
 def cloud_sort_key(name, rows):
     r = next(x for x in rows if x["cloud"] == name)
     kind_order = {"generated": 0, "data": 1, "file": 2}
-    shape = r.get("shape") or ""
+    # A perturbed generated cloud (no shape of its own) sorts with its shape's clean clouds.
+    shape = r.get("shape") or (name.split("-")[0] if r.get("cloud_kind") == "generated" else "")
     return (kind_order.get(r.get("cloud_kind"), 3), SHAPES.index(shape) if shape in SHAPES else 9, r["points"], name)
 
 
@@ -770,7 +870,9 @@ def table(cloud_rows):
                  "%d / %d" % (m["non_manifold_vertices"], m["non_manifold_edges"]),
                  count_text(m.get("self_intersecting_pairs")), "%d" % m["boundary_edges"], "%d" % m["boundary_loops"],
                  count_text(m.get("components")), unreached_text(r),
-                 "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f"))]
+                 ("own process: %s" % fmt(r.get("info", {}).get("tool_peak_bytes_per_point"), ".0f")
+                  if r["method"] in NOT_MESHLAB else
+                  "%s / %s" % (fmt(r.get("extra_peak_bytes_per_point"), ".0f"), fmt(extra_over_noop(r), ".0f")))]
         assert len(cells) == len(TABLE_COLUMNS)
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
@@ -798,7 +900,7 @@ def plots(rows, out):
     os.makedirs(pdir, exist_ok=True)
     made = []
     colors = {"bpa": "tab:gray", "bpa3": "tab:brown", "bpa_re": "tab:olive", "spherepack": "tab:blue",
-              "spherepack25": "tab:cyan", "g2s": "tab:red"}
+              "spherepack25": "tab:cyan", "g2s": "tab:red", AFSR: "tab:green"}
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     for c in clouds:
         ok = [r for r in rows if r["cloud"] == c and r.get("status") == "ok"]
@@ -888,7 +990,7 @@ def repeat_text(rows):
     return " or ".join("%d×" % k for k in reps) + " (3× up to 100k points by default)"
 
 
-TIME_MARK = {"in process": "", "filter log": "†", "wall - load/save": "*"}
+TIME_MARK = {"in process": "", "filter log": "†", "wall - load/save": "*", "afsr_run": "‡"}
 EXPLANATION = (
     "Time, unmarked: measured in process by `build/plugin_time` (every filter, ours and MeshLab's, on "
     "clouds up to 100k points): the plugin loaded and applied as meshlabserver does, one steady clock "
@@ -897,6 +999,11 @@ EXPLANATION = (
     "meshlabserver run minus that of a load+save-only run of the same cloud (resolution 0.01 s). "
     "\"(Re)\": Ball Pivoting's time plus that of the remeshing on its mesh (3 "
     "iterations of Isotropic Explicit Remeshing at target length d, MeshLab's defaults otherwise). "
+    "Marked ‡: CGAL's Advancing Front Surface Reconstruction (CGAL 5.5, Debian's libcgal-dev, with its "
+    "defaults: radius_ratio_bound 5, beta 0.52), not a MeshLab filter: run by `build/afsr_run` "
+    "(tools/cgal/afsr_run.cpp), one steady clock around the library call (its Delaunay triangulation "
+    "included, reading and writing not), the fastest of the row's repeats; its memory column is the peak of "
+    "afsr_run's own process per input point. "
     "Speed-up = time of Ball Pivoting (auto radius, or r = 3 × mean spacing) / time of the row. Extra "
     "peak = peak resident memory (/usr/bin/time -v) of the run minus that of the load+save-only run, "
     "per input point, and over that of a run applying a filter that does nothing (MeshLab's Select None: "
@@ -928,6 +1035,9 @@ def headline_section(clouds, rows, level):
 
     def rate(r):
         return r["measures"]["faces"] / r["time"] if r and r["time"] > 0 else None
+
+    if not any(row_of(c, "bpa") or row_of(c, "bpa3") for c in clouds):
+        return []
 
     md = ["%s Headline: ratios against Ball Pivoting" % ("#" * level), "",
           "Speed-up = Ball Pivoting's time / our filter's time on the same cloud (above 1: "
@@ -962,6 +1072,43 @@ def row_normals(r):
 
 def timed(r):
     return fmt(r["time"], "#.3g") + TIME_MARK.get(r.get("time_source"), "?")
+
+
+def peer_section(clouds, rows, level):
+    """Robust G2S against CGAL's advancing front (issue 15: at most its holes on noisy clouds, with no
+    non-manifold elements and no self-intersections, and faster), one line per cloud with both rows."""
+    both = [c for c in clouds if ok_row(rows, c, "g2s") and ok_row(rows, c, AFSR)]
+    if not both:
+        return []
+    md = ["%s Robust G2S against CGAL's advancing front" % ("#" * level), "",
+          "Each cell: Robust G2S / CGAL's Advancing Front Surface Reconstruction (defaults) on the same cloud. "
+          "Times as in the tables (Robust G2S: in process up to 100k points, the filter's log above; CGAL: "
+          "afsr_run's clock around the library call, with its process CPU time in brackets: on a loaded "
+          "machine the wall clock of a long run grows beyond it). Vertices: the input points the mesh uses (on the -out "
+          "clouds, a mesher that uses more than the surface's points has meshed outliers in). Holes = boundary "
+          "loops; noise in % of the clean cloud's mean spacing, outliers in % of its surface points.", "",
+          "| cloud | points | time [s] | CGAL time / G2S time | faces | vertices | holes | boundary edges "
+          "| non-manifold V / E | self-intersecting pairs | μd % | G2S holes ≤ CGAL's | same run |",
+          "|---|" + "---|" * 12]
+
+    def pair(g, a, key, spec=None):
+        one = lambda m: count_text(m.get(key)) if spec is None else fmt(m.get(key), spec)
+        return "%s / %s" % (one(g), one(a))
+
+    for c in both:
+        g, a = ok_row(rows, c, "g2s"), ok_row(rows, c, AFSR)
+        gm, am = g["measures"], a["measures"]
+        cpu = a.get("info", {}).get("cpu_seconds")
+        md.append("| %s | %s | %s / %s%s | %s | %s | %s | %s | %s | %d / %d, %d / %d | %s | %s | %s | %s |" % (
+            c, "{:,}".format(g["points"]), timed(g), timed(a), " (CPU %s)" % fmt(cpu, "#.3g") if cpu else "",
+            ("×%.1f" % (a["time"] / g["time"])) if g["time"] > 0 else "—",
+            pair(gm, am, "faces"), pair(gm, am, "vertices"), pair(gm, am, "boundary_loops"), pair(gm, am, "boundary_edges"),
+            gm["non_manifold_vertices"], gm["non_manifold_edges"], am["non_manifold_vertices"], am["non_manifold_edges"],
+            pair(gm, am, "self_intersecting_pairs"), pair(gm, am, "mu_d_percent", ".2f"),
+            "yes" if gm["boundary_loops"] <= am["boundary_loops"] else "**no**",
+            "yes" if g["run"] == a["run"] else "no (%s / %s)" % (g["run"], a["run"])))
+    md.append("")
+    return md
 
 
 def real_scans_section(rows, level):
@@ -1137,7 +1284,7 @@ def report(rows, ctx, command):
     made, slopes = plots(rows, ctx.out)
     clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
     md = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
-    md += real_scans_section(rows, 2) + speed_section(rows, 2)
+    md += peer_section(clouds, rows, 2) + real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         hp = os.path.join("plots", "%s_histograms.png" % c)
         md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
@@ -1183,7 +1330,7 @@ def publish(rows, ctx, command, slopes):
         return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
 
     full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
-    full += real_scans_section(rows, 2) + speed_section(rows, 2)
+    full += peer_section(clouds, rows, 2) + real_scans_section(rows, 2) + speed_section(rows, 2)
     for c in clouds:
         full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
     full += scaling_section(slopes, 2, image("scaling.png", docs), memory_fits(rows))
@@ -1201,7 +1348,7 @@ def publish(rows, ctx, command, slopes):
                "recorded in `out/benchmark/results.jsonl` and the runs are listed below). The ratios "
                "against Ball Pivoting are the headline; absolute seconds depend on the machine and its "
                "load.", ""] + header_lines(rows, command)
-    summary += headline_section(clouds, rows, 3) + real_scans_section(rows, 3) + speed_section(rows, 3)
+    summary += headline_section(clouds, rows, 3) + peer_section(clouds, rows, 3) + real_scans_section(rows, 3) + speed_section(rows, 3)
     for c in shown:
         summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
     summary += scaling_section(slopes, 3, image("scaling.png", where), memory_fits(rows))
@@ -1221,6 +1368,23 @@ def publish(rows, ctx, command, slopes):
 
 # --- Main -----------------------------------------------------------------------------------
 
+def expand_groups(specs, shapes):
+    """The cloud groups of --clouds: "noisy" / "noisy-<size>" (every NOISE_LEVELS perturbation of every
+    shape of --shapes, at NOISY_GROUP_SIZE points or <size>) and "scans" (the data folder's clouds
+    with their own normals); other names stay as they are."""
+    out = []
+    for spec in specs:
+        m = re.match(r"^noisy(?:-([0-9.]+[kKmM]?))?$", spec)
+        if m:
+            n = parse_size(m.group(1)) if m.group(1) else NOISY_GROUP_SIZE
+            out += ["%s-%s-%s" % (s, size_label(n), p) for s in shapes for p in NOISE_LEVELS]
+        elif spec == "scans":
+            out += list(DATA)
+        else:
+            out.append(spec)
+    return out
+
+
 class Context:
     pass
 
@@ -1233,7 +1397,11 @@ def main():
                     help="comma-separated subset of: " + ", ".join(RUN_ORDER))
     ap.add_argument("--clouds", default=None,
                     help="comma-separated clouds: sphere-10k, torus-1M, patch-30000, bunny, hand, horse, or .ply paths; "
-                         "a name with -ml appended (bunny-ml, sphere-10k-ml) is that cloud with MeshLab's normals "
+                         "a name with -ml appended (bunny-ml, sphere-10k-ml) is that cloud with MeshLab's normals; "
+                         "a generated one with -gauss<P> or -out<P> appended (torus-100k-gauss25, sphere-50k-out10) "
+                         "has Gaussian noise of P %% of its mean spacing or P %% outliers; the groups noisy "
+                         "(every shape of --shapes at 100k points, perturbed by each of " + ", ".join(NOISE_LEVELS) +
+                         ") or noisy-<size>, and scans (the data folder's clouds) "
                          "(default: every shape at every size, and every cloud of the data folder with its own "
                          "normals and with MeshLab's)")
     ap.add_argument("--sizes", default=None, help="sizes of the generated clouds, e.g. 10k,100k,1M")
@@ -1299,7 +1467,8 @@ def main():
                 raise SystemExit("unknown method '%s' (choose from %s)" % (m, ", ".join(RUN_ORDER)))
         methods = [m for m in RUN_ORDER if m in methods]
         if a.clouds:
-            specs = [c.strip() for c in a.clouds.split(",") if c.strip()]
+            specs = expand_groups([c.strip() for c in a.clouds.split(",") if c.strip()],
+                                  [s.strip() for s in a.shapes.split(",") if s.strip()])
         else:
             sizes = [parse_size(s) for s in a.sizes.split(",")] if a.sizes else (QUICK_SIZES if a.quick else FULL_SIZES)
             shapes = [s.strip() for s in a.shapes.split(",") if s.strip()]
@@ -1312,8 +1481,10 @@ def main():
                 log("%s: not in %s, skipped" % (spec, ctx.data_dir))
                 continue
             ctx.repeat = repeats_for(ctx, cloud)
-            log("%s: %d points, mean spacing %.4g — load+save baseline" % (cloud["name"], cloud["points"], cloud["spacing"]))
-            base = baseline(cloud, ctx)
+            log("%s: %d points, mean spacing %.4g" % (cloud["name"], cloud["points"], cloud["spacing"]))
+            # The load+save and no-op runs only serve the methods run through meshlabserver.
+            base = (baseline(cloud, ctx) if any(m not in NOT_MESHLAB for m in methods)
+                    else {"wall": None, "rss_kb": None, "noop_rss_kb": None})
             # The remeshing target: the sphere packer's d from this run, else from an earlier row,
             # else the mean spacing (said so in the row).
             d_info = {"d": cloud["spacing"], "source": "mean spacing (no sphere packer d available)"}

@@ -8,6 +8,10 @@
 #                                        normals and with MeshLab's (bunny-ml, ...): long (hours)
 #   scripts/benchmark.sh --quick         10k and 30k points, hand and hand-ml: minutes
 #   scripts/benchmark.sh --methods spherepack,bpa --clouds torus-60k      one method/cloud
+#   scripts/benchmark.sh --methods g2s,cgal-afsr --clouds noisy,scans     Robust G2S against CGAL's
+#                                        advancing front (build/afsr_run, built when CGAL is found) on
+#                                        the noisy clouds (Gaussian noise 10/25/50 % of the spacing,
+#                                        5/10/20 % outliers; noisy-50k: at 50k points) and the scans
 #   scripts/benchmark.sh --report-only   rebuild the tables and plots from results.jsonl
 #   scripts/benchmark.sh --report-only --remeasure   measure the saved meshes again (new measures or
 #                                        histogram ranges), keeping the timings

@@ -2,7 +2,8 @@
 # Installs everything the project needs on a fresh Debian 12 (bookworm) machine:
 #   - Debian packages: MeshLab 2020.09 (meshlabserver, libmeshlab-common.so, plugins), the Qt5 and GL
 #     development headers MeshLab's plugin API includes, Eigen, GoogleTest, CMake, Xvfb, clang with
-#     its sanitizer runtimes and libFuzzer, and the Python packages the benchmark plots use;
+#     its sanitizer runtimes and libFuzzer, the Python packages the benchmark plots use, and CGAL
+#     (header-only; only for the benchmark's peer row, CGAL's advancing front, tools/cgal/afsr_run);
 #   - MeshLab's plugin API headers (src/common) and vcglib, from the Debian *source* package of the
 #     installed meshlab version, unpacked into third_party/ (ignored by git; never committed);
 #   - MeshLab 2025.07's src/common and vcglib, from Debian unstable's source package (a deb-src entry
@@ -30,6 +31,8 @@ packages=(
   xvfb xauth                                  # meshlabserver needs a display
   time                                        # /usr/bin/time -v: peak memory in the benchmark
   python3 python3-numpy python3-matplotlib    # benchmark tables and plots (/usr/bin/python3)
+  libcgal-dev                                 # CGAL 5.5 (header-only): tools/cgal/afsr_run, the benchmark's
+                                              # cgal-afsr row only (about 16 s of apt, 45 MB of headers)
   xz-utils ca-certificates dpkg-dev            # apt-get source
 )
 
