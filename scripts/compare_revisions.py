@@ -8,7 +8,8 @@ then times both revisions on every cloud in alternating order, round after round
 machine's drift hits both alike. Each run is a fresh process; the time is the engine's own
 `seconds:` (reading the PLY excluded). Prints, per filter and cloud, the median and fastest
 engine seconds of each revision, the faces, the rates (faces per second, from the medians) and the
-ratio of the rates (after / before), and writes the same table to out/revisions/compare-*.md.
+ratio of the rates (after / before), the median and quartiles of the ratios of each round's two
+back-to-back runs (time after / time before: the least sensitive to the machine's drift), and writes the same table to out/revisions/compare-*.md.
 
   scripts/compare_revisions.sh BEFORE [AFTER]      (AFTER defaults to HEAD)
       [--rounds N] [--points N] [--shapes sphere,torus] [--filters g2s,spherepack]
@@ -109,15 +110,20 @@ def main():
     lines = [f"Before: {shas[0][:12]} ({a.before}), after: {shas[1][:12]} ({a.after}); {a.rounds} interleaved "
              f"rounds, {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}; command: `{command}`.", "",
              "| filter | cloud | faces before / after | median s before / after | fastest s before / after "
-             "| rate before / after (faces/s, medians) | after / before |",
-             "|---|---|---|---|---|---|---|"]
+             "| rate before / after (faces/s, medians) | rate after / before | paired time ratios after / before: "
+             "median (quartiles) |",
+             "|---|---|---|---|---|---|---|---|"]
     for f in filters:
         for name, _ in clouds:
             t = [times[(f, name, k)] for k in (0, 1)]
             med = [statistics.median(x) for x in t]
             rate = [faces[(f, name, k)] / med[k] for k in (0, 1)]
+            # The two runs of a round are back to back: their ratio cancels the machine's slower drift.
+            paired = sorted(t1 / t0 for t0, t1 in zip(t[0], t[1]))
+            q = statistics.quantiles(paired, n=4) if len(paired) >= 2 else [paired[0]] * 3
             lines.append(f"| {f} | {name} | {faces[(f, name, 0)]:,} / {faces[(f, name, 1)]:,} | {med[0]:.4f} / {med[1]:.4f} "
-                         f"| {min(t[0]):.4f} / {min(t[1]):.4f} | {rate[0]:,.0f} / {rate[1]:,.0f} | {rate[1] / rate[0]:.3f} |")
+                         f"| {min(t[0]):.4f} / {min(t[1]):.4f} | {rate[0]:,.0f} / {rate[1]:,.0f} | {rate[1] / rate[0]:.3f} "
+                         f"| {statistics.median(paired):.3f} ({q[0]:.3f}–{q[2]:.3f}) |")
     report = "\n".join(lines) + "\n"
     path = os.path.join(ROOT, "out", "revisions", f"compare-{shas[0][:12]}-{shas[1][:12]}.md")
     with open(path, "w") as fh:
