@@ -71,6 +71,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));
   assignHuge(freeEdges_, n, std::uint16_t(0));
+  assignHuge(faceAt_, n, std::uint32_t(kNoFace));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
   // A closed surface has 2N − 4 + 4g triangles: room for 2N + 16, made resident at once (an
@@ -465,6 +466,7 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
     usedPoints_ += !wasUsed[k];
   }
   const unsigned fresh = pem_.addTriangle(u, v, w);
+  for (int k = 0; k < 3; ++k) faceAt_[t[k]] = static_cast<std::uint32_t>(tri_.size());
   tri_.push_back(Triangle{u, v, w});
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t x = t[k], y = t[(k + 1) % 3];
@@ -539,18 +541,14 @@ void Mesher::grow(Progress* progress) {
 }
 
 bool Mesher::triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const {
-  bool found = false;
-  pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
-    if (found || !out) return;
-    pem_.forEachEdge(v, [&](std::uint32_t x, bool, bool in) {
-      if (found || !in || x == w) return;
-      if (pem_.used(w, x)) {
-        tri = {v, w, x};
-        found = true;
-      }
-    });
-  });
-  return found;
+  // The last triangle added at v (none is removed while growing). The point-edge map alone cannot
+  // tell which triangles there are: around an interior vertex v, the used half-edges v→w, w→x and
+  // x→v can belong to three different triangles, and (v, w, x) is then the reverse of a triangle,
+  // so that a seed copying its orientation took the wrong one.
+  const std::uint32_t f = faceAt_.empty() ? kNoFace : faceAt_[v];
+  if (f == kNoFace) return false;
+  tri = {tri_[f][0], tri_[f][1], tri_[f][2]};
+  return true;
 }
 
 void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
@@ -828,6 +826,7 @@ void Mesher::releaseGrowthState() {
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
   HugeVector<std::uint16_t>().swap(freeEdges_);
+  HugeVector<std::uint32_t>().swap(faceAt_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
@@ -911,7 +910,7 @@ Mesher::BoundaryCount Mesher::boundary() {
 size_t Mesher::memoryBytes() const {
   return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
          edgeLengthSum_.capacity() * sizeof(float) +
-         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) +
+         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) + faceAt_.capacity() * sizeof(std::uint32_t) +
          tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }

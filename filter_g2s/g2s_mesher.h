@@ -221,6 +221,9 @@ private:
   HugeVector<float> edgeLengthSum_;
   HugeVector<std::uint16_t> edgeCount_;
   HugeVector<std::uint16_t> freeEdges_;
+  // Per point, during growth: the last triangle added at it (kNoFace: none yet), for triangleAt.
+  static constexpr std::uint32_t kNoFace = ~std::uint32_t{0};
+  HugeVector<std::uint32_t> faceAt_;
   static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
