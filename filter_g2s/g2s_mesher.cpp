@@ -32,28 +32,26 @@ constexpr long kMaxCylinderSlabs = 1024;
 // - kSheetGap: a point this many spacings (growth::meanSpacing) or more off the front triangle's
 //   plane may lie on another sheet; sampling noise stays well below it (the noisy test clouds have
 //   sigma <= 0.25 spacings);
-// - fold: a candidate folding by beta >= 40 degrees, at least kSheetGap off the front's plane, is
-//   refused when its search sphere also holds a point farther ahead within 10 degrees of the
-//   front's plane (the sheet goes on flat, beyond a gap of its sampling, and the fold would cross
-//   to the other sheet); on a part's rim nothing lies flat ahead, and the fold is the surface;
-// - stacking: a candidate folding by beta >= 22.5 degrees (the paper's first flatness class for
-//   m = 8) and at least kStackGate spacings off the front's plane is refused when a triangle of the
-//   mesh, within 30 degrees of parallel to it and facing the same way, lies within the search's
-//   maximum radius of it along its normal (within 26.6 degrees, lateral <= height / 2), at least
-//   kSheetGap spacings and half the local edge length away: two sheets stacked across a thin part
-//   face opposite ways (both out of the material), so the same way means the other sheet from
-//   inside; checked when the candidate is chosen and again when its edge is taken off the queue;
+// - fold: a candidate folding by beta >= 40 degrees, kFoldGap spacings or more behind the front
+//   triangle (against its normal: into the material, where the component faces out, as a new
+//   component's seed does, see orientSeed), is refused when its search sphere also holds a point
+//   farther ahead within 10 degrees of the front's plane (the sheet goes on flat, beyond a gap of
+//   its sampling, and the fold would cross to the other sheet); on a part's rim nothing lies flat
+//   ahead, and the fold is the surface. Folds in front of the front triangle, or less than
+//   kFoldGap behind it, are left alone: in merged scans that is where the front steps between
+//   layers of one surface a spacing or two apart (misregistration), and refusing those steps
+//   opened holes (bunny_merged_normals.ply: 4,240 holes with kSheetGap on either side, 4,193
+//   now, 4,201 without the rule), while a thin part's other sheet lies a whole thickness
+//   (3 spacings or more, where the rule is needed) behind;
 // - other sheet in a G2S ball: for a flat candidate (beta < 30 degrees), points inside its G2S
 //   ball farther from its plane than R / sqrt 2, kSheetGap spacings and the local mesh edge length
 //   do not make it fail: on a smooth, well-sampled sheet no point of the sheet lies there, so they
 //   are the other sheet, which would leave a hole wherever a sheet's sampling has a gap wider than
 //   the part's thickness.
 constexpr double kSheetGap = 1.5;
-constexpr double kStackGate = 0.75;
+constexpr double kFoldGap = 2.0;
 const double kFoldCos = std::cos(40.0 * 3.14159265358979323846 / 180.0);
 const double kFlatAheadCos = std::cos(10.0 * 3.14159265358979323846 / 180.0);
-const double kSharpCos = std::cos(22.5 * 3.14159265358979323846 / 180.0);
-const double kParallelCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
@@ -154,13 +152,24 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
   // that error in float, otherwise exactly in double.
   const std::uint32_t skip[3] = {a, b, c};
   size_t borderline = 0;
-  if (near_.insideOrBorderline(cf, inner, outer, skip, near_.hit.data(), &borderline)) return false;
-  for (size_t h = 0; h < borderline; ++h)
-    if (strictlyInside((pts_[near_.id[near_.hit[h]]] - ball.centre).SquaredNorm(), ball.radius2)) return false;
+  // When not empty: lastInside_ is a point inside.
+  if (near_.insideOrBorderline(cf, inner, outer, skip, near_.hit.data(), &borderline)) {
+    lastInside_ = near_.id[near_.hit[0]];
+    return false;
+  }
+  for (size_t h = 0; h < borderline; ++h) {
+    const std::uint32_t i = near_.id[near_.hit[h]];
+    if (strictlyInside((pts_[i] - ball.centre).SquaredNorm(), ball.radius2)) {
+      lastInside_ = i;
+      return false;
+    }
+  }
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
-    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2);
+    if (i == a || i == b || i == c || !strictlyInside(d2, ball.radius2)) return false;
+    lastInside_ = i;
+    return true;
   });
 }
 
@@ -450,14 +459,8 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // Sec. 3.2 step 4.2: a single point in the search region is taken directly (when the
     // topological tests allow it).
     if (found == 1) {
-      const std::uint32_t id = scored_[0].id;
-      if (!topologyAllows(a, b, c, id)) continue;
-      const Candidate cand = accept(id, true);
-      if (cand.cosBeta < kSharpCos && stackedSameWay(a, b, c, id, maxRadius, local)) {
-        ++stackedRefused_;
-        continue;
-      }
-      return cand;
+      if (topologyAllows(a, b, c, scored_[0].id)) return accept(scored_[0].id, true);
+      continue;
     }
     // Several points: the reference point is the one whose smallest sphere through it and the
     // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
@@ -474,9 +477,6 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     auto before = [](const Scored& x, const Scored& y) {
       return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
     };
-    // A G2S ball can hold another sheet's points only beyond this radius (emptyButOtherSheet).
-    const double otherSheetR = std::max(kSheetGap * spacing_, local);
-    const double otherSheetR2 = otherSheetR * otherSheetR;
     const bool sorted = count > 8;
     if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
     for (size_t done = 0; done < count; ++done) {
@@ -490,15 +490,14 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
       Ball ball;
       if (!circumBall(B, A, pts_[id], ball)) continue;
       if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id) &&
-          !(ball.radius2 > otherSheetR2 && emptyButOtherSheet(ball, a, b, id, frontNormal, frontNorm, local)))
+          // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
+          // local edge length.)
+          !(__builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
+            emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
         continue;
       const Candidate cand = accept(id, false);
-      if (cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, id, dir, frontNormal, frontNorm, cf, outer, front, centre, r2)) {
+      if (__builtin_expect(cand.cosBeta < kFoldCos, 0) && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) {
         ++foldsRefused_;
-        continue;
-      }
-      if (cand.cosBeta < kSharpCos && stackedSameWay(a, b, c, id, maxRadius, local)) {
-        ++stackedRefused_;
         continue;
       }
       return cand;
@@ -511,7 +510,7 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
 }
 
 bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
-                                const P3& frontNormal, double frontNorm, double local) {
+                                std::uint32_t inside, const P3& frontNormal, double frontNorm, double local) {
   // Flat candidates only: a fold is no gap-closing triangle of the sheet.
   const P3 n = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
   const double len = n.Norm();
@@ -521,6 +520,9 @@ bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t
   // Farther than the local edge length too: where the sampling is that coarse, the surface itself
   // (a tube of a few edges across) can lie there.
   const double far = std::max({radius * std::sqrt(0.5), kSheetGap * spacing_, local});
+  // The point that failed the emptiness test lies near the plane (on a clean cloud, nearly
+  // always): the ball is spoiled by its own sheet, without another query.
+  if (std::abs((pts_[inside] - ball.centre) * unit) <= far) return false;
   const bool spoiled = grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
     return i != a && i != b && i != p && strictlyInside(d2, ball.radius2) &&
            std::abs((pts_[i] - ball.centre) * unit) <= far;
@@ -529,14 +531,22 @@ bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t
   return !spoiled;
 }
 
-bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& dir, const P3& frontNormal,
-                                double frontNorm, const float* cf, float outer, const std::uint32_t* front,
-                                const P3& centre, double r2) const {
+bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, const P3& dir,
+                                const P3& frontNormal, double frontNorm, double radius) const {
   const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
-  if (std::abs((Q - A) * frontNormal) < kSheetGap * spacing_ * frontNorm) return false; // near the front's plane
+  // Behind the front triangle, kFoldGap spacings or more: into the material.
+  if (!((Q - A) * frontNormal <= -kFoldGap * spacing_ * frontNorm)) return false;
   const P3 mid = (A + B) * 0.5;
   const double ahead = (Q - mid) * dir;
-  // The points of the search sphere again (the G2S tests since have overwritten the list).
+  // The points of the search sphere again (the G2S tests since have overwritten the list; the
+  // sphere is set up again as in search, which then need not keep it).
+  const P3 centre = searchCentre(A, B, dir, radius);
+  const double r2 = radius * radius * (1.0 + 1e-12);
+  float cf[3];
+  grid_.toFloat(centre, cf);
+  const double slack = 2.0 * grid_.floatSlack(centre, radius);
+  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
+  const std::uint32_t front[3] = {a, b, c};
   foldHits_.resize(near_.size + kNearPad);
   const size_t hits = near_.collectWithin(cf, outer, front, foldHits_.data());
   for (size_t h = 0; h < hits; ++h) {
@@ -547,29 +557,6 @@ bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t 
     if (len > 0 && (frontNormal * n) > kFlatAheadCos * frontNorm * len) return true;
   }
   return false;
-}
-
-bool Mesher::stackedSameWay(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, double reach,
-                            double local) const {
-  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c], &Q = pts_[p];
-  const P3 frontNormal = (B - A) ^ (C - A);
-  const double frontNorm = frontNormal.Norm();
-  if (!(frontNorm > 0) || std::abs((Q - A) * frontNormal) < kStackGate * spacing_ * frontNorm) return false;
-  P3 n = (A - B) ^ (Q - B); // the candidate triangle (b, a, p)
-  const double len = n.Norm();
-  if (!(len > 0)) return false;
-  n /= len;
-  const P3 g = (A + B + Q) / 3.0;
-  const double near = std::max(0.5 * local, kSheetGap * spacing_);
-  std::array<std::uint32_t, 3> t;
-  return grid_.anyInBall(g, reach, [&](std::uint32_t i, double d2) {
-    if (i == a || i == b || i == p || isolated(i)) return false;
-    const double h = (pts_[i] - g) * n;
-    if (std::abs(h) < near || d2 > 1.25 * h * h) return false; // off the normal's narrow cone
-    if (!triangleAt(i, t)) return false;
-    const P3 m = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
-    return m * n > kParallelCos * m.Norm();
-  });
 }
 
 void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
@@ -619,8 +606,7 @@ void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     return;
   }
   queue_.push(cand.priority(params_.flatnessLevels) - 1,
-              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u) |
-                                     (!cand.closesLoop && cand.cosBeta < kSharpCos ? std::uint32_t{FrontEdge::kSharp} : 0u)});
+              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u)});
 }
 
 void Mesher::grow(Progress* progress) {
@@ -628,13 +614,10 @@ void Mesher::grow(Progress* progress) {
   while (!queue_.empty()) {
     FrontEdge e = queue_.pop();
     const bool loop = (e.p & FrontEdge::kLoop) != 0;
-    const bool sharp = (e.p & FrontEdge::kSharp) != 0;
-    e.p &= ~(FrontEdge::kLoop | FrontEdge::kSharp);
+    e.p &= ~FrontEdge::kLoop;
     // Closed from the other side since it was queued: no longer a free edge.
     if (pem_.used(e.b, e.a)) continue;
-    // A fold chosen before the mesh reached the other side of a thin part: stacked on it now?
-    // (The search, done again, then refuses it.)
-    if (!topologyAllows(e.a, e.b, e.c, e.p) || (sharp && stackedSameWayNow(e))) {
+    if (!topologyAllows(e.a, e.b, e.c, e.p)) {
       // The mesh changed around the edge since its candidate was chosen: choose again among the
       // points that pass the tests now, at the priority that gives (or make it a boundary edge).
       queueEdge(e.a, e.b, e.c);
@@ -656,12 +639,6 @@ void Mesher::grow(Progress* progress) {
     if (progress != nullptr && (++tick & 1023) == 0)
       progress->update(double(usedPoints_) / double(grid_.size()));
   }
-}
-
-bool Mesher::stackedSameWayNow(const FrontEdge& e) const {
-  const double edge = (pts_[e.a] - pts_[e.b]).Norm();
-  const double local = 0.5 * (localSpacing(e.a) + localSpacing(e.b));
-  return stackedSameWay(e.a, e.b, e.c, e.p, std::max(edge, params_.maxSearchRadiusFactor * local), local);
 }
 
 bool Mesher::triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const {

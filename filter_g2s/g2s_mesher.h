@@ -30,10 +30,9 @@ namespace g2s {
 
 // A free edge in the front queue: half-edge a→b of the front triangle (a, b, c) is used, b→a is
 // not; p is the candidate point found for the new triangle (b, a, p) (point indices use at most
-// 29 bits, see PointEdgeMap::kMaxPoints, so the top two bits carry flags).
+// 29 bits, see PointEdgeMap::kMaxPoints, so the top bit carries a flag).
 struct FrontEdge {
-  static constexpr std::uint32_t kLoop = 1u << 31;  // on p: the triangle closes a loop (closesLoop)
-  static constexpr std::uint32_t kSharp = 1u << 30; // on p: it folds by beta >= 22.5° (checked again when popped)
+  static constexpr std::uint32_t kLoop = 1u << 31; // on p: the triangle closes a loop (closesLoop)
   std::uint32_t a, b, c, p;
 };
 
@@ -157,10 +156,9 @@ public:
   // Front edges left open because a candidate had no room for another edge at one of its points
   // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
   size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
-  // Thin parts (g2s_mesher.cpp, kSheetGap): candidates refused as folds across a part or as the
-  // other sheet seen from inside, and G2S balls found empty but for points of another sheet.
+  // Thin parts (g2s_mesher.cpp, kSheetGap): candidates refused as folds across a part, and G2S
+  // balls found empty but for points of another sheet.
   size_t foldsRefused() const { return foldsRefused_; }
-  size_t stackedRefused() const { return stackedRefused_; }
   size_t otherSheetBalls() const { return otherSheetBalls_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
@@ -200,19 +198,16 @@ private:
   // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
   // point but points far off its plane, of another sheet (a flat candidate only).
   // local: the mean edge length at a and b.
-  bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
-                          double frontNorm, double local);
-  // Candidate (b, a, p), far off the front's plane, folds while its search sphere (centre, r2;
-  // float query cf, outer, skipping front[]) holds a point farther ahead near the front's plane.
-  bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& dir, const P3& frontNormal,
-                          double frontNorm, const float* cf, float outer, const std::uint32_t* front, const P3& centre,
-                          double r2) const;
-  // Candidate (b, a, p) of front triangle (a, b, c) lies stacked on a triangle facing the same way.
-  bool stackedSameWay(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, double reach,
-                      double local) const;
-  bool stackedSameWayNow(const FrontEdge& e) const;
-  bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
-                 std::uint32_t b, std::uint32_t c) const; // G2S emptiness, using near_ then the grid
+  // inside: a point found inside the ball by emptyBall.
+  bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p, std::uint32_t inside,
+                          const P3& frontNormal, double frontNorm, double local);
+  // Candidate (b, a, p), far behind the front triangle (a, b, c), folds while its search sphere
+  // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
+  bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, const P3& dir,
+                          const P3& frontNormal, double frontNorm, double radius) const;
+  // G2S emptiness, using near_ then the grid; when not empty, lastInside_ is a point inside.
+  bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a, std::uint32_t b,
+                 std::uint32_t c) const;
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
@@ -254,8 +249,9 @@ private:
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
-  size_t foldsRefused_ = 0, stackedRefused_ = 0, otherSheetBalls_ = 0;
+  size_t foldsRefused_ = 0, otherSheetBalls_ = 0;
   mutable std::vector<std::uint32_t> foldHits_; // scratch of foldsAcrossThePart
+  mutable std::uint32_t lastInside_ = 0;        // see emptyBall
   bool nearFullPoint_ = false;       // some point has fewer than 2 free entries (PointEdgeMap::hasRoom)
   mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)

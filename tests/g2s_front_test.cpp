@@ -287,10 +287,7 @@ TEST(G2SPriority, FlatnessPriorityReducesTwistingOnThinParts) {
   // orientation, and the two surfaces cannot be merged (boundary edges). Growing the flattest
   // edges first delays such jumps. On flattened ellipsoids (a sphere squashed to 5 % of its
   // height: two close faces meeting at a sharp rim), m = 8 flatness classes must leave fewer
-  // boundary edges than a single class (size priority only) over three clouds, and on most of
-  // them. (Since the thin-part rules of g2s_mesher.cpp also stop jumps with m = 1, one of the
-  // three is no longer better: m = 8 leaves 897, 919, 492 boundary edges, m = 1 926, 871, 943.)
-  size_t total[2] = {0, 0}, better = 0;
+  // boundary edges than a single class (size priority only), for each of three clouds.
   for (std::uint64_t seed : {1, 2, 3}) {
     growth::CloudSpec spec;
     spec.count = 6000;
@@ -305,12 +302,9 @@ TEST(G2SPriority, FlatnessPriorityReducesTwistingOnThinParts) {
       m.meshAll();
       m.removeNonManifoldVertices();
       boundary[k] = m.boundaryEdges();
-      total[k] += boundary[k];
     }
     RecordProperty("boundary_edges_m8_seed" + std::to_string(seed), int(boundary[0]));
     RecordProperty("boundary_edges_m1_seed" + std::to_string(seed), int(boundary[1]));
-    better += boundary[0] < boundary[1];
+    EXPECT_LT(boundary[0], boundary[1]) << "seed " << seed;
   }
-  EXPECT_LT(total[0], total[1]);
-  EXPECT_GE(better, 2u);
 }
