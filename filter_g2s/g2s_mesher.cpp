@@ -41,7 +41,7 @@ constexpr long kMaxCylinderSlabs = 1024;
 //   kFoldGap behind it, are left alone: in merged scans that is where the front steps between
 //   layers of one surface a spacing or two apart (misregistration), and refusing those steps
 //   opened holes (bunny_merged_normals.ply: 4,240 holes with kSheetGap on either side, 4,193
-//   now, 4,201 without the rule), while a thin part's other sheet lies a whole thickness
+//   now, 4,198 without the rule; 0978fef 4,201), while a thin part's other sheet lies a whole thickness
 //   (3 spacings or more, where the rule is needed) behind;
 // - other sheet in a G2S ball: for a flat candidate (beta < 30 degrees), points inside its G2S
 //   ball farther from its plane than R / sqrt 2, kSheetGap spacings and the local mesh edge length
