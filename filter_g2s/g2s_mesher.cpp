@@ -41,8 +41,8 @@ constexpr long kMaxCylinderSlabs = 1024;
 //   kFoldGap behind it, are left alone: in merged scans that is where the front steps between
 //   layers of one surface a spacing or two apart (misregistration), and refusing those steps
 //   opened holes (bunny_merged_normals.ply: 4,240 holes with kSheetGap on either side, 4,193
-//   now, 4,198 without the rule; 0978fef 4,201), while a thin part's other sheet lies a whole thickness
-//   (3 spacings or more, where the rule is needed) behind;
+//   now, 4,198 without the rule; 0978fef 4,201), while a thin part's other sheet lies a whole
+//   thickness (3 spacings or more, where the rule is needed) behind;
 // - other sheet in a G2S ball: for a flat candidate (beta < 30 degrees), points inside its G2S
 //   ball farther from its plane than R / sqrt 2, kSheetGap spacings and the local mesh edge length
 //   do not make it fail: on a smooth, well-sampled sheet no point of the sheet lies there, so they
@@ -167,9 +167,7 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
-    if (i == a || i == b || i == c || !strictlyInside(d2, ball.radius2)) return false;
-    lastInside_ = i;
-    return true;
+    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2) && (lastInside_ = i, true);
   });
 }
 

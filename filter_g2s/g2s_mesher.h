@@ -25,6 +25,12 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__GNUC__)
+#define GROWTH_G2S_COLD __attribute__((cold)) // rarely taken: keeps the hot search loop's layout
+#else
+#define GROWTH_G2S_COLD
+#endif
+
 namespace growth {
 namespace g2s {
 
@@ -199,12 +205,12 @@ private:
   // point but points far off its plane, of another sheet (a flat candidate only).
   // local: the mean edge length at a and b.
   // inside: a point found inside the ball by emptyBall.
-  bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p, std::uint32_t inside,
-                          const P3& frontNormal, double frontNorm, double local);
+  GROWTH_G2S_COLD bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
+                                          std::uint32_t inside, const P3& frontNormal, double frontNorm, double local);
   // Candidate (b, a, p), far behind the front triangle (a, b, c), folds while its search sphere
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
-  bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, const P3& dir,
-                          const P3& frontNormal, double frontNorm, double radius) const;
+  GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
+                                          const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
   // G2S emptiness, using near_ then the grid; when not empty, lastInside_ is a point inside.
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a, std::uint32_t b,
                  std::uint32_t c) const;
