@@ -24,6 +24,36 @@ constexpr size_t kMaxSeedTriangles = 32;
 // 2 x 1024 ball queries per seed attempt instead of box size / circumradius.
 constexpr long kMaxCylinderSlabs = 1024;
 
+// Thin parts (issue 13 item 5; not in the paper, whose analysis assumes a surface locally flat at
+// the scale of its G2S balls). Where a closed part is a few spacings thick, a search sphere and a
+// G2S ball can reach the part's other sheet: the front then crosses the material, and the sheet
+// grown on from the crossing is the other sheet seen from inside, inside out. Measured on closed
+// slabs 3-4 mean nearest-neighbour spacings thick (tests/g2s_build_test.cpp, ThinSlab*):
+// - kSheetGap: a point this many spacings (growth::meanSpacing) or more off the front triangle's
+//   plane may lie on another sheet; sampling noise stays well below it (the noisy test clouds have
+//   sigma <= 0.25 spacings);
+// - fold: a candidate folding by beta >= 40 degrees, kFoldGap spacings or more behind the front
+//   triangle (against its normal: into the material, where the component faces out, as a new
+//   component's seed does, see orientSeed), is refused when its search sphere also holds a point
+//   farther ahead within 10 degrees of the front's plane (the sheet goes on flat, beyond a gap of
+//   its sampling, and the fold would cross to the other sheet); on a part's rim nothing lies flat
+//   ahead, and the fold is the surface. Folds in front of the front triangle, or less than
+//   kFoldGap behind it, are left alone: in merged scans that is where the front steps between
+//   layers of one surface a spacing or two apart (misregistration), and refusing those steps
+//   opened holes (bunny_merged_normals.ply: 4,240 holes with kSheetGap on either side, 4,193
+//   now, 4,198 without the rule; 0978fef 4,201), while a thin part's other sheet lies a whole
+//   thickness (3 spacings or more, where the rule is needed) behind;
+// - other sheet in a G2S ball: for a flat candidate (beta < 30 degrees), points inside its G2S
+//   ball farther from its plane than R / sqrt 2, kSheetGap spacings and the local mesh edge length
+//   do not make it fail: on a smooth, well-sampled sheet no point of the sheet lies there, so they
+//   are the other sheet, which would leave a hole wherever a sheet's sampling has a gap wider than
+//   the part's thickness.
+constexpr double kSheetGap = 1.5;
+constexpr double kFoldGap = 2.0;
+const double kFoldCos = std::cos(40.0 * 3.14159265358979323846 / 180.0);
+const double kFlatAheadCos = std::cos(10.0 * 3.14159265358979323846 / 180.0);
+const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 
 std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
@@ -71,6 +101,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   assignHuge(edgeLengthSum_, n, 0.f);
   assignHuge(edgeCount_, n, std::uint16_t(0));
   assignHuge(freeEdges_, n, std::uint16_t(0));
+  assignHuge(faceAt_, n, std::uint32_t(kNoFace));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
   // A closed surface has 2N − 4 + 4g triangles: room for 2N + 16, made resident at once (an
@@ -121,13 +152,22 @@ bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCe
   // that error in float, otherwise exactly in double.
   const std::uint32_t skip[3] = {a, b, c};
   size_t borderline = 0;
-  if (near_.insideOrBorderline(cf, inner, outer, skip, near_.hit.data(), &borderline)) return false;
-  for (size_t h = 0; h < borderline; ++h)
-    if (strictlyInside((pts_[near_.id[near_.hit[h]]] - ball.centre).SquaredNorm(), ball.radius2)) return false;
+  // When not empty: lastInside_ is a point inside.
+  if (near_.insideOrBorderline(cf, inner, outer, skip, near_.hit.data(), &borderline)) {
+    lastInside_ = near_.id[near_.hit[0]];
+    return false;
+  }
+  for (size_t h = 0; h < borderline; ++h) {
+    const std::uint32_t i = near_.id[near_.hit[h]];
+    if (strictlyInside((pts_[i] - ball.centre).SquaredNorm(), ball.radius2)) {
+      lastInside_ = i;
+      return false;
+    }
+  }
   // The gathered ball contains the whole test ball: the check above was complete.
   if ((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)) return true;
   return !grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
-    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2);
+    return i != a && i != b && i != c && strictlyInside(d2, ball.radius2) && (lastInside_ = i, true);
   });
 }
 
@@ -447,14 +487,74 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
       if (!topologyAllows(a, b, c, id)) continue;
       Ball ball;
       if (!circumBall(B, A, pts_[id], ball)) continue;
-      if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id)) continue;
-      return accept(id, false);
+      if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id) &&
+          // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
+          // local edge length.)
+          !(__builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
+            emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
+        continue;
+      const Candidate cand = accept(id, false);
+      if (__builtin_expect(cand.cosBeta < kFoldCos, 0) && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) {
+        ++foldsRefused_;
+        continue;
+      }
+      return cand;
     }
     // Points were found but none spans an empty sphere with the edge: the G2S point lies farther
     // out, so the radius grows on (the paper grows it when no point is found; a region holding
     // only non-G2S points has not reached the G2S point yet).
   }
   return none;
+}
+
+bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
+                                std::uint32_t inside, const P3& frontNormal, double frontNorm, double local) {
+  // Flat candidates only: a fold is no gap-closing triangle of the sheet.
+  const P3 n = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
+  const double len = n.Norm();
+  if (!(len > 0) || !((frontNormal * n) > kOtherSheetFlatCos * frontNorm * len)) return false;
+  const P3 unit = n / len;
+  const double radius = std::sqrt(ball.radius2);
+  // Farther than the local edge length too: where the sampling is that coarse, the surface itself
+  // (a tube of a few edges across) can lie there.
+  const double far = std::max({radius * std::sqrt(0.5), kSheetGap * spacing_, local});
+  // The point that failed the emptiness test lies near the plane (on a clean cloud, nearly
+  // always): the ball is spoiled by its own sheet, without another query.
+  if (std::abs((pts_[inside] - ball.centre) * unit) <= far) return false;
+  const bool spoiled = grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
+    return i != a && i != b && i != p && strictlyInside(d2, ball.radius2) &&
+           std::abs((pts_[i] - ball.centre) * unit) <= far;
+  });
+  otherSheetBalls_ += !spoiled;
+  return !spoiled;
+}
+
+bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p, const P3& dir,
+                                const P3& frontNormal, double frontNorm, double radius) const {
+  const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
+  // Behind the front triangle, kFoldGap spacings or more: into the material.
+  if (!((Q - A) * frontNormal <= -kFoldGap * spacing_ * frontNorm)) return false;
+  const P3 mid = (A + B) * 0.5;
+  const double ahead = (Q - mid) * dir;
+  // The points of the search sphere again (the G2S tests since have overwritten the list; the
+  // sphere is set up again as in search, which then need not keep it).
+  const P3 centre = searchCentre(A, B, dir, radius);
+  const double r2 = radius * radius * (1.0 + 1e-12);
+  float cf[3];
+  grid_.toFloat(centre, cf);
+  const double slack = 2.0 * grid_.floatSlack(centre, radius);
+  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
+  const std::uint32_t front[3] = {a, b, c};
+  foldHits_.resize(near_.size + kNearPad);
+  const size_t hits = near_.collectWithin(cf, outer, front, foldHits_.data());
+  for (size_t h = 0; h < hits; ++h) {
+    const P3& X = pts_[foldHits_[h]];
+    if ((X - centre).SquaredNorm() > r2 || (X - mid) * dir <= ahead) continue;
+    const P3 n = (A - B) ^ (X - B);
+    const double len = n.Norm();
+    if (len > 0 && (frontNormal * n) > kFlatAheadCos * frontNorm * len) return true;
+  }
+  return false;
 }
 
 void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
@@ -465,6 +565,7 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
     usedPoints_ += !wasUsed[k];
   }
   const unsigned fresh = pem_.addTriangle(u, v, w);
+  for (int k = 0; k < 3; ++k) faceAt_[t[k]] = static_cast<std::uint32_t>(tri_.size());
   tri_.push_back(Triangle{u, v, w});
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t x = t[k], y = t[(k + 1) % 3];
@@ -539,18 +640,14 @@ void Mesher::grow(Progress* progress) {
 }
 
 bool Mesher::triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const {
-  bool found = false;
-  pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
-    if (found || !out) return;
-    pem_.forEachEdge(v, [&](std::uint32_t x, bool, bool in) {
-      if (found || !in || x == w) return;
-      if (pem_.used(w, x)) {
-        tri = {v, w, x};
-        found = true;
-      }
-    });
-  });
-  return found;
+  // The last triangle added at v (none is removed while growing). The point-edge map alone cannot
+  // tell which triangles there are: around an interior vertex v, the used half-edges v→w, w→x and
+  // x→v can belong to three different triangles, and (v, w, x) is then the reverse of a triangle,
+  // so that a seed copying its orientation took the wrong one.
+  const std::uint32_t f = faceAt_.empty() ? kNoFace : faceAt_[v];
+  if (f == kNoFace) return false;
+  tri = {tri_[f][0], tri_[f][1], tri_[f][2]};
+  return true;
 }
 
 void Mesher::orientSeed(std::array<std::uint32_t, 3>& tri) const {
@@ -828,9 +925,11 @@ void Mesher::releaseGrowthState() {
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);
   HugeVector<std::uint16_t>().swap(freeEdges_);
+  HugeVector<std::uint32_t>().swap(faceAt_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
+  std::vector<std::uint32_t>().swap(foldHits_);
 }
 
 void Mesher::releaseWorkingState() {
@@ -911,7 +1010,7 @@ Mesher::BoundaryCount Mesher::boundary() {
 size_t Mesher::memoryBytes() const {
   return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
          edgeLengthSum_.capacity() * sizeof(float) +
-         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) +
+         (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) + faceAt_.capacity() * sizeof(std::uint32_t) +
          tri_.capacity() * sizeof(Triangle) + alive_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }

@@ -25,6 +25,12 @@
 #include <cstdint>
 #include <vector>
 
+#if defined(__GNUC__)
+#define GROWTH_G2S_COLD __attribute__((cold)) // rarely taken: keeps the hot search loop's layout
+#else
+#define GROWTH_G2S_COLD
+#endif
+
 namespace growth {
 namespace g2s {
 
@@ -156,6 +162,10 @@ public:
   // Front edges left open because a candidate had no room for another edge at one of its points
   // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
   size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
+  // Thin parts (g2s_mesher.cpp, kSheetGap): candidates refused as folds across a part, and G2S
+  // balls found empty but for points of another sheet.
+  size_t foldsRefused() const { return foldsRefused_; }
+  size_t otherSheetBalls() const { return otherSheetBalls_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
@@ -191,8 +201,19 @@ private:
   Candidate search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
                    double frontNorm);
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
-  bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
-                 std::uint32_t b, std::uint32_t c) const; // G2S emptiness, using near_ then the grid
+  // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
+  // point but points far off its plane, of another sheet (a flat candidate only).
+  // local: the mean edge length at a and b.
+  // inside: a point found inside the ball by emptyBall.
+  GROWTH_G2S_COLD bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
+                                          std::uint32_t inside, const P3& frontNormal, double frontNorm, double local);
+  // Candidate (b, a, p), far behind the front triangle (a, b, c), folds while its search sphere
+  // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
+  GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
+                                          const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
+  // G2S emptiness, using near_ then the grid; when not empty, lastInside_ is a point inside.
+  bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a, std::uint32_t b,
+                 std::uint32_t c) const;
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
@@ -221,6 +242,9 @@ private:
   HugeVector<float> edgeLengthSum_;
   HugeVector<std::uint16_t> edgeCount_;
   HugeVector<std::uint16_t> freeEdges_;
+  // Per point, during growth: the last triangle added at it (kNoFace: none yet), for triangleAt.
+  static constexpr std::uint32_t kNoFace = ~std::uint32_t{0};
+  HugeVector<std::uint32_t> faceAt_;
   static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
@@ -231,6 +255,9 @@ private:
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
+  size_t foldsRefused_ = 0, otherSheetBalls_ = 0;
+  mutable std::vector<std::uint32_t> foldHits_; // scratch of foldsAcrossThePart
+  mutable std::uint32_t lastInside_ = 0;        // see emptyBall
   bool nearFullPoint_ = false;       // some point has fewer than 2 free entries (PointEdgeMap::hasRoom)
   mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)

@@ -105,7 +105,10 @@ bool borderBase(const std::uint32_t* id, const float* x, const float* y, const f
   std::size_t n = 0;
   auto take = [&](std::size_t k, float d2) { // false: inside
     if (skipped(id[k], skip)) return true;
-    if (d2 < inner) return false;
+    if (d2 < inner) {
+      out[0] = static_cast<std::uint32_t>(k);
+      return false;
+    }
     out[n++] = static_cast<std::uint32_t>(k);
     return true;
   };
@@ -240,7 +243,10 @@ __attribute__((target("avx2,popcnt"))) bool borderAvx2(const std::uint32_t* id, 
     const __m256 d2 = dist2Avx2(_mm256_loadu_ps(x + k), _mm256_loadu_ps(y + k), _mm256_loadu_ps(z + k), cx, cy, cz);
     const unsigned keep = keptLanes8(id + k, s0, s1, s2) & validLanes8(size - k);
     const unsigned inside = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, in, _CMP_LT_OQ))) & keep;
-    if (inside != 0) return true;
+    if (inside != 0) {
+      out[0] = static_cast<std::uint32_t>(k + unsigned(__builtin_ctz(inside)));
+      return true;
+    }
     const unsigned near = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(d2, on, _CMP_LE_OQ))) & keep;
     _mm256_storeu_si256(reinterpret_cast<__m256i*>(out + n),
                         _mm256_permutevar8x32_epi32(_mm256_add_epi32(iota, _mm256_set1_epi32(int(k))), compressIndex(near)));
@@ -325,7 +331,10 @@ __attribute__((target("avx512f,popcnt"))) bool borderAvx512(const std::uint32_t*
   for (std::size_t k = 0; k < size; k += 16) {
     const __m512 d2 = dist2Avx512(_mm512_loadu_ps(x + k), _mm512_loadu_ps(y + k), _mm512_loadu_ps(z + k), cx, cy, cz);
     const __mmask16 keep = __mmask16(validLanes16(size - k) & keptLanes16(id + k, s0, s1, s2));
-    if (_mm512_mask_cmp_ps_mask(keep, d2, in, _CMP_LT_OQ) != 0) return true;
+    if (const __mmask16 inside = _mm512_mask_cmp_ps_mask(keep, d2, in, _CMP_LT_OQ)) {
+      out[0] = static_cast<std::uint32_t>(k + unsigned(__builtin_ctz(unsigned(inside))));
+      return true;
+    }
     const __mmask16 near = _mm512_mask_cmp_ps_mask(keep, d2, on, _CMP_LE_OQ);
     _mm512_storeu_si512(out + n, _mm512_maskz_compress_epi32(near, _mm512_add_epi32(iota, _mm512_set1_epi32(int(k)))));
     n += std::size_t(__builtin_popcount(unsigned(near)));

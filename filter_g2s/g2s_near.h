@@ -53,9 +53,10 @@ struct NearList {
   // distance to c is <= r2 (out must hold size + kNearPad entries); returns how many.
   std::size_t collectWithin(const float* c, float r2, const std::uint32_t* skip, std::uint32_t* out) const;
   // For an emptiness test against a ball of centre c: true when a point other than skip[0..2] has
-  // float squared distance < inner (inside, whatever the float error); otherwise writes to out the
-  // positions of the points other than skip[0..2] with inner <= d2 <= outer (to be decided exactly;
-  // out must hold size + kNearPad entries), sets *count, and returns false.
+  // float squared distance < inner (inside, whatever the float error), and then out[0] is the
+  // position of such a point; otherwise writes to out the positions of the points other than
+  // skip[0..2] with inner <= d2 <= outer (to be decided exactly; out must hold size + kNearPad
+  // entries), sets *count, and returns false.
   bool insideOrBorderline(const float* c, float inner, float outer, const std::uint32_t* skip,
                           std::uint32_t* out, std::size_t* count) const;
 

@@ -15,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -454,11 +455,30 @@ TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
   EXPECT_EQ(wrong, 0u);
 }
 
-// A closed thin plate: 0.05 thick, three times the square root of the area per point (about six
-// mean nearest-neighbour spacings). Its faces look out of the plate, the large faces up on top
-// and down below. (At three nearest-neighbour spacings the growth still crosses the plate's
-// interior from one sheet to the other where a sheet has a gap, which turns the other sheet
-// inside out: not solved yet.)
+// Faces of a mesh of a closed slab [-h, h]^2 x [-t/2, t/2] whose normal points into the material,
+// counted apart on the large faces and within 2t of a side (at the rims, where a few triangles
+// cross the corner of the material from one face of the box to another): outwards is the direction
+// from the slab's medial rectangle, [-(h - t/2), h - t/2]^2 x {0}, to the face's centroid (a box
+// normal on a face of the box, diagonal on a rim's chamfer).
+struct SlabFacing {
+  size_t inward = 0, inwardAtRims = 0;
+};
+SlabFacing slabFacing(const CMeshO& mesh, double h, double t) {
+  SlabFacing c;
+  const double core = h - 0.5 * t;
+  for (const auto& f : mesh.face) {
+    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                       d = vcg::Point3d::Construct(f.cP(2));
+    const vcg::Point3d n = (b - a) ^ (d - a), g = (a + b + d) / 3.0;
+    const vcg::Point3d out(g[0] - std::max(-core, std::min(core, g[0])), g[1] - std::max(-core, std::min(core, g[1])), g[2]);
+    if (n * out > 0) continue;
+    (std::max(std::abs(g[0]), std::abs(g[1])) > h - 2 * t ? c.inwardAtRims : c.inward) += 1;
+  }
+  return c;
+}
+
+// A closed thin plate 0.05 thick, three times the square root of the area per point (about six
+// mean nearest-neighbour spacings): its faces look out of the plate.
 TEST(G2SBuild, ThinSlabFacesOutward) {
   CloudSpec spec;
   spec.shape = Shape::Slab;
@@ -468,20 +488,66 @@ TEST(G2SBuild, ThinSlabFacesOutward) {
   const auto r = run(cloud);
   expectValidOutput(cloud, r);
   EXPECT_NEAR(spec.slabThickness / std::sqrt(growth::shapeArea(spec) / double(spec.count)), 3.0, 0.1);
-  size_t top = 0, bottom = 0, wrong = 0;
-  for (const auto& f : r->mesh.face) {
-    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
-                       d = vcg::Point3d::Construct(f.cP(2));
-    const vcg::Point3d n = ((b - a) ^ (d - a)).Normalize();
-    if (std::abs(n[2]) < 0.9) continue; // on the sides or across the rim
-    const double z = (a[2] + b[2] + d[2]) / 3.0;
-    (z > 0 ? top : bottom) += 1;
-    wrong += (n[2] > 0) != (z > 0);
+  const SlabFacing facing = slabFacing(r->mesh, spec.slabHalfSize, spec.slabThickness);
+  EXPECT_EQ(facing.inward, 0u);
+  EXPECT_LE(facing.inwardAtRims, 5u);
+  EXPECT_GT(r->stat.faces, 59800u);
+  EXPECT_GT(r->stat.vertices, 29990u);
+  EXPECT_LE(r->stat.holes, 12u);
+}
+
+// Issue 13 item 5: closed plates three and four mean nearest-neighbour spacings thick, several
+// samplings. The growth used to cross the plate's interior from one sheet to the other (where a
+// sheet's sampling has a gap wider than the plate, or at a rim), so that the other sheet grew
+// inside out and the rims stayed open: at 0.025 (30,000 points, seed 1) 28,508 faces of the top
+// faced into the plate, 1,260 boundary edges in 34 holes. Now every face of the large faces looks
+// out of the plate, a few triangles at the rims (3 spacings high, two 90-degree edges) cut across
+// the corner of the material, and what stays open are small holes at the rims, of at most 6
+// edges on average. (At two spacings the growth still crosses: not solved.)
+TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutward) {
+  struct Case {
+    double thickness;
+    size_t points;
+    std::uint64_t seed;
+  };
+  for (const Case c : {Case{0.025, 30000, 1}, Case{0.025, 30000, 3}, Case{0.033, 30000, 1}, Case{0.02, 50000, 7}}) {
+    SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
+    CloudSpec spec;
+    spec.shape = Shape::Slab;
+    spec.count = c.points;
+    spec.seed = c.seed;
+    spec.slabThickness = c.thickness;
+    const Mesh cloud = cloudMesh(spec);
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    const double spacings = c.thickness / r->stat.spacing;
+    EXPECT_GT(spacings, 2.9);
+    EXPECT_LT(spacings, 4.1);
+    const SlabFacing facing = slabFacing(r->mesh, spec.slabHalfSize, spec.slabThickness);
+    EXPECT_EQ(facing.inward, 0u);
+    EXPECT_LE(facing.inwardAtRims, r->stat.faces / 4000); // 15 of 60,000 faces
+    EXPECT_LE(r->topo.components, 2u);
+    EXPECT_LE(r->stat.unusedPoints, 3u);
+    EXPECT_LE(r->stat.holes, 22u);
+    EXPECT_LE(r->stat.boundaryEdges, 6 * r->stat.holes);
   }
-  EXPECT_GT(top, 25000u);
-  EXPECT_GT(bottom, 25000u);
-  EXPECT_LE(wrong, 5u); // a stray face across the rim at most
-  EXPECT_GT(r->stat.vertices, 29900u);
+}
+
+// The thin-part rules (g2s_mesher.cpp, kSheetGap) never act on clean samplings of smooth closed
+// surfaces: their meshes are those of the paper's growth alone.
+TEST(G2SBuild, ThinPartRulesStayOutOfCleanClouds) {
+  for (Shape shape : {Shape::Sphere, Shape::Torus, Shape::Genus2}) {
+    CloudSpec spec;
+    spec.shape = shape;
+    spec.count = 30000;
+    g2s::Params p = defaults();
+    p.maxSearchRadiusFactor = g2s::kDefaultMaxSearchRadiusFactor;
+    g2s::Mesher m(growth::generateCloud(spec).points, p);
+    m.meshAll();
+    EXPECT_EQ(m.foldsRefused(), 0u) << int(shape);
+    EXPECT_EQ(m.otherSheetBalls(), 0u) << int(shape);
+    EXPECT_EQ(m.boundaryEdges(), 0u) << int(shape);
+  }
 }
 
 TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {

@@ -119,8 +119,8 @@ TEST(G2SNear, CollectWithinAndTheEmptinessScanAgreeWithAPlainLoop) {
       ASSERT_EQ(hits, want.size()) << simdLevelName(level);
       for (size_t i = 0; i < hits; ++i) EXPECT_EQ(out[i], want[i]);
 
-      // Emptiness: skipped ids are ignored; a point below `inner` answers at once; the points
-      // between inner and outer are listed for the exact test.
+      // Emptiness: skipped ids are ignored; a point below `inner` answers at once, its position in
+      // out[0]; the points between inner and outer are listed for the exact test.
       for (float inner : {0.f, 0.01f, 0.05f}) {
         const float outer = 0.08f;
         const std::uint32_t skip[3] = {1, 5, 9};
@@ -135,7 +135,12 @@ TEST(G2SNear, CollectWithinAndTheEmptinessScanAgreeWithAPlainLoop) {
           else if (d2 <= outer) border.push_back(k);
         }
         ASSERT_EQ(inside, wantInside) << simdLevelName(level) << " len " << len << " inner " << inner;
-        if (inside) continue;
+        if (inside) {
+          ASSERT_LT(out[0], len);
+          EXPECT_TRUE(out[0] != 1 && out[0] != 5 && out[0] != 9) << out[0];
+          EXPECT_LT(dist2(near.x[out[0]], near.y[out[0]], near.z[out[0]], c), inner) << simdLevelName(level);
+          continue;
+        }
         ASSERT_EQ(count, border.size());
         for (size_t i = 0; i < count; ++i) EXPECT_EQ(out[i], border[i]);
       }
