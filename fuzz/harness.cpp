@@ -132,7 +132,8 @@ const std::string& scratchPath() {
   return path;
 }
 
-// Whether every "element <name> <count>" in the bytes has its count on its line and declares at most
+// Whether no element is a non-empty "edge" one and every "element <name> <count>" in the bytes has
+// its count on its line and declares at most
 // kMaxPlyElements, and all of them together too. Looked for anywhere in the bytes, not only in
 // the header as parsed: vcglib reads the header in chunks of 511 bytes, so a long line's tail
 // counts as a line of its own. A missing count is vcglib's bug, not the engines': its header
@@ -150,6 +151,10 @@ bool plyHeaderAccepted(const std::uint8_t* data, size_t size) {
     long long count = 0;
     if (std::sscanf(rest.c_str(), "%200s %lld", name, &count) != 2) return false;
     if (count < 0 || count > static_cast<long long>(kMaxPlyElements)) return false;
+    // Edges are vcglib's edge reader's business, not the engines' (a cloud has none): it asserts
+    // when an edge element lacks the properties vertex1 and vertex2
+    // (fuzz/regressions/ply/edge_without_vertex1_vcglib_assert.ply), where a release build reads on.
+    if (std::strcmp(name, "edge") == 0 && count > 0) return false;
     total += count;
     if (total > static_cast<long long>(kMaxPlyElements)) return false;
   }
