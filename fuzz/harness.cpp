@@ -140,6 +140,18 @@ const std::string& scratchPath() {
 // parser checks the name again where it means the count, and calls atoi(NULL), which crashes
 // (fuzz/regressions/ply/element_without_count_vcglib_atoi_null.ply), in MeshLab too.
 bool plyHeaderAccepted(const std::uint8_t* data, size_t size) {
+  // The header is text (the PLY format's rule): vcglib's tokenizer stops at a NUL or other control
+  // byte where the checks below read on, and then calls atoi(NULL) on a missing count
+  // (fuzz/regressions/ply/binary_in_header_vcglib_atoi_null.ply). Such files are no PLY files; the
+  // data after the header is fuzzed as it comes.
+  {
+    const std::string bytes(reinterpret_cast<const char*>(data), size);
+    const size_t headerEnd = std::min(bytes.find("end_header"), size);
+    for (size_t i = 0; i < headerEnd; ++i) {
+      const unsigned char ch = data[i];
+      if (!((ch >= 0x20 && ch < 0x7f) || ch == '\n' || ch == '\r' || ch == '\t')) return false;
+    }
+  }
   static const char kElement[] = "element";
   const size_t len = sizeof kElement - 1;
   long long total = 0;

@@ -16,4 +16,5 @@ cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
 scripts/sanitize.sh
 fuzz_seconds=${GROWTH_FUZZ_SECONDS:-60}
-if [ "$fuzz_seconds" -gt 0 ]; then scripts/fuzz.sh "$fuzz_seconds"; fi
+# A fixed seed and number of inputs per target (see scripts/fuzz.sh), capped at 5 times the time.
+if [ "$fuzz_seconds" -gt 0 ]; then GROWTH_FUZZ_SEED=${GROWTH_FUZZ_SEED:-1} scripts/fuzz.sh $((5 * fuzz_seconds)); fi
