@@ -28,10 +28,12 @@ struct Kernels {
 
 // --- Portable, and SSE2 four lanes at a time (the baseline of x86-64) ---
 
+#if !defined(__SSE2__)
 inline float dist2(float x, float y, float z, const float* c) {
   const float dx = x - c[0], dy = y - c[1], dz = z - c[2];
   return (dx * dx + dy * dy) + dz * dz;
 }
+#endif
 
 std::size_t appendBase(const float* fx, const float* fy, const float* fz, const std::uint32_t* ranges,
                        std::size_t rangeCount, const float* c, float r2, std::uint32_t* oid, float* ox, float* oy,
