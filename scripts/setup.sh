@@ -30,7 +30,7 @@ packages=(
   clang-14 libclang-rt-14-dev                 # sanitizer build and fuzzers (scripts/sanitize.sh, fuzz.sh)
   xvfb xauth                                  # meshlabserver needs a display
   time                                        # /usr/bin/time -v: peak memory in the benchmark
-  python3 python3-numpy python3-matplotlib    # benchmark tables and plots (/usr/bin/python3)
+  python3 python3-numpy python3-matplotlib    # benchmark tables and plots, README pictures (scripts/render.py)
   libcgal-dev                                 # CGAL 5.5 (header-only): tools/cgal/afsr_run, the benchmark's
                                               # cgal-afsr row only (about 16 s of apt, 45 MB of headers)
   xz-utils ca-certificates dpkg-dev            # apt-get source
