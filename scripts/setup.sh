@@ -41,6 +41,17 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
+# A deb-src entry (sources only) for one suite of Debian main, in the file $1.
+add_deb_src() {
+  $SUDO tee "$1" >/dev/null <<EOF
+Types: deb-src
+URIs: http://deb.debian.org/debian
+Suites: $2
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+}
+
 # A deb-src entry for bookworm main, beside the binary one, so that `apt-get source` finds meshlab.
 src_list=/etc/apt/sources.list.d/growth-meshlab-src.sources
 src_list_2025=/etc/apt/sources.list.d/growth-meshlab2025-src.sources
@@ -48,13 +59,7 @@ need_update=0
 if ! grep -rqsE --exclude="$(basename "$src_list_2025")" '^(Types:.*deb-src|deb-src )' \
        /etc/apt/sources.list /etc/apt/sources.list.d/; then
   echo "setup.sh: adding a deb-src entry for bookworm main ($src_list)"
-  $SUDO tee "$src_list" >/dev/null <<'EOF'
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: bookworm
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-EOF
+  add_deb_src "$src_list" bookworm
   need_update=1
 fi
 
@@ -135,13 +140,7 @@ if ml25_built double; then
 else
   if [ ! -f "$src_list_2025" ]; then
     echo "setup.sh: adding a deb-src entry for unstable main ($src_list_2025; sources only)"
-    $SUDO tee "$src_list_2025" >/dev/null <<'EOF'
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: unstable
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-EOF
+    add_deb_src "$src_list_2025" unstable
   fi
   work25=$(mktemp -d)
   got=""
