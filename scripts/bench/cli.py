@@ -17,12 +17,16 @@ from .timing import INPROC_REPEAT
 
 
 class Context:
-    pass
+    """What every step needs: the folders (out, build, prefix, data_dir), the tool paths (tool(name)),
+    the run's options (repeat, timeout, bpa_max_points, inproc_max_points, params) and its stamp."""
 
 
-def main(description):
-    """Runs the benchmark with the command line of scripts/benchmark.sh; `description` is the --help
-    text (scripts/benchmark.py's docstring)."""
+def comma_list(text):
+    """The non-empty, stripped items of a comma-separated option."""
+    return [x.strip() for x in text.split(",") if x.strip()]
+
+
+def parse_args(description):
     ap = argparse.ArgumentParser(prog="scripts/benchmark.sh", description=description,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="small clouds only (10k and 30k points, hand and hand-ml)")
@@ -72,8 +76,10 @@ def main(description):
     ap.add_argument("--prefix", required=True)
     ap.add_argument("--data-dir", required=True)
     ap.add_argument("--command", default="scripts/benchmark.sh")
-    a = ap.parse_args()
+    return ap.parse_args()
 
+
+def make_context(a):
     ctx = Context()
     ctx.out, ctx.build, ctx.prefix, ctx.data_dir = (os.path.abspath(a.out), os.path.abspath(a.build),
                                                     os.path.abspath(a.prefix), os.path.abspath(a.data_dir))
@@ -89,69 +95,93 @@ def main(description):
             raise SystemExit("--param wants METHOD:NAME=VALUE with METHOD spherepack (both sphere packer "
                              "methods), spherepack25 or g2s, got '%s'" % p)
         ctx.params.setdefault(m.group(1), []).append((m.group(2), m.group(3)))
+    return ctx
+
+
+def chosen_methods(a):
+    """The methods of --methods, in RUN_ORDER."""
+    methods = comma_list(a.methods)
+    for m in methods:
+        if m not in METHODS:
+            raise SystemExit("unknown method '%s' (choose from %s)" % (m, ", ".join(RUN_ORDER)))
+    return [m for m in RUN_ORDER if m in methods]
+
+
+def cloud_specs(a):
+    """The clouds to run: --clouds with its groups expanded, else every shape of --shapes at every size
+    (--sizes, or those of --quick) and, unless --no-data, the data folder's clouds."""
+    shapes = comma_list(a.shapes)
+    if a.clouds:
+        return expand_groups(comma_list(a.clouds), shapes)
+    sizes = [parse_size(s) for s in comma_list(a.sizes)] if a.sizes else (QUICK_SIZES if a.quick else FULL_SIZES)
+    specs = ["%s-%s" % (s, size_label(n)) for s in shapes for n in sizes]
+    if not a.no_data:
+        specs += QUICK_DATA_CLOUDS if a.quick else DATA_CLOUDS
+    return specs
+
+
+def run_cloud(spec, methods, rows, ctx, results):
+    """Runs `methods` on the cloud `spec`, merging each row into `rows` and results.jsonl as it
+    comes; returns the rows."""
+    cloud = prepare_cloud(spec, ctx)
+    if cloud is None:
+        log("%s: not in %s, skipped" % (spec, ctx.data_dir))
+        return rows
+    ctx.repeat = repeats_for(ctx, cloud)
+    log("%s: %d points, mean spacing %.4g" % (cloud["name"], cloud["points"], cloud["spacing"]))
+    # The load+save and no-op runs only serve the methods run through meshlabserver.
+    base = (baseline(cloud, ctx) if any(m not in NOT_MESHLAB for m in methods)
+            else {"wall": None, "rss_kb": None, "noop_rss_kb": None})
+    # The remeshing target: the sphere packer's d from this run, else from an earlier row,
+    # else the mean spacing (said so in the row).
+    d_info = {"d": cloud["spacing"], "source": "mean spacing (no sphere packer d available)"}
+    prev = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "spherepack"
+                 and "d" in r.get("info", {})), None)
+    if prev:
+        d_info = {"d": prev["info"]["d"], "source": "sphere packer's d (%s)" % prev["run"]}
+    for m in methods:
+        log("%s: %s ..." % (cloud["name"], METHODS[m][0]))
+        bpa_row = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "bpa"), None)
+        row = run_method(m, cloud, base, ctx, d_info, bpa_row)
+        if m == "spherepack" and "d" in row.get("info", {}):
+            d_info = {"d": row["info"]["d"], "source": "sphere packer's d (this run)"}
+        if row["status"] == "ok":
+            mm = row["measures"]
+            log("  %s: %.3f s, %d faces, Q_avg %.4f, %d holes" % (row["status"], row["time"], mm["faces"],
+                                                                 mm["quality_mean"] or 0, mm["boundary_loops"]))
+        else:
+            log("  " + row["status"])
+        rows = merge_row(rows, row)
+        save_rows(results, rows)
+    return rows
+
+
+def main(description):
+    """Runs the benchmark with the command line of scripts/benchmark.sh; `description` is the --help
+    text (scripts/benchmark.py's docstring)."""
+    a = parse_args(description)
+    ctx = make_context(a)
     os.makedirs(ctx.out, exist_ok=True)
     results = os.path.join(ctx.out, "results.jsonl")
     rows = [] if a.fresh else load_rows(results)
 
     if not a.report_only and not a.retime and not a.floors:
-        methods = [m.strip() for m in a.methods.split(",") if m.strip()]
-        for m in methods:
-            if m not in METHODS:
-                raise SystemExit("unknown method '%s' (choose from %s)" % (m, ", ".join(RUN_ORDER)))
-        methods = [m for m in RUN_ORDER if m in methods]
-        if a.clouds:
-            specs = expand_groups([c.strip() for c in a.clouds.split(",") if c.strip()],
-                                  [s.strip() for s in a.shapes.split(",") if s.strip()])
-        else:
-            sizes = [parse_size(s) for s in a.sizes.split(",")] if a.sizes else (QUICK_SIZES if a.quick else FULL_SIZES)
-            shapes = [s.strip() for s in a.shapes.split(",") if s.strip()]
-            specs = ["%s-%s" % (s, size_label(n)) for s in shapes for n in sizes]
-            if not a.no_data:
-                specs += QUICK_DATA_CLOUDS if a.quick else DATA_CLOUDS
-        for spec in specs:
-            cloud = prepare_cloud(spec, ctx)
-            if cloud is None:
-                log("%s: not in %s, skipped" % (spec, ctx.data_dir))
-                continue
-            ctx.repeat = repeats_for(ctx, cloud)
-            log("%s: %d points, mean spacing %.4g" % (cloud["name"], cloud["points"], cloud["spacing"]))
-            # The load+save and no-op runs only serve the methods run through meshlabserver.
-            base = (baseline(cloud, ctx) if any(m not in NOT_MESHLAB for m in methods)
-                    else {"wall": None, "rss_kb": None, "noop_rss_kb": None})
-            # The remeshing target: the sphere packer's d from this run, else from an earlier row,
-            # else the mean spacing (said so in the row).
-            d_info = {"d": cloud["spacing"], "source": "mean spacing (no sphere packer d available)"}
-            prev = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "spherepack"
-                         and "d" in r.get("info", {})), None)
-            if prev:
-                d_info = {"d": prev["info"]["d"], "source": "sphere packer's d (%s)" % prev["run"]}
-            for m in methods:
-                log("%s: %s ..." % (cloud["name"], METHODS[m][0]))
-                bpa_row = next((r for r in rows if r["cloud"] == cloud["name"] and r["method"] == "bpa"), None)
-                row = run_method(m, cloud, base, ctx, d_info, bpa_row)
-                if m == "spherepack" and "d" in row.get("info", {}):
-                    d_info = {"d": row["info"]["d"], "source": "sphere packer's d (this run)"}
-                if row["status"] == "ok":
-                    mm = row["measures"]
-                    log("  %s: %.3f s, %d faces, Q_avg %.4f, %d holes" % (row["status"], row["time"], mm["faces"],
-                                                                         mm["quality_mean"] or 0, mm["boundary_loops"]))
-                else:
-                    log("  " + row["status"])
-                rows = merge_row(rows, row)
-                save_rows(results, rows)
+        methods = chosen_methods(a)
+        for spec in cloud_specs(a):
+            rows = run_cloud(spec, methods, rows, ctx, results)
 
     if not rows:
         raise SystemExit("no results yet")
+    only_clouds = comma_list(a.clouds) if a.clouds else None
     if a.remeasure:
         rows = remeasure(rows, ctx)
         save_rows(results, rows)
     if a.retime:
-        only_clouds = [c.strip() for c in a.clouds.split(",")] if a.clouds else None
-        only_methods = [m.strip() for m in a.methods.split(",")] if a.methods != ",".join(RUN_ORDER) else None
+        only_methods = comma_list(a.methods) if a.methods != ",".join(RUN_ORDER) else None
         rows = retime(rows, ctx, only_clouds, only_methods)
         save_rows(results, rows)
     if a.floors:
-        rows = measure_floors(rows, ctx, [c.strip() for c in a.clouds.split(",")] if a.clouds else None)
+        rows = measure_floors(rows, ctx, only_clouds)
         save_rows(results, rows)
     path, made, slopes = report(rows, ctx, a.command)
     log("tables: %s" % path)

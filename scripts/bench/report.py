@@ -4,24 +4,22 @@ import os
 import shutil
 
 from .config import ROOT, SHAPES
-from .fits import memory_fits
 from .plots import plots
-from .rows import cloud_sort_key
-from .tables import (cloud_section, header_lines, headline_section, peer_section, real_scans_section,
-                     scaling_section, speed_section)
+from .rows import cloud_sort_key, sorted_clouds
+from .tables import results_sections
 
 
 def report(rows, ctx, command):
+    """Writes the plots and OUT/results.md; returns its path, the plots and the fitted time slopes."""
     made, slopes = plots(rows, ctx.out)
-    clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
-    md = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
-    md += peer_section(clouds, rows, 2) + real_scans_section(rows, 2) + speed_section(rows, 2)
-    for c in clouds:
-        hp = os.path.join("plots", "%s_histograms.png" % c)
-        md += cloud_section(c, rows, 2, hp if os.path.exists(os.path.join(ctx.out, hp)) else None)
-    if slopes or os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")):
-        md += scaling_section(slopes, 2, "plots/scaling.png" if os.path.exists(os.path.join(ctx.out, "plots", "scaling.png")) else None,
-                              memory_fits(rows))
+    clouds = sorted_clouds(rows)
+
+    def plot(name):
+        return os.path.join("plots", name) if os.path.exists(os.path.join(ctx.out, "plots", name)) else None
+
+    md = ["# Benchmark results", ""] + results_sections(
+        rows, command, 2, clouds, clouds, lambda c: plot("%s_histograms.png" % c), plot("scaling.png"), slopes,
+        with_scaling=bool(slopes) or plot("scaling.png") is not None)
     path = os.path.join(ctx.out, "results.md")
     with open(path, "w") as f:
         f.write("\n".join(md))
@@ -40,7 +38,7 @@ def publish(rows, ctx, command, slopes):
     for old in os.listdir(docs):
         if old.endswith(".png"):
             os.remove(os.path.join(docs, old))
-    clouds = sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))
+    clouds = sorted_clouds(rows)
     # Shown in the README: the clouds of the data folder and the largest generated cloud per shape.
     # Only their plots and the scaling plot are copied (each under 200 KB), to keep the repository small.
     shown = [c for c in clouds if next(r for r in rows if r["cloud"] == c)["cloud_kind"] != "generated"]
@@ -60,11 +58,9 @@ def publish(rows, ctx, command, slopes):
     def image(name, relative_to):
         return os.path.relpath(os.path.join(docs, name), relative_to) if name in committed else None
 
-    full = ["# Benchmark results", ""] + header_lines(rows, command) + headline_section(clouds, rows, 2)
-    full += peer_section(clouds, rows, 2) + real_scans_section(rows, 2) + speed_section(rows, 2)
-    for c in clouds:
-        full += cloud_section(c, rows, 2, image("%s_histograms.png" % c, docs))
-    full += scaling_section(slopes, 2, image("scaling.png", docs), memory_fits(rows))
+    full = ["# Benchmark results", ""] + results_sections(
+        rows, command, 2, clouds, clouds, lambda c: image("%s_histograms.png" % c, docs), image("scaling.png", docs),
+        slopes)
     with open(os.path.join(docs, "results.md"), "w") as f:
         f.write("\n".join(full))
 
@@ -78,11 +74,11 @@ def publish(rows, ctx, command, slopes):
                "(`scripts/benchmark.sh`; when the rows come from several invocations, each row's run is "
                "recorded in `out/benchmark/results.jsonl` and the runs are listed below). The ratios "
                "against Ball Pivoting are the headline; absolute seconds depend on the machine and its "
-               "load.", ""] + header_lines(rows, command)
-    summary += headline_section(clouds, rows, 3) + peer_section(clouds, rows, 3) + real_scans_section(rows, 3) + speed_section(rows, 3)
-    for c in shown:
-        summary += cloud_section(c, rows, 3, image("%s_histograms.png" % c, where) if c in ("bunny",) else None)
-    summary += scaling_section(slopes, 3, image("scaling.png", where), memory_fits(rows))
+               "load.", ""]
+    # In the README, only the bunny's histograms.
+    summary += results_sections(
+        rows, command, 3, clouds, shown, lambda c: image("%s_histograms.png" % c, where) if c == "bunny" else None,
+        image("scaling.png", where), slopes)
     summary += ["Every cloud's table and histograms: [%s](%s)." % ("docs/benchmark/results.md",
                 os.path.relpath(os.path.join(docs, "results.md"), where)), ""]
     if into_readme:

@@ -44,3 +44,8 @@ def cloud_sort_key(name, rows):
     # A perturbed generated cloud (no shape of its own) sorts with its shape's clean clouds.
     shape = r.get("shape") or (name.split("-")[0] if r.get("cloud_kind") == "generated" else "")
     return (kind_order.get(r.get("cloud_kind"), 3), SHAPES.index(shape) if shape in SHAPES else 9, r["points"], name)
+
+
+def sorted_clouds(rows):
+    """The clouds of the rows, generated ones first (by shape and size), then the scans, then files."""
+    return sorted({r["cloud"] for r in rows}, key=lambda n: cloud_sort_key(n, rows))

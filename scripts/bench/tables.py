@@ -6,7 +6,7 @@ import subprocess
 
 from .config import (AFSR, DATA, METHODS, ML_NORMALS_SUFFIX, ML_NORMALS_TEXT, NOT_MESHLAB, REFERENCE, RUN_ORDER,
                      SHAPES, SPHERE_PACKERS, SPHEREPACK25_SPACINGS, TABLE_ORDER, size_label)
-from .fits import fit_slope
+from .fits import fit_slope, memory_fits
 from .measure import extra_over_noop
 from .rows import cloud_sort_key, ok_row, row_normals
 
@@ -146,16 +146,13 @@ def headline_section(clouds, rows, level):
     """One line per cloud: our filters' speed-ups against Ball Pivoting measured in the same run
     (time of Ball Pivoting / time of ours) and Robust G2S's triangle rate against Ball Pivoting's
     with r = 3 × spacing (both interpolate the points, so their face counts are comparable)."""
-    def row_of(c, method):
-        return next((r for r in rows if r["cloud"] == c and r["method"] == method and r.get("status") == "ok"), None)
-
     def ratio(num, den):
         return ("×%.1f" % (num / den)) if num and den and num > 0 and den > 0 else "—"
 
     def rate(r):
         return r["measures"]["faces"] / r["time"] if r and r["time"] > 0 else None
 
-    if not any(row_of(c, "bpa") or row_of(c, "bpa3") for c in clouds):
+    if not any(ok_row(rows, c, "bpa") or ok_row(rows, c, "bpa3") for c in clouds):
         return []
 
     md = ["%s Headline: ratios against Ball Pivoting" % ("#" * level), "",
@@ -166,8 +163,8 @@ def headline_section(clouds, rows, level):
           "| Robust G2S vs BPA auto | vs BPA 3s | G2S triangle rate / BPA 3s rate | G2S triangles/s |",
           "|---|" + "---|" * 8]
     for c in clouds:
-        b, b3 = row_of(c, "bpa"), row_of(c, "bpa3")
-        sp, g = row_of(c, "spherepack"), row_of(c, "g2s")
+        b, b3 = ok_row(rows, c, "bpa"), ok_row(rows, c, "bpa3")
+        sp, g = ok_row(rows, c, "spherepack"), ok_row(rows, c, "g2s")
         if not (b or b3):
             continue
         pts = next(r for r in rows if r["cloud"] == c)["points"]
@@ -370,4 +367,19 @@ def scaling_section(slopes, level, image, fits=None):
                     ("%.0f (%.1f)" % (fits[(s, m)][0], fits[(s, m)][1] / 1e6)) if (s, m) in fits else "—"
                     for m in RUN_ORDER) + " |")
         md.append("")
+    return md
+
+
+def results_sections(rows, command, level, clouds, table_clouds, cloud_image, scaling_image, slopes,
+                     with_scaling=True):
+    """The sections of a results page at heading `level`: the header, the headline ratios, the peers,
+    the real scans and the speed check over `clouds`; a table of each cloud of `table_clouds` (with
+    the histograms image cloud_image(cloud), None for none); the scaling section (time slopes
+    `slopes`, memory fits, image `scaling_image`) unless with_scaling is False."""
+    md = header_lines(rows, command) + headline_section(clouds, rows, level) + peer_section(clouds, rows, level)
+    md += real_scans_section(rows, level) + speed_section(rows, level)
+    for c in table_clouds:
+        md += cloud_section(c, rows, level, cloud_image(c))
+    if with_scaling:
+        md += scaling_section(slopes, level, scaling_image, memory_fits(rows))
     return md
