@@ -10,8 +10,6 @@ from .config import SPHERE_PACKERS, log
 
 
 EDGE_HISTOGRAM_SPACINGS = 6.0    # edge histograms over [0, max(6 × mean spacing, 1.5 × d)], same for all
-
-
 EDGE_HISTOGRAM_D = 1.5           # methods of a cloud (d: the sphere packer's, whose edges are >= d)
 
 

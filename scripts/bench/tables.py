@@ -18,8 +18,6 @@ def fmt(v, spec):
 
 
 TIME_MARK = {"in process": "", "filter log": "†", "wall - load/save": "*", "afsr_run": "‡"}
-
-
 TABLE_COLUMNS = ["method", "time [s]", "speed-up vs BPA", "vs BPA 3s", "faces", "triangles/s", "E_avg", "E_RMS %",
                  "Q_avg", "Q_RMS %", "QF", "μd %", "non-manifold V / E", "self-intersecting pairs",
                  "boundary edges", "holes", "components", "unreached points (components started)",
@@ -256,11 +254,7 @@ def real_scans_section(rows, level):
 
 
 SPEED_MIN_POINTS = 30000            # the speed check: clouds of at least this many points ...
-
-
 SLOPE_RANGE = (10000, 1000000)      # ... and the time's log-log slope over these sizes ...
-
-
 SLOPE_MAX = 1.1                     # ... at most this
 
 

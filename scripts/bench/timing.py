@@ -15,15 +15,10 @@ PLUGIN_OF_FILTER = {
     "Surface Reconstruction: Sphere Packing": "libfilter_spherepack.so",
     "Surface Reconstruction: Robust G2S": "libfilter_g2s.so",
 }
-
-
 INPROC_REPEAT = 5          # in-process timing: at most this many repeats (fastest kept) ...
-
-
 INPROC_MIN_SECONDS = 3.0   # ... stopping once this much filter time was spent ...
-
-
 INPROC_MIN_REPEATS = 1     # ... but not before this many (plugin_time --min-repeats; the published
+                           # rows were timed with 1)
 
 
 def inproc_time(ctx, script_path, input_path, work):
