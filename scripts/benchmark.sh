@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The comparison benchmark against MeshLab's Ball Pivoting (issue 3). Builds the project, makes a
 # scratch MeshLab prefix with the freshly built plugins (scripts/meshlab_env.sh), then runs
-# scripts/benchmark.py, which writes out/benchmark/results.md (tables), results.jsonl and plots/.
+# scripts/benchmark.py (code in scripts/bench/), which writes out/benchmark/results.md (tables),
+# results.jsonl and plots/.
 #
 #   scripts/benchmark.sh                 every generated cloud (sphere, torus, patch at 10k..1M
 #                                        points) and every cloud of ../shared/data, with its own

@@ -41,6 +41,17 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 
+# A deb-src entry (sources only) for one suite of Debian main, in the file $1.
+add_deb_src() {
+  $SUDO tee "$1" >/dev/null <<EOF
+Types: deb-src
+URIs: http://deb.debian.org/debian
+Suites: $2
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+EOF
+}
+
 # A deb-src entry for bookworm main, beside the binary one, so that `apt-get source` finds meshlab.
 src_list=/etc/apt/sources.list.d/growth-meshlab-src.sources
 src_list_2025=/etc/apt/sources.list.d/growth-meshlab2025-src.sources
@@ -48,13 +59,7 @@ need_update=0
 if ! grep -rqsE --exclude="$(basename "$src_list_2025")" '^(Types:.*deb-src|deb-src )' \
        /etc/apt/sources.list /etc/apt/sources.list.d/; then
   echo "setup.sh: adding a deb-src entry for bookworm main ($src_list)"
-  $SUDO tee "$src_list" >/dev/null <<'EOF'
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: bookworm
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-EOF
+  add_deb_src "$src_list" bookworm
   need_update=1
 fi
 
@@ -99,24 +104,43 @@ ml25_version="2025.07~dfsg-4"
 ml25_orig="meshlab_2025.07~dfsg.orig.tar.xz"
 ml25_sha256="d22c98d362f2a284e481af8dbfc272b2222f5b9c67b3cf8bec57d1c3161886f4"
 ml25="$third_party/meshlab-2025.07"
-ml25_build="$ml25/build-double"
-ml25_stamp="$ml25/.complete"
-ml25_want="$ml25_version $ml25_sha256 double"
 pinned="$here/../shared/third_party"
-if [ -f "$ml25_stamp" ] && [ "$(cat "$ml25_stamp")" = "$ml25_want" ] && \
-   [ -f "$ml25_build/src/distrib/libmeshlab-common.so" ]; then
-  echo "setup.sh: MeshLab 2025.07d SDK already in $ml25"
+
+# libmeshlab-common 2025.07 in one precision ("double": the SDK of PyMeshLab 2025.7 and MeshLab
+# 2025.07d; "float": that of the plain MeshLab 2025.07 GUI), built from the sources in $ml25 into
+# $ml25/build-<precision>/. Its stamp ($ml25/.complete for double, .complete-float for float) holds
+# the version, the checksum and the precision, so that a finished build is skipped.
+ml25_build_dir() { echo "$ml25/build-$1"; }
+ml25_suffix() { [ "$1" = double ] && echo "" || echo "-$1"; }
+ml25_stamp_of() { echo "$ml25/.complete$(ml25_suffix "$1")"; }
+ml25_built() {
+  local stamp; stamp=$(ml25_stamp_of "$1")
+  [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$ml25_version $ml25_sha256 $1" ] && \
+    [ -f "$(ml25_build_dir "$1")/src/distrib/libmeshlab-common.so" ]
+}
+build_ml25() {
+  local precision=$1 scalar=OFF t0 dir suffix
+  [ "$precision" = double ] && scalar=ON
+  t0=$(date +%s); dir=$(ml25_build_dir "$precision"); suffix=$(ml25_suffix "$precision")
+  echo "setup.sh: building libmeshlab-common 2025.07 in $precision precision (a few minutes)"
+  nice cmake -S "$ml25" -B "$dir" -DCMAKE_BUILD_TYPE=Release \
+      -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=$scalar -DMESHLAB_BUILD_ONLY_LIBRARIES=ON -DMESHLAB_BUILD_MINI=ON \
+      -DMESHLAB_PLUGINS="" -DEIGEN3_INCLUDE_DIR=/usr/include/eigen3 >"$ml25/configure$suffix.log" 2>&1 || {
+    tail -20 "$ml25/configure$suffix.log" >&2; exit 1; }
+  nice cmake --build "$dir" --target meshlab-common -j"$(nproc)" >"$ml25/build$suffix.log" 2>&1 || {
+    tail -30 "$ml25/build$suffix.log" >&2; exit 1; }
+  echo "$ml25_version $ml25_sha256 $precision" > "$(ml25_stamp_of "$precision")"
+  echo "setup.sh: MeshLab 2025.07 ($precision) SDK built in $dir ($(( $(date +%s) - t0 )) s)"
+}
+
+# The sources are fetched and unpacked only when the double build is missing (unpacking starts
+# $ml25 afresh, so the float build is then made again too).
+if ml25_built double; then
+  echo "setup.sh: MeshLab 2025.07 (double) SDK already in $ml25"
 else
-  t0=$(date +%s)
   if [ ! -f "$src_list_2025" ]; then
     echo "setup.sh: adding a deb-src entry for unstable main ($src_list_2025; sources only)"
-    $SUDO tee "$src_list_2025" >/dev/null <<'EOF'
-Types: deb-src
-URIs: http://deb.debian.org/debian
-Suites: unstable
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-EOF
+    add_deb_src "$src_list_2025" unstable
   fi
   work25=$(mktemp -d)
   got=""
@@ -149,41 +173,18 @@ EOF
       --exclude='*/scripts/*' --exclude='*/.devcontainer/*'
   rm -rf "$work25"
   ln -sfn /usr/include/eigen3 "$ml25/src/vcglib/eigenlib"   # Debian removed the bundled Eigen
-  echo "setup.sh: building libmeshlab-common 2025.07 in double precision (a few minutes)"
-  nice cmake -S "$ml25" -B "$ml25_build" -DCMAKE_BUILD_TYPE=Release \
-      -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=ON -DMESHLAB_BUILD_ONLY_LIBRARIES=ON -DMESHLAB_BUILD_MINI=ON \
-      -DMESHLAB_PLUGINS="" -DEIGEN3_INCLUDE_DIR=/usr/include/eigen3 >"$ml25/configure.log" 2>&1 || {
-    tail -20 "$ml25/configure.log" >&2; exit 1; }
-  nice cmake --build "$ml25_build" --target meshlab-common -j"$(nproc)" >"$ml25/build.log" 2>&1 || {
-    tail -30 "$ml25/build.log" >&2; exit 1; }
-  echo "$ml25_want" > "$ml25_stamp"
-  echo "setup.sh: MeshLab 2025.07d SDK built in $ml25 ($(( $(date +%s) - t0 )) s)"
+  build_ml25 double
 fi
-
-# The same libmeshlab-common in single precision (the SDK of the plain MeshLab 2025.07 GUI builds),
-# built beside the double one from the same sources into build-float/.
-ml25_float="$ml25/build-float"
-ml25_float_stamp="$ml25/.complete-float"
-if [ -f "$ml25_float_stamp" ] && [ "$(cat "$ml25_float_stamp")" = "$ml25_version $ml25_sha256 float" ] && \
-   [ -f "$ml25_float/src/distrib/libmeshlab-common.so" ]; then
+if ml25_built float; then
   echo "setup.sh: MeshLab 2025.07 (float) SDK already in $ml25"
 else
-  t0=$(date +%s)
-  echo "setup.sh: building libmeshlab-common 2025.07 in single precision (a few minutes)"
-  nice cmake -S "$ml25" -B "$ml25_float" -DCMAKE_BUILD_TYPE=Release \
-      -DMESHLAB_BUILD_WITH_DOUBLE_SCALAR=OFF -DMESHLAB_BUILD_ONLY_LIBRARIES=ON -DMESHLAB_BUILD_MINI=ON \
-      -DMESHLAB_PLUGINS="" -DEIGEN3_INCLUDE_DIR=/usr/include/eigen3 >"$ml25/configure-float.log" 2>&1 || {
-    tail -20 "$ml25/configure-float.log" >&2; exit 1; }
-  nice cmake --build "$ml25_float" --target meshlab-common -j"$(nproc)" >"$ml25/build-float.log" 2>&1 || {
-    tail -30 "$ml25/build-float.log" >&2; exit 1; }
-  echo "$ml25_version $ml25_sha256 float" > "$ml25_float_stamp"
-  echo "setup.sh: MeshLab 2025.07 (float) SDK built in $ml25_float ($(( $(date +%s) - t0 )) s)"
+  build_ml25 float
 fi
 
 for f in /usr/bin/meshlabserver /usr/lib/x86_64-linux-gnu/meshlab/libmeshlab-common.so \
          "$sdk/src/common/interfaces.h" "$sdk/vcglib/vcg/complex/complex.h" \
          /usr/include/eigen3/Eigen/Core "$ml25/src/common/plugins/interfaces/filter_plugin.h" \
-         "$ml25_build/src/distrib/libmeshlab-common.so" "$ml25_float/src/distrib/libmeshlab-common.so"; do
+         "$(ml25_build_dir double)/src/distrib/libmeshlab-common.so" "$(ml25_build_dir float)/src/distrib/libmeshlab-common.so"; do
   [ -e "$f" ] || { echo "setup.sh: $f is missing after set-up" >&2; exit 1; }
 done
 echo "setup.sh: ready. Build with: cmake -S . -B build && cmake --build build" \

@@ -3,32 +3,16 @@
 # (closed, manifold, consistently oriented, per-face quality saved), and bad inputs that must fail
 # with a clear message (or give a valid result) without crashing the host.
 source "$(dirname "$0")/meshlab_prefix.sh"
+source "$(dirname "$0")/mesher_checks.sh"
 
-"$GROWTH_BUILD_DIR/make_cloud" --shape torus --points 20000 --seed 3 -o "$work/torus.ply" >/dev/null
-cp "$GROWTH_SOURCE_DIR/scripts/mlx/g2s.mlx" "$work/g2s.mlx"
-mlserver -i torus.ply -o mesh.ply -m fq -s g2s.mlx > "$work/server.log" 2>&1 \
-  || { cat "$work/server.log"; fail "meshlabserver failed on a clean torus"; }
-[ -f "$work/mesh.ply" ] || { cat "$work/server.log"; fail "no mesh saved"; }
+torus_cloud "$work/torus.ply"
+mlserver_mlx g2s torus.ply mesh.ply -m fq
 grep -q "Robust G2S: .* faces on" "$work/server.log" || { cat "$work/server.log"; fail "no statistics in the log"; }
-faces=$(faces_of "$work/mesh.ply")
-verts=$(vertices_of "$work/mesh.ply")
-# A closed torus: F = 2V (Euler, genus 1), V close to the 20000 input points.
-[ "$verts" -ge 19950 ] || fail "only $verts of 20000 points used"
-[ "$faces" -eq $((2 * verts)) ] || fail "$faces faces on $verts vertices: not a closed torus"
 LC_ALL=C sed -n '/^end_header/q;p' "$work/mesh.ply" | grep -q "property float quality" \
   || fail "per-face quality not saved"
-if [ -x "$GROWTH_BUILD_DIR/mesh_measures" ]; then
-  "$GROWTH_BUILD_DIR/mesh_measures" "$work/mesh.ply" --no-min-vertex-distance > "$work/measures.json" \
-    || fail "mesh_measures failed"
-  python3 - "$work/measures.json" <<'PY' || fail "defects in the G2S mesh"
-import json, sys
-m = json.load(open(sys.argv[1]))
-bad = {k: m[k] for k in ("non_manifold_edges", "non_manifold_vertices", "inconsistent_edges",
-                         "boundary_edges", "boundary_loops", "duplicate_faces") if m[k] != 0}
-if bad:
-    print("FAIL:", bad); sys.exit(1)
-PY
-fi
+check_closed_torus "$work/mesh.ply"
+faces=$(faces_of "$work/mesh.ply")
+verts=$(vertices_of "$work/mesh.ply")
 echo "ok: torus of 20000 points -> $faces faces on $verts vertices, closed and manifold"
 
 # Bad inputs: each must end with our message (or a valid result), never with a crash.

@@ -7,30 +7,10 @@
 # ctest: once per MeshLab 2025.07 precision
 source "$(dirname "$0")/meshlab_prefix.sh"
 source "$(dirname "$0")/ml2025_env.sh"
+source "$(dirname "$0")/mesher_checks.sh"
 plugin="$plugins2025/libfilter_spherepack.so"
 
-"$GROWTH_BUILD_DIR/make_cloud" --shape sphere --points 10000 --seed 2 -o "$work/cloud.ply" >/dev/null
-check_mesh() { # mesh.ply d
-  "$GROWTH_BUILD_DIR/mesh_measures" "$1" > "$1.json" || fail "mesh_measures failed on $1"
-  python3 - "$1.json" "$2" <<'PY' || fail "defects in $1"
-import json, sys
-m, d = json.load(open(sys.argv[1])), float(sys.argv[2])
-checks = [
-    ("faces > 1000", m["faces"] > 1000),
-    ("no boundary edges (closed)", m["boundary_edges"] == 0),
-    ("no non-manifold edges", m["non_manifold_edges"] == 0),
-    ("no non-manifold vertices", m["non_manifold_vertices"] == 0),
-    ("consistently oriented", m["inconsistent_edges"] == 0),
-    ("a sphere (Euler characteristic 2)", m["euler_characteristic"] == 2),
-    ("every edge >= d (read back in float)", m["edge_min"] >= d * (1 - 1e-5)),
-    ("every vertex pair >= d", m["min_vertex_distance"] >= d * (1 - 1e-5)),
-]
-bad = [name for name, ok in checks if not ok]
-if bad:
-    print("FAIL: " + "; ".join(bad) + "\n" + json.dumps(m, indent=1)); sys.exit(1)
-print("ok: %d vertices, %d faces, smallest edge %.9g >= d = %.9g" % (m["vertices"], m["faces"], m["edge_min"], d))
-PY
-}
+sphere_cloud "$work/cloud.ply"
 
 # Automatic d (every parameter at its default).
 ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$work/auto.ply" \
@@ -56,7 +36,7 @@ startPoint2: startpoint2: numpy.ndarray[numpy.float64[3]]"
   || { grep '^python ' "$work/auto.log"; fail "the Python parameter names differ from the README's"; }
 d=$(sed -n 's/^log: Sphere Packing: sphere diameter d = \([0-9.eE+-]*\),.*/\1/p' "$work/auto.log")
 [ -n "$d" ] || fail "no d in the filter's log"
-check_mesh "$work/auto.ply" "$d"
+check_closed_sphere "$work/auto.ply" "$d" quality
 grep -qx "output vertices = $(vertices_of "$work/auto.ply")" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "output vertices differs from the saved mesh"; }
 grep -qx "output faces = $(faces_of "$work/auto.ply")" "$work/auto.log" \
@@ -68,11 +48,9 @@ ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$
   || { cat "$work/given.log" "$work/given.err"; fail "ml_apply failed with sphereDiameter=0.08"; }
 grep -q "^log: Sphere Packing: sphere diameter d = 0.08," "$work/given.log" \
   || { cat "$work/given.log"; fail "sphereDiameter=0.08 was not used as an absolute length"; }
-check_mesh "$work/given.ply" 0.08
+check_closed_sphere "$work/given.ply" 0.08
 
 # The 2020.09 plugin (float) through meshlabserver on the same cloud: the same counts.
-cp "$GROWTH_SOURCE_DIR/scripts/mlx/spherepack.mlx" "$work/spherepack.mlx"
-mlserver -i cloud.ply -o mesh2020.ply -s spherepack.mlx > "$work/server.log" 2>&1 \
-  || { cat "$work/server.log"; fail "meshlabserver failed"; }
+mlserver_mlx spherepack cloud.ply mesh2020.ply
 same_counts vertices "$(vertices_of "$work/auto.ply")" "$(vertices_of "$work/mesh2020.ply")"
 same_counts faces "$(faces_of "$work/auto.ply")" "$(faces_of "$work/mesh2020.ply")"
