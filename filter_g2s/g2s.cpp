@@ -79,6 +79,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
     stat.pointsVisited = mesher.pointsVisited();
+    stat.candidateSearches = mesher.candidateSearches();
     stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
     if (stat.edgesLeftAtFullPoints > 0)
       stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "

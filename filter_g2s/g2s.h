@@ -45,6 +45,7 @@ struct Stat {
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)
   std::uint64_t pointsVisited = 0;        // points the index scanned for the growth's queries
+  std::uint64_t candidateSearches = 0;    // free edges searched for a candidate (sec. 3.2; see Mesher::grow)
   double maxSearchRadiusFactor = 0;       // the factor used
   size_t workingBytes = 0;                // engine memory at its peak (points, grid, edges, faces)
   double seconds = 0;                     // whole run

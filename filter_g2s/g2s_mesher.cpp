@@ -590,31 +590,53 @@ void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {
   for (int k = 0; k < 3; ++k)
     if (wasUsed[k] && (fresh & (1u << k)) != 0 && (fresh & (1u << ((k + 2) % 3))) != 0)
       joinedAtVertex_.push_back(t[k]);
-  // Every new edge is a free edge of the front: find its candidate and queue it (sec. 4.1).
+  // Every new edge is a free edge of the front, queued for its candidate search (sec. 4.1; see
+  // grow for when that search is made).
   for (int k = 0; k < 3; ++k)
-    if ((fresh & (1u << k)) != 0) queueEdge(t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+    if ((fresh & (1u << k)) != 0) queue_.push(0, FrontEdge{t[k], t[(k + 1) % 3], t[(k + 2) % 3], FrontEdge::kDeferred});
 }
 
-void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+bool Mesher::choose(FrontEdge& e, int& level) {
+  ++searches_;
   roomRefused_ = false;
-  const Candidate cand = findCandidate(a, b, c);
+  const Candidate cand = findCandidate(e.a, e.b, e.c);
   // No candidate up to the maximum radius: a boundary edge (sec. 3.2 step 4.2); it stays free.
   if (!cand.valid()) {
     edgesLeftAtFullPoints_ += roomRefused_;
-    return;
+    return false;
   }
-  queue_.push(cand.priority(params_.flatnessLevels) - 1,
-              FrontEdge{a, b, c, static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u)});
+  level = cand.priority(params_.flatnessLevels) - 1;
+  e.p = static_cast<std::uint32_t>(cand.point) | (cand.closesLoop ? std::uint32_t{FrontEdge::kLoop} : 0u);
+  return true;
+}
+
+void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  FrontEdge e{a, b, c, 0};
+  int level;
+  if (choose(e, level)) queue_.push(level, e);
 }
 
 void Mesher::grow(Progress* progress) {
   size_t tick = 0;
   while (!queue_.empty()) {
     FrontEdge e = queue_.pop();
-    const bool loop = (e.p & FrontEdge::kLoop) != 0;
-    e.p &= ~FrontEdge::kLoop;
     // Closed from the other side since it was queued: no longer a free edge.
     if (pem_.used(e.b, e.a)) continue;
+    if (e.p == FrontEdge::kDeferred) {
+      // A new edge waits at the most urgent level for its candidate search, which is made when
+      // the queue reaches it. The order is the paper's (sec. 4.1): an edge whose candidate has the
+      // most urgent priority is taken at the place it was queued, the others move to their
+      // level. But a third of the new edges (on a clean surface, one of the two edges of each
+      // ear) are closed from the other side while they wait, and are never searched.
+      int level;
+      if (!choose(e, level)) continue;
+      if (level > 0) {
+        queue_.push(level, e);
+        continue;
+      }
+    }
+    const bool loop = (e.p & FrontEdge::kLoop) != 0;
+    e.p &= ~FrontEdge::kLoop;
     if (!topologyAllows(e.a, e.b, e.c, e.p)) {
       // The mesh changed around the edge since its candidate was chosen: choose again among the
       // points that pass the tests now, at the priority that gives (or make it a boundary edge).

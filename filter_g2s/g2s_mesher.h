@@ -39,6 +39,7 @@ namespace g2s {
 // 29 bits, see PointEdgeMap::kMaxPoints, so the top bit carries a flag).
 struct FrontEdge {
   static constexpr std::uint32_t kLoop = 1u << 31; // on p: the triangle closes a loop (closesLoop)
+  static constexpr std::uint32_t kDeferred = ~0u;  // as p: not searched yet (see Mesher::grow)
   std::uint32_t a, b, c, p;
 };
 
@@ -183,6 +184,7 @@ public:
   // Points the index scanned for the queries since construction: a deterministic measure of the
   // search work (growth::PointIndex::setVisitCounter).
   std::uint64_t pointsVisited() const { return visited_; }
+  std::uint64_t candidateSearches() const { return searches_; }
   // One word per point that callers may use once the mesh is final (saves an allocation).
   std::vector<std::uint32_t>& scratch() { return scratch_; }
 
@@ -216,6 +218,9 @@ private:
                  std::uint32_t c) const;
   void addTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   void queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // The edge's candidate into e.p (with kLoop) and its queue level; false when it has none (a
+  // boundary edge).
+  bool choose(FrontEdge& e, int& level);
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
   // (Both loads and a bitwise and: no branch, the outcome is data-dependent.)
   bool interior(std::uint32_t v) const { return (edgeCount_[v] != 0) & (freeEdges_[v] == 0); }
@@ -234,6 +239,7 @@ private:
   size_t clumps_ = 0, clumpPointsMerged_ = 0;
   MortonGrid grid_;
   std::uint64_t visited_ = 0;          // grid_'s visit counter
+  std::uint64_t searches_ = 0;         // choose() calls
   const P3* pts_ = nullptr;            // grid_.points().data()
   PointEdgeMap pem_;
   // Per point, during growth: the sum of the lengths of its edges, their number, and how many of

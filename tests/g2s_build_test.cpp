@@ -143,6 +143,26 @@ TEST(G2SBuild, CleanTorusIsClosedGenusOne) {
   EXPECT_EQ(r->stat.faces, 2 * r->stat.vertices); // F = 2V − 4 + 4g, g = 1
 }
 
+TEST(G2SBuild, EdgesClosedWhileWaitingAreNeverSearched) {
+  // A new free edge is searched for its candidate when the queue reaches it (Mesher::grow). On a
+  // clean closed surface one edge of every ear is closed from the other side before that: each
+  // triangle then costs about one search, where searching every edge when it is made costs one per
+  // edge of the mesh, 1.5 per triangle.
+  for (Shape shape : {Shape::Sphere, Shape::Torus}) {
+    CloudSpec spec;
+    spec.shape = shape;
+    spec.count = 20000;
+    const Mesh cloud = cloudMesh(spec);
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    EXPECT_EQ(r->stat.holes, 0u);
+    ASSERT_GT(r->stat.faces, 0u);
+    const double perFace = double(r->stat.candidateSearches) / double(r->stat.faces);
+    EXPECT_LT(perFace, 1.25) << "searches " << r->stat.candidateSearches << " for " << r->stat.faces << " faces";
+    EXPECT_GT(perFace, 0.5);
+  }
+}
+
 TEST(G2SBuild, NonUniformDensityStaysClosed) {
   CloudSpec spec;
   spec.shape = Shape::Sphere;

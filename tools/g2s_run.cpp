@@ -169,6 +169,7 @@ int main(int argc, char** argv) {
     std::printf("seeds: %zu\n", st.seeds);
     std::printf("seed_attempts: %zu\n", st.seedAttempts);
     std::printf("points_visited: %llu\n", static_cast<unsigned long long>(st.pointsVisited));
+    std::printf("candidate_searches: %llu\n", static_cast<unsigned long long>(st.candidateSearches));
     std::printf("non_manifold_vertices_removed: %zu\n", st.nonManifoldVerticesRemoved);
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
