@@ -537,7 +537,10 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     EXPECT_LE(r->stat.holes, c.maxHoles);
     EXPECT_LE(r->stat.boundaryEdges, 10 * r->stat.holes);
     EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
-    // The closures cross neither the mesh nor each other.
+    // The closures cross neither the mesh nor each other (checked where, unchecked, they did:
+    // 3 and 12 intersecting pairs; about 1-2 s per mesh, so not on every sampling).
+    const bool checkCrossings = (c.seed == 1 && c.points == 30000) || c.seed == 7;
+    if (!checkCrossings) continue;
     std::vector<vcg::Point3d> pos;
     std::vector<growth::Triangle> faces;
     for (const auto& v : r->mesh.vert) pos.push_back(vcg::Point3d::Construct(v.cP()));
