@@ -781,16 +781,22 @@ void Mesher::meshAll(Progress* progress) {
     addSeed(tri);
     grow(progress);
   }
+  // Thin parts (kSheetGap): their rims stay open in loops of a few edges (g2s_thin.cpp).
+  if (__builtin_expect(foldsRefused_ + otherSheetBalls_ > 0, 0)) closeRimLoops();
 }
 
 ManifoldCleanupStat Mesher::removeNonManifoldVertices() {
   assignHuge(alive_, tri_.size(), char(1));
-  if (joinedAtVertex_.empty()) return ManifoldCleanupStat(); // no vertex ever got a second fan
+  // With those removed at thin parts before their loops were closed (closeRimLoops).
+  ManifoldCleanupStat st = thinCleanup_;
+  if (joinedAtVertex_.empty()) return st; // no vertex ever got a second fan
   std::sort(joinedAtVertex_.begin(), joinedAtVertex_.end());
   joinedAtVertex_.erase(std::unique(joinedAtVertex_.begin(), joinedAtVertex_.end()), joinedAtVertex_.end());
-  const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, grid_.size(), alive_, &joinedAtVertex_);
+  const ManifoldCleanupStat now = growth::removeNonManifoldVertices(tri_, grid_.size(), alive_, &joinedAtVertex_);
   for (size_t f = 0; f < tri_.size(); ++f)
     if (!alive_[f]) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+  st.nonManifoldVertices += now.nonManifoldVertices;
+  st.facesRemoved += now.facesRemoved;
   return st;
 }
 

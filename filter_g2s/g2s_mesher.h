@@ -167,6 +167,8 @@ public:
   // balls found empty but for points of another sheet.
   size_t foldsRefused() const { return foldsRefused_; }
   size_t otherSheetBalls() const { return otherSheetBalls_; }
+  // Loops at the rims of thin parts closed after the growth (closeRimLoops, g2s_thin.cpp).
+  size_t rimLoopsClosed() const { return rimLoopsClosed_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
@@ -213,6 +215,13 @@ private:
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
+  // After the growth, when a thin-part rule acted: closes the boundary loops of 3 to 16 edges
+  // that lie at a thin part (another sheet facing the other way 2-5 spacings off a triangle at
+  // the loop) by their triangulation of least area, crossing no triangle, after taking off what
+  // blocks them (sec. 4.2's extra fans, flaps, stray and folded triangles; g2s_thin.cpp).
+  GROWTH_G2S_COLD void closeRimLoops();
+  // closeRimLoops: takes grown triangle f out of the mesh (the last triangle moves into its slot).
+  GROWTH_G2S_COLD void removeGrownTriangle(size_t f);
   // G2S emptiness, using near_ then the grid; when not empty, lastInside_ is a point inside.
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a, std::uint32_t b,
                  std::uint32_t c) const;
@@ -261,7 +270,8 @@ private:
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
-  size_t foldsRefused_ = 0, otherSheetBalls_ = 0;
+  size_t foldsRefused_ = 0, otherSheetBalls_ = 0, rimLoopsClosed_ = 0;
+  ManifoldCleanupStat thinCleanup_; // sec. 4.2 done early by closeRimLoops
   mutable std::vector<std::uint32_t> foldHits_; // scratch of foldsAcrossThePart
   mutable std::uint32_t lastInside_ = 0;        // see emptyBall
   bool nearFullPoint_ = false;       // some point has fewer than 2 free entries (PointEdgeMap::hasRoom)

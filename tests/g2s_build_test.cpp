@@ -7,6 +7,7 @@
 #include <growth/error.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/self_intersections.h>
 
 #include <common/ml_mesh_type.h>
 #include <vcg/complex/algorithms/create/ball_pivoting.h>
@@ -520,17 +521,22 @@ TEST(G2SBuild, ThinSlabFacesOutward) {
 // samplings. The growth used to cross the plate's interior from one sheet to the other (where a
 // sheet's sampling has a gap wider than the plate, or at a rim), so that the other sheet grew
 // inside out and the rims stayed open: at 0.025 (30,000 points, seed 1) 28,508 faces of the top
-// faced into the plate, 1,260 boundary edges in 34 holes. Now every face of the large faces looks
-// out of the plate, a few triangles at the rims (3 spacings high, two 90-degree edges) cut across
-// the corner of the material, and what stays open are small holes at the rims, of at most 6
-// edges on average. (At two spacings the growth still crosses: not solved.)
-TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutward) {
+// faced into the plate, 1,260 boundary edges in 34 holes. The thin-part rules keep every face of
+// the large faces looking out of the plate (a few triangles at the rims, 3 spacings high with two
+// 90-degree edges, cut across the corner of the material); the rims' loops, which the growth
+// leaves open (22, 14 and 18 holes on the first three samplings before g2s_thin.cpp), are closed
+// after it, where the closure crosses neither the mesh nor itself: most samplings mesh closed,
+// the others keep one to four small holes at a rim.
+// (At two spacings the growth still crosses: not solved.)
+TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   struct Case {
     double thickness;
     size_t points;
     std::uint64_t seed;
+    size_t maxHoles; // measured: 4, 0, 1, 1, 0, 1
   };
-  for (const Case c : {Case{0.025, 30000, 1}, Case{0.025, 30000, 3}, Case{0.033, 30000, 1}, Case{0.02, 50000, 7}}) {
+  for (const Case c : {Case{0.025, 30000, 1, 4}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 1},
+                       Case{0.025, 50000, 1, 1}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 1}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;
@@ -546,11 +552,44 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutward) {
     const SlabFacing facing = slabFacing(r->mesh, spec.slabHalfSize, spec.slabThickness);
     EXPECT_EQ(facing.inward, 0u);
     EXPECT_LE(facing.inwardAtRims, r->stat.faces / 4000); // 15 of 60,000 faces
-    EXPECT_LE(r->topo.components, 2u);
+    EXPECT_LE(r->topo.components, c.maxHoles == 0 ? 1u : 2u);
     EXPECT_LE(r->stat.unusedPoints, 3u);
-    EXPECT_LE(r->stat.holes, 22u);
-    EXPECT_LE(r->stat.boundaryEdges, 6 * r->stat.holes);
+    EXPECT_LE(r->stat.holes, c.maxHoles);
+    EXPECT_LE(r->stat.boundaryEdges, 10 * r->stat.holes);
+    EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
+    // The closures cross neither the mesh nor each other (checked where, unchecked, they did:
+    // 3 and 12 intersecting pairs; about 1-2 s per mesh, so not on every sampling).
+    const bool checkCrossings = (c.seed == 1 && c.points == 30000) || c.seed == 7;
+    if (!checkCrossings) continue;
+    std::vector<vcg::Point3d> pos;
+    std::vector<growth::Triangle> faces;
+    for (const auto& v : r->mesh.vert) pos.push_back(vcg::Point3d::Construct(v.cP()));
+    for (const auto& f : r->mesh.face)
+      faces.push_back({std::uint32_t(vcg::tri::Index(r->mesh, f.cV(0))), std::uint32_t(vcg::tri::Index(r->mesh, f.cV(1))),
+                       std::uint32_t(vcg::tri::Index(r->mesh, f.cV(2)))});
+    EXPECT_TRUE(growth::findSelfIntersections(pos, faces).empty());
   }
+}
+
+// The rim loops are closed by Mesher::closeRimLoops (g2s_thin.cpp) at the end of the growth: on
+// the 0.025 slab (seed 3) the growth alone leaves 14 holes at the rims; after meshAll none is
+// left, and the closures were made there.
+TEST(G2SBuild, RimLoopsOfAThinSlabAreClosedAfterTheGrowth) {
+  CloudSpec spec;
+  spec.shape = Shape::Slab;
+  spec.count = 30000;
+  spec.seed = 3;
+  spec.slabThickness = 0.025;
+  g2s::Params p = defaults();
+  p.maxSearchRadiusFactor = g2s::kDefaultMaxSearchRadiusFactor;
+  g2s::Mesher m(growth::generateCloud(spec).points, p);
+  m.meshAll();
+  EXPECT_GT(m.foldsRefused() + m.otherSheetBalls(), 0u); // the gate: a thin part was met
+  EXPECT_GE(m.rimLoopsClosed(), 10u);
+  EXPECT_EQ(m.boundaryEdges(), 0u);
+  const growth::ManifoldCleanupStat cs = m.removeNonManifoldVertices();
+  EXPECT_EQ(m.boundaryEdges(), 0u);
+  EXPECT_LE(cs.facesRemoved, 6u); // measured: 4 (most before the closures, see closeRimLoops)
 }
 
 // The thin-part rules (g2s_mesher.cpp, kSheetGap) never act on clean samplings of smooth closed
@@ -566,6 +605,7 @@ TEST(G2SBuild, ThinPartRulesStayOutOfCleanClouds) {
     m.meshAll();
     EXPECT_EQ(m.foldsRefused(), 0u) << int(shape);
     EXPECT_EQ(m.otherSheetBalls(), 0u) << int(shape);
+    EXPECT_EQ(m.rimLoopsClosed(), 0u) << int(shape);
     EXPECT_EQ(m.boundaryEdges(), 0u) << int(shape);
   }
 }

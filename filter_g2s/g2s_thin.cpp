@@ -1,0 +1,461 @@
+// Robust G2S: the holes left at the rims of thin closed parts (Mesher::closeRimLoops; issue 13
+// item 5, not in the paper). In a file of its own, like g2s_clumps.cpp: it runs once, after the
+// growth and only when a thin-part rule of g2s_mesher.cpp acted, and keeps out of the growth's
+// inlined queries.
+//
+// Why the rims stay open (measured on the closed slab 3 spacings thick, `g2s_run --shape slab
+// --thickness 0.025 --points 30000`: 117 boundary edges in 22 loops after the growth, each
+// boundary edge's candidates classified against the final mesh): a rim is two 90-degree edges 3
+// spacings apart, where the growth leaves loops of 4-10 edges (most of 5), edges 1-6 spacings
+// long, wrapping round the corner of the material. Of the 117 edges, 64 had a loop vertex in
+// their search sphere but its G2S ball held other points of the same surface (the ball of a
+// triangle cutting across a corner holds the corner's vertices), 40 had no loop vertex in their
+// search sphere (which lies ahead of the edge in the front triangle's plane, out of the
+// material: 21 of them had no point at all within the maximum radius), and 13 were refused by the
+// topological tests (the loop's vertex already joined to the edge's end). None was refused by the
+// fold rule or the other-sheet rule, and the ear and four-edge closures only close loops of three
+// and four edges. The loops are also tangled with the growth's other leftovers there: triangles
+// hanging off a rim by a vertex (non-manifold, taken off by sec. 4.2 later, which opens a hole),
+// flaps (a triangle on two consecutive loop edges) and triangles folded over the hole.
+//
+// So, at a thin part only (kThinFrom), a loop of at most kMaxRimLoopEdges edges is closed, as the
+// ear and four-edge closures close theirs, by its triangulation of least area, after taking off
+// what blocks it: sec. 4.2's extra fans first, then flaps, stray triangles and up to kMaxUnfolds
+// folded triangles; each closure triangle checked like a loop's (no unused point inside, no
+// existing edge twice, room at its points) and not folding back on the mesh.
+#include "g2s_mesher.h"
+
+#include <growth/self_intersections.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace growth {
+namespace g2s {
+
+namespace {
+// Loops of at most this many edges are closed (after the growth, rim loops have 4-10).
+constexpr size_t kMaxRimLoopEdges = 16;
+// A loop is at a thin part when, from a triangle on one of its edges or at one of its vertices,
+// kThinFrom to kThinTo spacings (growth::meanSpacing) along the triangle's normal (either way) and
+// within kThinSide spacings of that line, a used point's triangle faces the other way (normals
+// more than 120 degrees apart, kFacingApartCos): the other sheet of a part 2-5 spacings thick.
+// kThinFrom is g2s_mesher.cpp's kFoldGap.
+constexpr double kThinFrom = 2.0, kThinTo = 5.0, kThinSide = 2.0;
+constexpr double kFacingApartCos = -0.5;
+// A triangle of the closure folds by at most about 148 degrees (this cosine) against the mesh
+// triangle across its loop edge: at a rim the mesh triangles themselves fold by 90-130 degrees,
+// while a closure that would lie back on the mesh is not made.
+constexpr double kClosureFoldCos = -0.85;
+// Rounds of the pass: taking triangles off (non-manifold fans, flaps, stray triangles) opens or
+// changes loops that the next round closes.
+constexpr int kRounds = 3;
+// At most this many folded triangles are taken off a loop to close it.
+constexpr int kMaxUnfolds = 2;
+} // namespace
+
+void Mesher::closeRimLoops() {
+  const size_t n = grid_.size();
+  // A few rounds: taking off a stray piece (see below) opens the loop of the mesh around it.
+  for (int round = 0; round < kRounds; ++round) {
+    bool changed = false;
+    // Sec. 4.2 first, here rather than after the growth: taking off the extra fans of a
+    // non-manifold vertex opens a loop, which is then closed below where it is at a thin part.
+    if (params_.removeNonManifoldVertices && !joinedAtVertex_.empty()) {
+      std::sort(joinedAtVertex_.begin(), joinedAtVertex_.end());
+      joinedAtVertex_.erase(std::unique(joinedAtVertex_.begin(), joinedAtVertex_.end()), joinedAtVertex_.end());
+      std::vector<char> alive(tri_.size(), 1);
+      const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, n, alive, &joinedAtVertex_);
+      // From the last: removeGrownTriangle moves the last triangle into the slot it frees.
+      for (size_t f = tri_.size(); f-- > 0;)
+        if (!alive[f]) removeGrownTriangle(f);
+      thinCleanup_.nonManifoldVertices += st.nonManifoldVertices;
+      thinCleanup_.facesRemoved += st.facesRemoved;
+      changed = st.facesRemoved > 0;
+    }
+    // The boundary loops: walks along boundary half-edges (used, twin unused), as in boundary(),
+    // each walk marking its half-edges; loops through a vertex more than once are left alone.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
+    std::vector<std::vector<std::uint32_t>> loops;
+    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
+      bool found = false;
+      pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
+        if (!found && out && !in && !pem_.marked(v, x)) {
+          w = x;
+          found = true;
+        }
+      });
+      return found;
+    };
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (freeEdges_[v] == 0) continue;
+      std::uint32_t w = 0;
+      while (nextFrom(v, w)) {
+        std::vector<std::uint32_t> loop;
+        std::uint32_t cur = v;
+        do {
+          pem_.setMark(cur, w, true);
+          marked.emplace_back(cur, w);
+          loop.push_back(cur);
+          cur = w;
+        } while (nextFrom(cur, w));
+        // A walk through a vertex twice (two fans meeting there) is split into simple loops.
+        std::vector<std::uint32_t> path;
+        auto keep = [&](std::vector<std::uint32_t> simple) {
+          if (simple.size() >= 3 && simple.size() <= kMaxRimLoopEdges) loops.push_back(std::move(simple));
+        };
+        for (std::uint32_t u : loop) {
+          const auto again = std::find(path.begin(), path.end(), u);
+          if (again != path.end()) {
+            keep(std::vector<std::uint32_t>(again, path.end()));
+            path.erase(again + 1, path.end());
+          } else {
+            path.push_back(u);
+          }
+        }
+        keep(std::move(path));
+      }
+    }
+    for (const auto& e : marked) pem_.setMark(e.first, e.second, false);
+
+    // The index of triangle (a, b, c) (in any rotation), or tri_.size(): a scan, for the few
+    // triangles taken off.
+    auto findTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      for (size_t g = tri_.size(); g-- > 0;) {
+        const Triangle& t = tri_[g];
+        if ((t[0] == a && t[1] == b && t[2] == c) || (t[1] == a && t[2] == b && t[0] == c) ||
+            (t[2] == a && t[0] == b && t[1] == c))
+          return g;
+      }
+      return tri_.size();
+    };
+    // The triangles at each point (a copy of each at each of its vertices, as they were when the
+    // round's loops were found), and the closure triangles added since: a closure must cross
+    // neither (growth::facesIntersect, exact), so that it adds no self-intersection.
+    std::vector<std::uint32_t> firstAt(n + 1, 0);
+    for (const Triangle& t : tri_)
+      for (std::uint32_t v : t) ++firstAt[v + 1];
+    for (size_t v = 0; v < n; ++v) firstAt[v + 1] += firstAt[v];
+    std::vector<Triangle> trianglesAt(firstAt[n]);
+    {
+      std::vector<std::uint32_t> next(firstAt.begin(), firstAt.end() - 1);
+      for (const Triangle& t : tri_)
+        for (std::uint32_t v : t) trianglesAt[next[v]++] = t;
+    }
+    std::vector<Triangle> added, removed;
+    auto takeOff = [&](size_t f) {
+      removed.push_back(tri_[f]);
+      removeGrownTriangle(f);
+    };
+    // v has an edge carrying a triangle to a point other than x and y.
+    auto hasOtherEdge = [&](std::uint32_t v, std::uint32_t x, std::uint32_t y) {
+      bool other = false;
+      pem_.forEachEdge(v, [&](std::uint32_t w, bool, bool) { other = other || (w != x && w != y); });
+      return other;
+    };
+    for (std::vector<std::uint32_t>& loop : loops) {
+      const size_t loopEdges = loop.size();
+      std::vector<std::uint32_t> sorted(loop);
+      std::sort(sorted.begin(), sorted.end());
+      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+      // Still open (an earlier closure does not touch another loop's edges, but be safe).
+      bool open = true;
+      for (size_t i = 0; i < loopEdges; ++i)
+        open = open && pem_.used(loop[i], loop[(i + 1) % loopEdges]) && !pem_.used(loop[(i + 1) % loopEdges], loop[i]);
+      if (!open) continue;
+      // The mesh triangle on the used half-edge from -> to: its third point (false: none found).
+      auto thirdPoint = [&](std::uint32_t from, std::uint32_t to, std::uint32_t& third) {
+        bool found = false;
+        pem_.forEachEdge(to, [&](std::uint32_t x, bool out, bool) {
+          // (from, to, x) is a triangle when its three half-edges are used, unless all three are
+          // boundary half-edges (then they can be three triangles' edges, as on a loop of three).
+          if (!found && out && x != from && pem_.used(x, from) && (pem_.used(x, to) || pem_.used(from, x))) {
+            third = x;
+            found = true;
+          }
+        });
+        return found;
+      };
+      // At a thin part (kThinFrom): the two sheets of a closed part face apart (or, where it was
+      // grown inside out, towards each other), both ways antiparallel. A smooth sheet does not
+      // pass: a triangle tilted by noise sees its own sheet along its normal, facing its own way; a
+      // triangle flipped within the sheet sees nothing that far off its plane. (Where the growth
+      // folded a noisy sheet or the layers of merged scans over themselves, the mesh has two
+      // sheets facing apart, and the loops there are closed too: see docs/g2s-robustness.md.)
+      bool apart = false;
+      for (size_t s = 0; s < 2 * loop.size() && !apart; ++s) {
+        std::array<std::uint32_t, 3> t;
+        // The triangles on the loop's edges, and the last triangle at each loop vertex.
+        if (s < loop.size()) {
+          const std::uint32_t a = loop[s], b = loop[(s + 1) % loop.size()];
+          if (!thirdPoint(a, b, t[2])) continue;
+          t[0] = a;
+          t[1] = b;
+        } else if (!triangleAt(loop[s - loop.size()], t)) {
+          continue;
+        }
+        const P3 centre = (pts_[t[0]] + pts_[t[1]] + pts_[t[2]]) / 3.0;
+        P3 normal = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
+        const double len = normal.Norm();
+        if (!(len > 0)) continue;
+        normal /= len;
+        const double from = kThinFrom * spacing_, to = kThinTo * spacing_, side = kThinSide * spacing_;
+        const double probe = std::sqrt(0.25 * (to - from) * (to - from) + side * side);
+        for (double dir : {1.0, -1.0}) {
+          if (apart) break;
+          apart = grid_.anyInBall(centre + normal * (dir * 0.5 * (from + to)), probe, [&](std::uint32_t i, double) {
+            const P3 d = pts_[i] - centre;
+            const double h = d * normal;
+            std::array<std::uint32_t, 3> u;
+            if (std::abs(h) < from || std::abs(h) > to || (d - normal * h).SquaredNorm() > side * side) return false;
+            if (isolated(i) || !triangleAt(i, u)) return false;
+            const P3 m = (pts_[u[1]] - pts_[u[0]]) ^ (pts_[u[2]] - pts_[u[0]]);
+            return m * normal < kFacingApartCos * m.Norm();
+          });
+        }
+      }
+      if (!apart) continue;
+      // Flaps: a mesh triangle (a, tip, b) on two consecutive loop edges a -> tip -> b whose tip
+      // has other triangles (a second fan there, which the non-manifold vertex removal of sec. 4.2
+      // would take it off from later, leaving the loop open). It is taken off now, and the loop
+      // runs a -> b instead (a -> b is used by the triangle on the other side of the flap's base).
+      for (bool again = true; again && loop.size() > 3;) {
+        again = false;
+        const size_t kk = loop.size();
+        for (size_t i = 0; i < kk && !again; ++i) {
+          const std::uint32_t a = loop[i], tip = loop[(i + 1) % kk], b = loop[(i + 2) % kk];
+          if (!pem_.used(b, a) || !pem_.used(a, b)) continue;
+          if (!hasOtherEdge(tip, a, b)) continue;
+          const size_t f = findTriangle(a, tip, b);
+          if (f == tri_.size()) continue;
+          takeOff(f);
+          loop.erase(loop.begin() + std::ptrdiff_t((i + 1) % kk));
+          again = changed = true;
+        }
+      }
+      // A stray triangle (all three edges boundary) held to the mesh by its vertices alone: taken
+      // off (sec. 4.2 would take it off later), which opens the loop of the mesh around it for the
+      // next round.
+      if (loop.size() == 3) {
+        const size_t f = findTriangle(loop[0], loop[1], loop[2]);
+        if (f < tri_.size() && hasOtherEdge(loop[0], loop[1], loop[2]) && hasOtherEdge(loop[1], loop[2], loop[0]) &&
+            hasOtherEdge(loop[2], loop[0], loop[1])) {
+          takeOff(f);
+          changed = true;
+          continue;
+        }
+        // A lone triangle's own loop: its closure would be the triangle again, reversed.
+        if (f < tri_.size()) continue;
+      }
+      // The closure's triangles use the loop's half-edges the other way: polygon q = the loop
+      // reversed, triangles (q_i, q_m, q_j) for i < m < j. Least total area (dynamic programming over
+      // the polygon's sub-chains), no diagonal between points that have or had an edge, and no
+      // triangle folding back onto the mesh triangle across its loop edge.
+      const double inf = std::numeric_limits<double>::infinity();
+      std::vector<std::array<std::uint32_t, 3>> closure;
+      auto triangulate = [&](const std::vector<std::uint32_t>& loop) {
+        const size_t k = loop.size();
+        const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
+        auto cost = [&](size_t i, size_t m, size_t j) {
+          const P3 &A = pts_[q[i]], &B = pts_[q[m]], &C = pts_[q[j]];
+          const P3 nt = (B - A) ^ (C - A);
+          const double len = nt.Norm();
+          if (!(len > 0)) return inf;
+          // Loop edges of this triangle: (i, m) when m = i + 1, (m, j) when j = m + 1, (j, i) when
+          // i = 0 and j = k - 1; each is q_a -> q_b here, used as q_b -> q_a by the mesh.
+          const std::pair<size_t, size_t> edges[3] = {{i, m}, {m, j}, {j, i}};
+          for (const auto& e : edges) {
+            const std::uint32_t u = q[e.first], v = q[e.second];
+            const bool loopEdge = (e.second == e.first + 1) || (e.first == k - 1 && e.second == 0);
+            if (!loopEdge) {
+              if (pem_.hasEntry(u, v)) return inf;
+              continue;
+            }
+            std::uint32_t x;
+            if (thirdPoint(v, u, x)) {
+              const P3 meshNormal = (pts_[u] - pts_[v]) ^ (pts_[x] - pts_[v]);
+              const double ml = meshNormal.Norm();
+              if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
+            }
+          }
+          return 0.5 * len;
+        };
+        std::vector<double> best(k * k, 0.0);
+        std::vector<size_t> split(k * k, 0);
+        for (size_t span = 2; span < k; ++span)
+          for (size_t i = 0; i + span < k; ++i) {
+            const size_t j = i + span;
+            double b = inf;
+            for (size_t m = i + 1; m < j; ++m) {
+              const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
+              if (c < b) {
+                b = c;
+                split[i * k + j] = m;
+              }
+            }
+            best[i * k + j] = b;
+          }
+        closure.clear();
+        if (!(best[k - 1] < inf)) return false;
+        std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
+        while (!stack.empty()) {
+          const size_t i = stack.back().first, j = stack.back().second;
+          stack.pop_back();
+          if (j < i + 2) continue;
+          const size_t m = split[i * k + j];
+          closure.push_back({q[i], q[m], q[j]});
+          stack.emplace_back(i, m);
+          stack.emplace_back(m, j);
+        }
+        return true;
+      };
+      // Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b faces against the loop
+      // (its normal and the loop's, by Newell's formula, more than 120 degrees apart: it lies
+      // folded over the hole), no closure can join it. Up to kMaxUnfolds such triangles, the one
+      // facing most against first, are taken off when the loop then runs a -> x -> b and closes.
+      // A triangle of `closure` crosses a mesh triangle with a vertex within reach of the loop (its
+      // radius about its centroid, its longest edge and two spacings), or one added this round.
+      auto crossesMesh = [&]() {
+        P3 centroid(0, 0, 0);
+        for (std::uint32_t v : loop) centroid += pts_[v];
+        centroid /= double(loop.size());
+        double radius = 0, longest = 0;
+        for (size_t i = 0; i < loop.size(); ++i) {
+          radius = std::max(radius, (pts_[loop[i]] - centroid).Norm());
+          longest = std::max(longest, (pts_[loop[(i + 1) % loop.size()]] - pts_[loop[i]]).Norm());
+        }
+        vcg::Box3d box;
+        for (std::uint32_t v : loop) box.Add(pts_[v]);
+        auto crosses = [&](const Triangle& t) {
+          if (std::find(removed.begin(), removed.end(), t) != removed.end()) return false;
+          vcg::Box3d tb;
+          for (std::uint32_t v : t) tb.Add(pts_[v]);
+          if (!tb.Collide(box)) return false;
+          for (const auto& c : closure)
+            if (facesIntersect(grid_.points(), Triangle{c[0], c[1], c[2]}, t)) return true;
+          return false;
+        };
+        for (size_t i = 0; i < closure.size(); ++i)
+          for (size_t j = i + 1; j < closure.size(); ++j)
+            if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
+                               Triangle{closure[j][0], closure[j][1], closure[j][2]}))
+              return true;
+        for (const Triangle& t : added)
+          if (crosses(t)) return true;
+        return grid_.anyInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
+          for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f)
+            if (crosses(trianglesAt[f])) return true;
+          return false;
+        });
+      };
+      bool closed = triangulate(loop);
+      if (!closed) {
+        std::vector<std::uint32_t> unfolded(loop);
+        std::vector<std::array<std::uint32_t, 3>> off;
+        for (int unfold = 0; !closed && unfold < kMaxUnfolds; ++unfold) {
+          const size_t kk = unfolded.size();
+          P3 newell(0, 0, 0);
+          for (size_t i = 0; i < kk; ++i) newell += pts_[unfolded[i]] ^ pts_[unfolded[(i + 1) % kk]];
+          const double newellNorm = newell.Norm();
+          if (!(newellNorm > 0)) break;
+          double worst = kClosureFoldCos;
+          size_t at = kk;
+          std::uint32_t third = 0;
+          for (size_t i = 0; i < kk; ++i) {
+            const std::uint32_t a = unfolded[i], b = unfolded[(i + 1) % kk];
+            std::uint32_t x;
+            if (!thirdPoint(a, b, x) || std::find(unfolded.begin(), unfolded.end(), x) != unfolded.end()) continue;
+            if (!pem_.used(a, x) || !pem_.used(x, b) || !hasOtherEdge(x, a, b)) continue;
+            const P3 nt = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
+            const double len = nt.Norm();
+            if (!(len > 0)) continue;
+            const double c = (nt * newell) / (len * newellNorm);
+            if (c < worst) {
+              worst = c;
+              at = i;
+              third = x;
+            }
+          }
+          if (at == kk) break;
+          off.push_back({unfolded[at], unfolded[(at + 1) % kk], third});
+          unfolded.insert(unfolded.begin() + std::ptrdiff_t(at + 1), third);
+          closed = triangulate(unfolded);
+        }
+        if (closed) {
+          for (const auto& t : off) {
+            const size_t f = findTriangle(t[0], t[1], t[2]);
+            if (f < tri_.size()) takeOff(f);
+          }
+          loop.swap(unfolded);
+          changed = true;
+        }
+      }
+      const size_t k = loop.size();
+      if (!closed) continue;
+      // An unused point inside a triangle of the closure would be skipped for good: then the loop
+      // stays open. Every point needs room for the closure's new edges.
+      bool clear = true;
+      for (const auto& t : closure) clear = clear && !unusedPointInside(t[0], t[1], t[2]);
+      for (std::uint32_t v : loop) clear = clear && pem_.entries(v) + k <= pem_.capacity();
+      if (!clear || crossesMesh()) continue;
+      for (const auto& t : closure) {
+        addTriangle(t[0], t[1], t[2]);
+        added.push_back(Triangle{t[0], t[1], t[2]});
+      }
+      ++rimLoopsClosed_;
+      changed = true;
+    }
+    if (!changed) break;
+  }
+  // The closures' new edges (the diagonals) were queued by addTriangle and then closed by their
+  // second triangle: the queue only drains.
+  grow();
+}
+
+} // namespace g2s
+} // namespace growth
+
+namespace growth {
+namespace g2s {
+
+void Mesher::removeGrownTriangle(size_t f) {
+  const Triangle t = tri_[f];
+  pem_.removeTriangle(t[0], t[1], t[2]);
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t x = t[k], y = t[(k + 1) % 3];
+    // An edge with a triangle on the other side becomes free; a free edge of this triangle goes.
+    // (Its entries stay in the point-edge map, and edgeCount_ counts entries.)
+    if (pem_.used(y, x)) {
+      ++freeEdges_[x];
+      ++freeEdges_[y];
+    } else {
+      --freeEdges_[x];
+      --freeEdges_[y];
+    }
+  }
+  for (std::uint32_t v : t) {
+    if (faceAt_[v] == f) faceAt_[v] = kNoFace;
+    // A point left with no triangle is unused again (isolated).
+    bool any = false;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool, bool) { any = true; });
+    if (!any && edgeCount_[v] != 0) {
+      edgeCount_[v] = 0;
+      edgeLengthSum_[v] = 0;
+      --usedPoints_;
+    }
+  }
+  const size_t last = tri_.size() - 1;
+  if (f != last) {
+    tri_[f] = tri_[last];
+    for (std::uint32_t v : tri_[f])
+      if (faceAt_[v] == last) faceAt_[v] = static_cast<std::uint32_t>(f);
+  }
+  tri_.pop_back();
+}
+
+} // namespace g2s
+} // namespace growth
