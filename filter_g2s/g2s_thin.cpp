@@ -122,33 +122,52 @@ void Mesher::closeRimLoops() {
     }
     for (const auto& e : marked) pem_.setMark(e.first, e.second, false);
 
-    // The index of triangle (a, b, c) (in any rotation), or tri_.size(): a scan, for the few
-    // triangles taken off.
-    auto findTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-      for (size_t g = tri_.size(); g-- > 0;) {
-        const Triangle& t = tri_[g];
-        if ((t[0] == a && t[1] == b && t[2] == c) || (t[1] == a && t[2] == b && t[0] == c) ||
-            (t[2] == a && t[0] == b && t[1] == c))
-          return g;
-      }
-      return tri_.size();
-    };
     // The triangles at each point (a copy of each at each of its vertices, as they were when the
     // round's loops were found), and the closure triangles added since: a closure must cross
-    // neither (growth::facesIntersect, exact), so that it adds no self-intersection.
+    // neither (growth::facesIntersect, exact), so that it adds no self-intersection. Each triangle
+    // has an id (its index in tri_ when the tables were made; the closures' ids follow) and curOf
+    // gives its index in tri_ now, kGone once it is taken off (removeGrownTriangle moves the last
+    // triangle into the freed slot). A lookup scans the few triangles at a vertex: a scan of tri_
+    // for each cost the bunny, with its thousands of loops, seconds.
+    constexpr std::uint32_t kGone = ~0u;
     std::vector<std::uint32_t> firstAt(n + 1, 0);
     for (const Triangle& t : tri_)
       for (std::uint32_t v : t) ++firstAt[v + 1];
     for (size_t v = 0; v < n; ++v) firstAt[v + 1] += firstAt[v];
     std::vector<Triangle> trianglesAt(firstAt[n]);
+    std::vector<std::uint32_t> idAt(firstAt[n]), curOf(tri_.size()), idOf(tri_.size());
     {
       std::vector<std::uint32_t> next(firstAt.begin(), firstAt.end() - 1);
-      for (const Triangle& t : tri_)
-        for (std::uint32_t v : t) trianglesAt[next[v]++] = t;
+      for (size_t g = 0; g < tri_.size(); ++g) {
+        curOf[g] = idOf[g] = static_cast<std::uint32_t>(g);
+        for (std::uint32_t v : tri_[g]) {
+          idAt[next[v]] = static_cast<std::uint32_t>(g);
+          trianglesAt[next[v]++] = tri_[g];
+        }
+      }
     }
-    std::vector<Triangle> added, removed;
+    std::vector<Triangle> added;
+    std::vector<std::uint32_t> addedId;
+    auto same = [](const Triangle& t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+      return (t[0] == a && t[1] == b && t[2] == c) || (t[1] == a && t[2] == b && t[0] == c) ||
+             (t[2] == a && t[0] == b && t[1] == c);
+    };
+    // The index in tri_ of triangle (a, b, c) (in any rotation), or tri_.size().
+    auto findTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) -> size_t {
+      for (std::uint32_t f = firstAt[a]; f < firstAt[a + 1]; ++f)
+        if (same(trianglesAt[f], a, b, c) && curOf[idAt[f]] != kGone) return curOf[idAt[f]];
+      for (size_t k = added.size(); k-- > 0;)
+        if (same(added[k], a, b, c) && curOf[addedId[k]] != kGone) return curOf[addedId[k]];
+      return tri_.size();
+    };
     auto takeOff = [&](size_t f) {
-      removed.push_back(tri_[f]);
+      const size_t last = tri_.size() - 1;
+      curOf[idOf[f]] = kGone;
+      if (f != last) {
+        idOf[f] = idOf[last];
+        curOf[idOf[f]] = static_cast<std::uint32_t>(f);
+      }
+      idOf.pop_back();
       removeGrownTriangle(f);
     };
     // v has an edge carrying a triangle to a point other than x and y.
@@ -328,13 +347,19 @@ void Mesher::closeRimLoops() {
           radius = std::max(radius, (pts_[loop[i]] - centroid).Norm());
           longest = std::max(longest, (pts_[loop[(i + 1) % loop.size()]] - pts_[loop[i]]).Norm());
         }
-        vcg::Box3d box;
-        for (std::uint32_t v : loop) box.Add(pts_[v]);
-        auto crosses = [&](const Triangle& t) {
-          if (std::find(removed.begin(), removed.end(), t) != removed.end()) return false;
-          vcg::Box3d tb;
-          for (std::uint32_t v : t) tb.Add(pts_[v]);
-          if (!tb.Collide(box)) return false;
+        P3 lo = pts_[loop[0]], hi = pts_[loop[0]];
+        for (std::uint32_t v : loop)
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], pts_[v][a]);
+            hi[a] = std::max(hi[a], pts_[v][a]);
+          }
+        // (Triangles taken off do not count.)
+        auto crosses = [&](const Triangle& t, std::uint32_t id) {
+          if (curOf[id] == kGone) return false;
+          for (int a = 0; a < 3; ++a)
+            if (std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
+                std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a])
+              return false;
           for (const auto& c : closure)
             if (facesIntersect(grid_.points(), Triangle{c[0], c[1], c[2]}, t)) return true;
           return false;
@@ -344,11 +369,11 @@ void Mesher::closeRimLoops() {
             if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
                                Triangle{closure[j][0], closure[j][1], closure[j][2]}))
               return true;
-        for (const Triangle& t : added)
-          if (crosses(t)) return true;
+        for (size_t k = 0; k < added.size(); ++k)
+          if (crosses(added[k], addedId[k])) return true;
         return grid_.anyInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
           for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f)
-            if (crosses(trianglesAt[f])) return true;
+            if (crosses(trianglesAt[f], idAt[f])) return true;
           return false;
         });
       };
@@ -405,6 +430,9 @@ void Mesher::closeRimLoops() {
       for (const auto& t : closure) {
         addTriangle(t[0], t[1], t[2]);
         added.push_back(Triangle{t[0], t[1], t[2]});
+        addedId.push_back(static_cast<std::uint32_t>(curOf.size()));
+        idOf.push_back(static_cast<std::uint32_t>(curOf.size()));
+        curOf.push_back(static_cast<std::uint32_t>(tri_.size() - 1));
       }
       ++rimLoopsClosed_;
       changed = true;
