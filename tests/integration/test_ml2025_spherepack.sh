@@ -41,7 +41,7 @@ grep -q "^log: Sphere Packing: time [0-9.]* s" "$work/auto.log" || { cat "$work/
 # Help texts short enough for MeshLab 2020.09's dialog to show them whole (the same glue source).
 awk '/^help / { t = $0; sub(/^help [^:]*: [^:]*: /, "", t); if (length(t) > 100) { print; bad = 1 } }
      END { exit bad }' "$work/auto.log" || fail "help texts longer than 100 characters"
-[ "$(grep -c '^help ' "$work/auto.log")" -eq 8 ] || fail "not 8 parameters with help texts"
+[ "$(grep -c '^help ' "$work/auto.log")" -eq 9 ] || fail "not 9 parameters with help texts"
 # The keywords of PyMeshLab's apply_filter, as MeshLab derives them (RichParameter::pythonName,
 # pythonType), listed in the README.
 python_names="sphereDiameter: spherediameter: PercentageValue
@@ -49,6 +49,7 @@ splatSize: splatsize: PercentageValue
 localSplatSizes: localsplatsizes: bool
 windowSize: windowsize: int
 maxBorderLength: maxborderlength: int
+minComponentFaces: mincomponentfaces: int
 useStartPoints: usestartpoints: bool
 startPoint1: startpoint1: numpy.ndarray[numpy.float64[3]]
 startPoint2: startpoint2: numpy.ndarray[numpy.float64[3]]"
