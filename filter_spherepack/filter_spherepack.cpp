@@ -154,6 +154,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   outputs["faces"] = int(st.faces);
   outputs["holes"] = int(st.boundaryLoops);
   outputs["faces_removed"] = int(st.facesRemoved); // for a manifold mesh without intersections
+  outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["sphere_diameter"] = double(st.sphereDiameter);
   outputs["seconds"] = double(st.seconds);
 

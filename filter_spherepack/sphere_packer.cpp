@@ -46,7 +46,7 @@ constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
 constexpr double kLargeSplatPerD = 1.0;
 // A start after the first (sec. 3.3 again) keeps this many d from every vertex: two spacings or
 // so more than the d that any vertex keeps, so that no start lands on a second layer of a surface
-// already meshed (misregistered scans lie 0.5-1.8 d apart on the bunny).
+// already meshed (the flaps on the bunny's misregistered scans lie 0.4-2 d off the mesh, median 0.84 d).
 constexpr double kStartClearancePerD = 2.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
 

@@ -62,6 +62,8 @@ grep -qx "output vertices = $(vertices_of "$work/auto.ply")" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "output vertices differs from the saved mesh"; }
 grep -qx "output faces = $(faces_of "$work/auto.ply")" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "output faces differs from the saved mesh"; }
+grep -qx "output pieces_dropped = 0" "$work/auto.log" \
+  || { cat "$work/auto.log"; fail "pieces were dropped on a clean cloud, or no pieces_dropped output"; }
 
 # An absolute d through the RichPercentage parameter (parameters by their Python names).
 ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$work/given.ply" \
