@@ -46,6 +46,9 @@ QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
       "border to tell a split from a join when ranking candidates; 0 gives breadth-first growth with "
       "seams, 8 or more all give the same quality. <i>Border limit</i>: regions bounded by more border "
       "edges stay open instead of being triangulated, so the boundaries of open scans are kept. "
+      "<i>Smallest piece kept</i>: connected pieces with fewer faces are dropped (the largest always "
+      "stays) and counted in the log: on merged scans, flaps grown onto a misregistered second layer "
+      "and cut off by the regions left open between the layers; bits of stray points. "
       "<i>Starting points</i>: projected onto the closest splats; the second must lie between d and "
       "2d from the first.<br><br>"
       "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
@@ -86,6 +89,8 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
       "Border window of the candidate priorities (sec. 4.2); 0 = breadth-first."));
   parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
       "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
+  parlst.addParam(RichInt("minComponentFaces", def.minComponentFaces, "Smallest piece kept",
+      "Pieces with fewer faces are dropped (second scan layers, stray points); 0 keeps all."));
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
       "Start the growth from the two points below, not near the highest point."));
   parlst.addParam(RichPoint("startPoint1", Point3m::Construct(def.startPoint[0]), "Starting point 1",
@@ -114,6 +119,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   p.localSplatSizes = par.getBool("localSplatSizes");
   p.windowSize = par.getInt("windowSize");
   p.maxBorderLength = par.getInt("maxBorderLength");
+  p.minComponentFaces = par.getInt("minComponentFaces");
   p.useStartPoints = par.getBool("useStartPoints");
   p.startPoint[0] = vcg::Point3d::Construct(par.getPoint3m("startPoint1"));
   p.startPoint[1] = vcg::Point3d::Construct(par.getPoint3m("startPoint2"));
@@ -148,6 +154,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   outputs["faces"] = int(st.faces);
   outputs["holes"] = int(st.boundaryLoops);
   outputs["faces_removed"] = int(st.facesRemoved); // for a manifold mesh without intersections
+  outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["sphere_diameter"] = double(st.sphereDiameter);
   outputs["seconds"] = double(st.seconds);
 
@@ -157,8 +164,12 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       st.duplicatesDropped, st.scale.meanSpacing, st.scale.spacing, st.scale.areaSpacing, st.scale.noise);
   Log("Sphere Packing: sphere diameter d = %g, s = %g%s (mean splat radius %g); d %s", st.sphereDiameter, st.splatSize,
       p.localSplatSizes ? " with local splat sizes" : "", st.meanSplatRadius, st.diameterReason.c_str());
-  Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d", st.componentsStarted,
-      st.componentsStarted == 1 ? "" : "s", st.unreachedPoints);
+  Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d (%zu of them where a "
+      "vertex within 2d kept a new start off: a second layer of a surface already meshed)", st.componentsStarted,
+      st.componentsStarted == 1 ? "" : "s", st.unreachedPoints, st.startsRefusedNearMesh);
+  Log("Sphere Packing: %zu piece%s with fewer than %d faces dropped (%zu faces): flaps on misregistered scan "
+      "layers, bits of stray points", st.componentsDropped, st.componentsDropped == 1 ? "" : "s",
+      p.minComponentFaces, st.componentFacesDropped);
   Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary loops: %zu "
       "regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh without "
       "intersections); %zu of %zu boxes where d looked too large", st.vertices,

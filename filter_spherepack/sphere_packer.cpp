@@ -44,6 +44,10 @@ constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
 // (BoxGrid::build's extraReach); smaller ones by the boxes their centre is within d of, as in the
 // paper (a location on the surface is nearly always covered by a nearby point's splat as well).
 constexpr double kLargeSplatPerD = 1.0;
+// A start after the first (sec. 3.3 again) keeps this many d from every vertex: two spacings or
+// so more than the d that any vertex keeps, so that no start lands on a second layer of a surface
+// already meshed (the flaps on the bunny's misregistered scans lie 0.4-2 d off the mesh, median 0.84 d).
+constexpr double kStartClearancePerD = 2.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
 
 // Unoriented normals (a sign that changes from point to point) are told from thin parts and folds,
@@ -437,6 +441,45 @@ bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>
   return false;
 }
 
+// Drops the connected pieces of `faces` with fewer than minFaces faces, except the largest (the
+// first of equal ones). Pieces are joined through shared vertices: after the manifold clean-up
+// every vertex has one fan of faces, so these are the edge-connected pieces (mesh_measures.h).
+// The order of the faces kept is unchanged. Returns the number of pieces dropped.
+size_t dropSmallComponents(std::vector<Triangle>& faces, size_t vertexCount, size_t minFaces,
+                           size_t& facesDropped) {
+  facesDropped = 0;
+  if (minFaces <= 1 || faces.empty()) return 0;
+  std::vector<std::uint32_t> parent(vertexCount);
+  for (std::uint32_t v = 0; v < vertexCount; ++v) parent[v] = v;
+  auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  auto unite = [&](std::uint32_t a, std::uint32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  for (const Triangle& f : faces) unite(f[0], f[1]), unite(f[1], f[2]);
+  std::vector<std::uint32_t> count(vertexCount, 0);
+  std::uint32_t largest = find(faces[0][0]);
+  for (const Triangle& f : faces) {
+    const std::uint32_t r = find(f[0]);
+    if (++count[r] > count[largest]) largest = r;
+  }
+  size_t dropped = 0;
+  for (std::uint32_t v = 0; v < vertexCount; ++v)
+    dropped += parent[v] == v && count[v] > 0 && count[v] < minFaces && v != largest ? 1 : 0;
+  if (dropped == 0) return 0;
+  size_t w = 0;
+  for (const Triangle& f : faces) {
+    const std::uint32_t r = find(f[0]);
+    if (count[r] >= minFaces || r == largest) faces[w++] = f;
+  }
+  facesDropped = faces.size() - w;
+  faces.resize(w);
+  return dropped;
+}
+
 } // namespace
 
 CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
@@ -509,6 +552,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   // Parameters.
   if (params.windowSize < 0 || params.windowSize > 1000)
     throw Error("The window size w must be between 0 and 1000 (the paper uses 8).");
+  if (params.minComponentFaces < 0)
+    throw Error("The smallest piece to keep must be 0 faces (keep all) or more.");
   if (params.maxBorderLength < 3)
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
   const CloudScale scale = cloudScale(in.points, params.threads);
@@ -641,14 +686,27 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.componentsStarted = 1;
   // Every further part of the cloud (sec. 3.3 again): when the growth has stopped and points are
   // left that no vertex reached, a new starting pair on the first of them in input order (every
-  // point is tried once, so the scan is linear), at least d from every vertex placed so far.
+  // point is tried once, so the scan is linear), at least kStartClearancePerD·d from every vertex
+  // placed so far: a point with a vertex between d and that far lies on a surface already meshed
+  // there (a misregistered second scan layer, or the rim of a gap the growth left), and a start
+  // on it would only grow a separate sheet over or beside the mesh (docs/spherepack-components.md).
   {
-    auto farFromVertices = [&](const vcg::Point3d& x) { return !growth.anyVertexCloserThan(x, d); };
+    bool nearMesh = false;
+    auto farFromVertices = [&](const vcg::Point3d& x) {
+      if (growth.anyVertexCloserThan(x, d)) return false;
+      if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
+      nearMesh = true;
+      return false;
+    };
     for (std::uint32_t k = 0; k < in.points.size(); ++k) {
       const std::uint32_t i = order.rankOf(k);
       if (!growth.lists().empty(i)) continue;
       StartPair pair;
-      if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) continue;
+      nearMesh = false;
+      if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) {
+        st.startsRefusedNearMesh += nearMesh ? 1 : 0;
+        continue;
+      }
       growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
       growth.run();
       ++st.componentsStarted;
@@ -708,6 +766,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
       faces.resize(w);
     }
   }
+
+  // Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
+  // layer, cut off from the mesh by the regions left open between the layers, and bits of stray
+  // points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+  if (params.minComponentFaces > 1)
+    st.componentsDropped = dropSmallComponents(faces, g.vertexCount(), size_t(params.minComponentFaces),
+                                               st.componentFacesDropped);
 
   st.secondsCleanup = watch.lap();
 

@@ -30,6 +30,9 @@ struct Params {
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
   vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
+  int minComponentFaces = 50;    // connected pieces of the output with fewer faces are dropped (the
+                                 // largest always stays): flaps of misregistered scan layers, bits
+                                 // of stray points; 0 keeps all
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
   size_t spatialOrderMinPoints = 20000; // clouds with at least this many points are processed in a
                                  // spatial order of the points (memory locality); the same mesh
@@ -97,10 +100,14 @@ struct Stat {
   size_t unreachedPoints = 0;    // input points with no vertex within d of their splat
   size_t componentsStarted = 0;  // starting pairs placed (sec. 3.3): the first, and one for each
                                  // part of the cloud the growth had not reached when it stopped
+  size_t startsRefusedNearMesh = 0; // unreached points where no start was placed because a vertex
+                                 // lay within 2d (a second layer of a surface already meshed)
   size_t nonManifoldVerticesRemoved = 0; // vertices of the triangulated packing with more than one
                                  // fan of faces (or on an edge with more than two), made manifold
   size_t selfIntersectionFacesRemoved = 0; // faces removed because they intersected others
   size_t facesRemoved = 0;       // faces removed in all (the extra fans, the intersecting faces)
+  size_t componentsDropped = 0;  // connected pieces with fewer than Params::minComponentFaces faces
+  size_t componentFacesDropped = 0; // their faces (not in facesRemoved)
   size_t nonManifoldVertices = 0; // output vertices whose faces form more than one fan (0)
   size_t nonManifoldEdges = 0;   // output edges with more than two faces (0)
   size_t boundaryLoops = 0;      // boundary loops of the output (holes, including the ∂max ones)

@@ -636,6 +636,108 @@ TEST(SpherePacker, EveryComponentIsMeshed) {
 }
 
 namespace {
+// A sphere of 20,000 points (mean spacing about 0.0125) and, over its cap z > 0.5, a second scan
+// layer of the same density `offset` further out: a misregistered scan (docs/spherepack-components.md).
+growth::Cloud sphereWithSecondLayer(double offset) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::Cloud c = growth::generateCloud(big);
+  growth::CloudSpec outer = big;
+  outer.seed = 2;
+  outer.sphereRadius = 1 + offset;
+  const growth::Cloud layer = growth::generateCloud(outer);
+  for (size_t i = 0; i < layer.points.size(); ++i)
+    if (layer.normals[i][2] > 0.5) {
+      c.points.push_back(layer.points[i]);
+      c.normals.push_back(layer.normals[i]);
+    }
+  return c;
+}
+
+struct Meshed {
+  CMeshO mesh;
+  sp::Stat st;
+  growth::MeshMeasures m;
+};
+std::unique_ptr<Meshed> mesh(const growth::Cloud& c, const sp::Params& p) {
+  auto r = std::make_unique<Meshed>();
+  CMeshO cloud;
+  growth::toMesh(c, cloud);
+  sp::build(cloud, r->mesh, p, r->st);
+  r->m = growth::measure(r->mesh);
+  return r;
+}
+} // namespace
+
+// A second layer d over part of the surface: the growth stopped on it at many places, and every
+// unreached point with no vertex within d got a start of its own (276 starts, 41 pieces before).
+// Now no start is placed within 2d of a vertex, and what grew across onto the layer in small
+// flaps is dropped: one piece, manifold, every edge at least d.
+TEST(SpherePackerComponents, SecondScanLayerOneSpacingOffGivesOnePiece) {
+  sp::Params p;
+  p.sphereDiameter = 0.03; // 2.4 mean spacings; the layer lies 1 d out
+  const auto r = mesh(sphereWithSecondLayer(0.03), p);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_LE(r->st.componentsStarted, 2u);
+  EXPECT_GT(r->st.startsRefusedNearMesh, 0u);
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_EQ(r->m.selfIntersectingPairs, 0u);
+  EXPECT_GE(r->m.edgeMin, 0.03 * (1 - 1e-5));
+  EXPECT_GE(r->m.minVertexDistance, 0.03 * (1 - 1e-5));
+  EXPECT_GT(r->m.faces, 25000u); // the sphere, about 29,000 faces
+  EXPECT_LE(r->m.boundaryEdges, 200u);
+}
+
+// Small clumps of stray points each hold a start and a triangle or a few: dropped, counted in
+// the Stat, and kept with minComponentFaces = 0.
+TEST(SpherePackerComponents, StrayClumpsAreDroppedAndCounted) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::Cloud c = growth::generateCloud(big);
+  growth::Random rnd(7);
+  const int clumps = 6;
+  for (int k = 0; k < clumps; ++k) {
+    const Point3d centre(3.0 + 0.5 * k, 0.3 * k, -1.0); // far from the sphere and from each other
+    for (int j = 0; j < 6; ++j) {
+      const double a = 2 * 3.14159265358979 * rnd.uniform(), r = 0.02 * std::sqrt(rnd.uniform());
+      c.points.push_back(centre + Point3d(r * std::cos(a), r * std::sin(a), 0));
+      c.normals.push_back(Point3d(0, 0, 1));
+    }
+  }
+  sp::Params p;
+  p.sphereDiameter = 0.03;
+  p.minComponentFaces = 0;
+  const auto kept = mesh(c, p);
+  EXPECT_EQ(kept->st.componentsDropped, 0u);
+  ASSERT_GT(kept->m.components, 1u); // the clumps made faces
+  const size_t clumpPieces = kept->m.components - 1;
+  p.minComponentFaces = 50;
+  const auto dropped = mesh(c, p);
+  EXPECT_EQ(dropped->m.components, 1u);
+  EXPECT_EQ(dropped->st.componentsDropped, clumpPieces);
+  EXPECT_EQ(dropped->st.componentFacesDropped, kept->m.faces - dropped->m.faces);
+  EXPECT_EQ(dropped->st.faces, dropped->m.faces);
+  EXPECT_EQ(dropped->m.boundaryEdges, 0u);
+  EXPECT_TRUE(dropped->m.manifold());
+  EXPECT_GE(dropped->m.edgeMin, 0.03 * (1 - 1e-5));
+  for (const auto& v : dropped->mesh.vert) EXPECT_LT(Point3d::Construct(v.cP()).Norm(), 1.1);
+}
+
+// The largest piece stays whatever the minimum; a negative minimum is refused.
+TEST(SpherePackerComponents, TheLargestPieceAlwaysStays) {
+  growth::CloudSpec s = sphereSpec();
+  s.count = 2000;
+  sp::Params p;
+  p.minComponentFaces = 1000000;
+  const auto r = mesh(growth::generateCloud(s), p);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_EQ(r->st.componentsDropped, 0u);
+  EXPECT_GT(r->m.faces, 100u);
+  p.minComponentFaces = -1;
+  EXPECT_THROW(mesh(growth::generateCloud(s), p), growth::Error);
+}
+
+namespace {
 // Runs build on `cloud` and returns the growth::Error message ("" when it did not throw).
 std::string errorOf(const CMeshO& cloud, const sp::Params& p = sp::Params()) {
   CMeshO out;

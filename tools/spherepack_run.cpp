@@ -5,6 +5,7 @@
 //                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
 //          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
+//          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
 //          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
 //          --repeat R (best of R runs; each phase time is that phase's best)
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
@@ -32,6 +33,7 @@ static void usage() {
                "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]\n"
                "                      [--noise NU] [--outliers FRACTION]\n"
                "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B] [--threads T]\n"
+               "       [--min-component-faces F]\n"
                "       [--spatial-order-min N]\n"
                "       [--repeat R] [--measure] [--points-only] [-o out.ply]\n");
 }
@@ -73,6 +75,7 @@ int main(int argc, char** argv) {
       else if (a == "--keep-twisted") params.rejectTwisted = false;
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
+      else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
       else if (a == "--threads") params.threads = std::atoi(value());
       else if (a == "--spatial-order-min") params.spatialOrderMinPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
@@ -133,9 +136,9 @@ int main(int argc, char** argv) {
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
-                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
+                "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,
-                st.rejectedInconsistent, st.unreachedPoints, st.componentsStarted, st.nonManifoldVerticesRemoved,
+                st.rejectedInconsistent, st.unreachedPoints, st.componentsStarted, st.startsRefusedNearMesh, st.componentsDropped, st.componentFacesDropped, st.nonManifoldVerticesRemoved,
                 st.selfIntersectionFacesRemoved, st.facesRemoved, st.nonManifoldVertices);
     std::printf("seconds_input: %.4f\nseconds_box_grid: %.4f\nseconds_splats: %.4f\nseconds_growth: %.4f\n"
                 "seconds_triangulation: %.4f\nseconds_cleanup: %.4f\nseconds_output: %.4f\n",

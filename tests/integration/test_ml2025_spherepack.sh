@@ -21,7 +21,7 @@ grep -q "^log: Sphere Packing: time [0-9.]* s" "$work/auto.log" || { cat "$work/
 # Help texts short enough for MeshLab 2020.09's dialog to show them whole (the same glue source).
 awk '/^help / { t = $0; sub(/^help [^:]*: [^:]*: /, "", t); if (length(t) > 100) { print; bad = 1 } }
      END { exit bad }' "$work/auto.log" || fail "help texts longer than 100 characters"
-[ "$(grep -c '^help ' "$work/auto.log")" -eq 8 ] || fail "not 8 parameters with help texts"
+[ "$(grep -c '^help ' "$work/auto.log")" -eq 9 ] || fail "not 9 parameters with help texts"
 # The keywords of PyMeshLab's apply_filter, as MeshLab derives them (RichParameter::pythonName,
 # pythonType), listed in the README.
 python_names="sphereDiameter: spherediameter: PercentageValue
@@ -29,6 +29,7 @@ splatSize: splatsize: PercentageValue
 localSplatSizes: localsplatsizes: bool
 windowSize: windowsize: int
 maxBorderLength: maxborderlength: int
+minComponentFaces: mincomponentfaces: int
 useStartPoints: usestartpoints: bool
 startPoint1: startpoint1: numpy.ndarray[numpy.float64[3]]
 startPoint2: startpoint2: numpy.ndarray[numpy.float64[3]]"
@@ -41,6 +42,8 @@ grep -qx "output vertices = $(vertices_of "$work/auto.ply")" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "output vertices differs from the saved mesh"; }
 grep -qx "output faces = $(faces_of "$work/auto.ply")" "$work/auto.log" \
   || { cat "$work/auto.log"; fail "output faces differs from the saved mesh"; }
+grep -qx "output pieces_dropped = 0" "$work/auto.log" \
+  || { cat "$work/auto.log"; fail "pieces were dropped on a clean cloud, or no pieces_dropped output"; }
 
 # An absolute d through the RichPercentage parameter (parameters by their Python names).
 ml_apply "$plugin" "Surface Reconstruction: Sphere Packing" "$work/cloud.ply" "$work/given.ply" \
