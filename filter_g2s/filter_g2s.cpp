@@ -26,7 +26,8 @@ QString FilterG2SPlugin::filterInfo(FilterID filter) const {
       "Interpolating mesh growing by the <b>Gabriel 2-simplex</b> criterion: from a seed triangle, "
       "a front of free edges grows, each edge taking the point whose smallest sphere through the "
       "edge is empty of other points. A priority queue grows the flattest, tightest triangles first, "
-      "and non-manifold vertices are removed at the end, so the output is never non-manifold. The "
+      "and non-manifold vertices and faces through other faces are removed at the end, so the output "
+      "is never non-manifold and never self-intersecting. The "
       "vertices of the result are the input points; <b>no normals are needed</b>. Several components "
       "are seeded one after the other. The result goes to a new layer with per-face quality "
       "Q<sub>t</sub>; the input layer is left unchanged.<br><br>"
@@ -123,6 +124,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["holes"] = int(st.holes);
   outputs["non_manifold_vertices_removed"] = int(st.nonManifoldVerticesRemoved);
   outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["self_intersection_faces_removed"] = int(st.selfIntersectionFacesRemoved);
   outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
@@ -134,6 +136,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces), "
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
+  Log("Robust G2S: %zu faces removed that intersected others", st.selfIntersectionFacesRemoved);
   Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

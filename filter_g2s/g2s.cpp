@@ -73,9 +73,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.secondsSetup = watch.lap();
     mesher.meshAll(&progress);
     stat.secondsGrowth = watch.lap();
-    // The search structures go before the cleanup allocates its own.
     stat.workingBytes = mesher.memoryBytes();
-    mesher.releaseGrowthState();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
     stat.pointsVisited = mesher.pointsVisited();
@@ -90,10 +88,18 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
       stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
       stat.facesRemoved = cs.facesRemoved;
+      // Not in the paper: no two faces may intersect (g2s_repair.cpp).
+      const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
+      stat.selfIntersectionFacesRemoved = si.facesRemoved;
+      stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
+      stat.facesRemoved += si.fanFacesRemoved;
     } else {
       stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                           std::vector<char>(mesher.triangles().size(), 1));
     }
+    // The search structures go before the output's memory is taken (the repair searches).
+    stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
+    mesher.releaseGrowthState();
     const Mesher::BoundaryCount boundary = mesher.boundary();
     stat.boundaryEdges = boundary.edges;
     stat.holes = boundary.loops;

@@ -124,6 +124,18 @@ public:
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
+  // --- Repair after sec. 4.2 (g2s_repair.cpp; not in the paper). Needs the growth state (call it
+  // before releaseGrowthState) and the cleanup's alive() flags. ---
+  struct SelfIntersectionStat {
+    size_t facesRemoved = 0;        // faces that intersected others
+    size_t nonManifoldVertices = 0; // vertices with two fans after that removal (sec. 4.2 again)
+    size_t fanFacesRemoved = 0;     // the faces of their extra fans
+  };
+  // Removes faces until no two live faces intersect (growth/self_intersections.h, exact) near the
+  // boundary of the mesh and the fans sec. 4.2 removed, then the non-manifold vertices this
+  // leaves. A mesh grown without a free edge left (a clean closed cloud) is not examined at all.
+  SelfIntersectionStat removeSelfIntersections();
+
   // Orients every connected component so that closed surfaces face out of the material: a
   // component faces outwards of its own volume (positive signed volume about its centroid),
   // except a closed shell inside an odd number of other closed shells (found by the parity of a
@@ -195,6 +207,11 @@ private:
   };
 
   double sampleSpacing() const;
+  // g2s_repair.cpp: the vertices that can lie on a boundary after the cleanup: those with a free
+  // edge at the end of the growth, and those of removed triangles. Empty on a closed mesh.
+  void boundarySuspects(std::vector<std::uint32_t>& out) const;
+  // The live faces at each point: at[first[v]..first[v+1]) (g2s_repair.cpp).
+  void faceIndex(std::vector<std::uint32_t>& first, std::vector<std::uint32_t>& at) const;
   // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).
   void mergeClumps();
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
@@ -250,6 +267,7 @@ private:
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
   std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
+  std::vector<std::uint32_t> loopFaces_;      // triangles that closed a loop of free edges (g2s_repair.cpp)
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;

@@ -328,6 +328,7 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   g2s::Mesher m(growth::readCloud(*cloud, check).points, defaults());
   m.meshAll();
   ASSERT_GT(m.removeNonManifoldVertices().facesRemoved, 0u);
+  m.removeSelfIntersections();
   m.orientComponents();
   const std::vector<growth::Triangle> all = m.triangles();
   const std::vector<char> alive = m.alive();

@@ -172,6 +172,7 @@ int main(int argc, char** argv) {
     std::printf("non_manifold_vertices_removed: %zu\n", st.nonManifoldVerticesRemoved);
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
+    std::printf("self_intersection_faces_removed: %zu\n", st.selfIntersectionFacesRemoved);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("seconds: %.4f\n", best);
     std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,
