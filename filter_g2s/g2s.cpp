@@ -31,6 +31,8 @@ void checkParams(const Params& p) {
                 "the default, " + std::to_string(kDefaultMaxSearchRadiusFactor).substr(0, 3) + ").");
   if (p.sizeLevels < 1 || p.sizeLevels > 64)
     throw Error("The number of size priority levels n must be between 1 and 64 (default 4).");
+  if (p.maxHoleEdges < 0 || p.maxHoleEdges > 10000)
+    throw Error("The largest hole to close must be between 0 (off) and 10000 edges.");
   if (p.flatnessLevels < 1 || p.flatnessLevels > 180)
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
@@ -97,7 +99,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                           std::vector<char>(mesher.triangles().size(), 1));
     }
-    // The search structures go before the output's memory is taken (the repair searches).
+    if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
+      const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
+      stat.holesClosed = hs.closed;
+      stat.holeFacesAdded = hs.facesAdded;
+      stat.holeFacesReplaced = hs.facesReplaced;
+    }
+    // The search structures go before the output's memory is taken (the repairs search).
     stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
     mesher.releaseGrowthState();
     const Mesher::BoundaryCount boundary = mesher.boundary();

@@ -124,8 +124,8 @@ public:
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
-  // --- Repair after sec. 4.2 (g2s_repair.cpp; not in the paper). Needs the growth state (call it
-  // before releaseGrowthState) and the cleanup's alive() flags. ---
+  // --- Repairs after sec. 4.2 (g2s_repair.cpp; not in the paper). Both need the growth state
+  // (call them before releaseGrowthState) and the cleanup's alive() flags. ---
   struct SelfIntersectionStat {
     size_t facesRemoved = 0;        // faces that intersected others
     size_t nonManifoldVertices = 0; // vertices with two fans after that removal (sec. 4.2 again)
@@ -135,6 +135,17 @@ public:
   // boundary of the mesh and the fans sec. 4.2 removed, then the non-manifold vertices this
   // leaves. A mesh grown without a free edge left (a clean closed cloud) is not examined at all.
   SelfIntersectionStat removeSelfIntersections();
+  struct HoleStat {
+    size_t loops = 0;       // boundary loops of at most maxEdges edges, tried
+    size_t closed = 0;      // of them, closed
+    size_t facesAdded = 0;
+    size_t facesReplaced = 0; // faces at a loop taken out so that it could close (one per loop at most)
+  };
+  // Closes the boundary loops of at most maxEdges edges by ear cutting on their vertices; every
+  // new triangle keeps each edge at two triangles with consistent orientation, each vertex one fan,
+  // and intersects no face (exactly). A loop that cannot be closed whole is tried again with one of
+  // its faces taken out (facesReplaced); one that cannot be closed either way is left as it was.
+  HoleStat closeHoles(int maxEdges);
 
   // Orients every connected component so that closed surfaces face out of the material: a
   // component faces outwards of its own volume (positive signed volume about its centroid),

@@ -329,6 +329,7 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   m.meshAll();
   ASSERT_GT(m.removeNonManifoldVertices().facesRemoved, 0u);
   m.removeSelfIntersections();
+  m.closeHoles(defaults().maxHoleEdges);
   m.orientComponents();
   const std::vector<growth::Triangle> all = m.triangles();
   const std::vector<char> alive = m.alive();
@@ -529,8 +530,16 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutward) {
     EXPECT_LE(facing.inwardAtRims, r->stat.faces / 4000); // 15 of 60,000 faces
     EXPECT_LE(r->topo.components, 2u);
     EXPECT_LE(r->stat.unusedPoints, 3u);
-    EXPECT_LE(r->stat.holes, 22u);
-    EXPECT_LE(r->stat.boundaryEdges, 6 * r->stat.holes);
+    // The paper's method leaves small rim holes; the hole pass closes most of them (measured: 22,
+    // 14, 6, 18 holes without it, 4, 2, 0, 3 with it).
+    EXPECT_LE(r->stat.holes, 4u);
+    EXPECT_LE(r->stat.boundaryEdges, 24u);
+    g2s::Params off = defaults();
+    off.maxHoleEdges = 0;
+    const auto paper = run(cloud, off);
+    EXPECT_LE(paper->stat.holes, 22u);
+    EXPECT_LE(paper->stat.boundaryEdges, 6 * paper->stat.holes);
+    EXPECT_EQ(paper->stat.holes, r->stat.holes + r->stat.holesClosed);
   }
 }
 
