@@ -20,7 +20,7 @@ struct Params {
   int sizeLevels = 4;                // n, sec. 4.1: search radii from |edge| to the maximum, pl_d = 1..n
   int flatnessLevels = 8;            // m, sec. 4.1: classes of the angle β in [0°, 180°], pl_f = 1..m
   bool removeNonManifoldVertices = true; // sec. 4.2; with it, self-intersecting faces are removed too
-  int maxHoleEdges = 30;             // hole pass (not in the paper): close boundary loops of at most this many edges; 0: off
+  int maxHoleEdges = 20;             // hole pass (not in the paper): close boundary loops of at most this many edges; 0: off
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
 };
 

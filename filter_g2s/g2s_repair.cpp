@@ -51,8 +51,8 @@ constexpr double kMaxFoldDegrees = 135.0;
 // A cheap sufficient test that faces t and u do not intersect (growth/self_intersections.h): the
 // points of u that are not points of t lie strictly on one side of t's plane, by far more than
 // the rounding error of the side test. u then meets that plane only in the points the two share,
-// so the two meet at their shared point or edge only (without a fold-over). Most faces around a
-// point of a noisy surface pass it; the exact test decides the rest.
+// so the two meet at their shared point or edge only (without a fold-over). Applied both ways
+// round; the exact test decides the pairs that pass neither.
 bool apartByPlane(const std::vector<P3>& pos, const Triangle& t, const Triangle& u) {
   const P3 &a = pos[t[0]], &b = pos[t[1]], &c = pos[t[2]];
   const P3 n = (b - a) ^ (c - a);
@@ -140,7 +140,7 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
           for (int d = 0; d < 3 && !apart; ++d)
             apart = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
                     std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d];
-          if (!apart && !apartByPlane(pos, t, u) && facesIntersect(pos, t, u)) {
+          if (!apart && !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u)) {
             extra.push_back(f);
             extra.push_back(g);
           }
@@ -356,7 +356,7 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
         if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
             std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
           return false;
-      return !apartByPlane(pos, t, u) && facesIntersect(pos, t, u);
+      return !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u);
     };
     auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
       for (std::uint32_t g : list)

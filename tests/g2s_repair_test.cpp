@@ -84,7 +84,7 @@ TEST(G2SRepair, NoisyCloudsGiveNoIntersectingFacesNoDefectsAndTheSameMeshTwice) 
   for (const Case& c : kNoisy) {
     SCOPED_TRACE(c.name);
     const Mesh cloud = noisyCloud(c.shape, 12000, c.sigma, c.outliers, c.seed);
-    for (int holes : {0, 30}) {
+    for (int holes : {0, 20}) {
       SCOPED_TRACE(holes);
       const auto r = run(*cloud, holes);
       ASSERT_GT(r->stat.faces, 10000u);
@@ -113,7 +113,7 @@ TEST(G2SRepair, HolePassOnlyAddsFacesAndLeavesFewerHoles) {
   for (const Case& c : kNoisy) {
     SCOPED_TRACE(c.name);
     const Mesh cloud = noisyCloud(c.shape, 12000, c.sigma, c.outliers, c.seed);
-    const auto off = run(*cloud, 0), on = run(*cloud, 30);
+    const auto off = run(*cloud, 0), on = run(*cloud, 20);
     EXPECT_EQ(off->stat.holesClosed, 0u);
     EXPECT_EQ(on->stat.faces, off->stat.faces + on->stat.holeFacesAdded - on->stat.holeFacesReplaced);
     EXPECT_LE(on->stat.holeFacesReplaced, on->stat.holesClosed);
@@ -131,7 +131,7 @@ TEST(G2SRepair, HolePassOnlyAddsFacesAndLeavesFewerHoles) {
 TEST(G2SRepair, CleanClosedCloudIsLeftAlone) {
   for (Shape shape : {Shape::Sphere, Shape::Torus}) {
     const Mesh cloud = noisyCloud(shape, 20000, 0, 0, 1);
-    const auto on = run(*cloud, 30), off = run(*cloud, 0);
+    const auto on = run(*cloud, 20), off = run(*cloud, 0);
     EXPECT_EQ(on->stat.holes, 0u);
     EXPECT_EQ(on->stat.selfIntersectionFacesRemoved, 0u);
     EXPECT_EQ(on->stat.holesClosed, 0u);
@@ -142,7 +142,7 @@ TEST(G2SRepair, CleanClosedCloudIsLeftAlone) {
 // The patch's border (a loop of hundreds of edges) is no small hole: left open.
 TEST(G2SRepair, LongBorderStaysOpen) {
   const Mesh cloud = noisyCloud(Shape::Patch, 20000, 0, 0, 1);
-  const auto r = run(*cloud, 30);
+  const auto r = run(*cloud, 20);
   EXPECT_EQ(r->stat.holes, 1u);
   EXPECT_EQ(r->stat.holesClosed, 0u);
 }
