@@ -26,7 +26,8 @@ QString FilterG2SPlugin::filterInfo(FilterID filter) const {
       "Interpolating mesh growing by the <b>Gabriel 2-simplex</b> criterion: from a seed triangle, "
       "a front of free edges grows, each edge taking the point whose smallest sphere through the "
       "edge is empty of other points. A priority queue grows the flattest, tightest triangles first, "
-      "and non-manifold vertices are removed at the end, so the output is never non-manifold. The "
+      "and non-manifold vertices and faces through other faces are removed at the end, so the output "
+      "is never non-manifold and never self-intersecting; small holes are then closed. The "
       "vertices of the result are the input points; <b>no normals are needed</b>. Several components "
       "are seeded one after the other. The result goes to a new layer with per-face quality "
       "Q<sub>t</sub>; the input layer is left unchanged.<br><br>"
@@ -63,6 +64,12 @@ void FilterG2SPlugin::addParameters(FilterID filter, const MeshModel& m, RichPar
       "Remove non-manifold vertices",
       "Remove the triangles of the extra fans around vertices whose triangles form more than one "
       "fan (paper, section 4.2), so that the output is manifold."));
+  parlst.addParam(RichInt("maxHoleEdges", def.maxHoleEdges, "Close holes up to (edges)",
+      "After the paper's method, boundary loops of at most this many edges (small holes left by "
+      "noise) are closed by triangles between their own points, each checked to keep the mesh "
+      "manifold, consistently oriented and free of intersecting faces; a loop that cannot be closed "
+      "so is left open. 0 turns the pass off (it runs only with the non-manifold removal on). Real "
+      "holes of the object that small are closed too."));
   parlst.addParam(RichInt("randomSeed", int(def.randomSeed), "Random seed",
       "Seed of the random choice of seed points: the same seed gives the same mesh."));
 }
@@ -87,6 +94,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   p.sizeLevels = par.getInt("sizeLevels");
   p.flatnessLevels = par.getInt("flatnessLevels");
   p.removeNonManifoldVertices = par.getBool("removeNonManifoldVertices");
+  p.maxHoleEdges = par.getInt("maxHoleEdges");
   p.randomSeed = static_cast<std::uint64_t>(par.getInt("randomSeed"));
 
   // The engine writes straight into the new layer (no copy of a large mesh); on any failure the
@@ -123,6 +131,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["holes"] = int(st.holes);
   outputs["non_manifold_vertices_removed"] = int(st.nonManifoldVerticesRemoved);
   outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["self_intersection_faces_removed"] = int(st.selfIntersectionFacesRemoved);
+  outputs["holes_closed"] = int(st.holesClosed);
+  outputs["hole_faces_added"] = int(st.holeFacesAdded);
+  outputs["hole_faces_replaced"] = int(st.holeFacesReplaced);
   outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
@@ -134,6 +146,9 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces), "
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
+  Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
+      "(%zu faces at them replaced)",
+      st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced);
   Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

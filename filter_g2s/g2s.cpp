@@ -31,6 +31,8 @@ void checkParams(const Params& p) {
                 "the default, " + std::to_string(kDefaultMaxSearchRadiusFactor).substr(0, 3) + ").");
   if (p.sizeLevels < 1 || p.sizeLevels > 64)
     throw Error("The number of size priority levels n must be between 1 and 64 (default 4).");
+  if (p.maxHoleEdges < 0 || p.maxHoleEdges > 10000)
+    throw Error("The largest hole to close must be between 0 (off) and 10000 edges.");
   if (p.flatnessLevels < 1 || p.flatnessLevels > 180)
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
@@ -73,9 +75,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.secondsSetup = watch.lap();
     mesher.meshAll(&progress);
     stat.secondsGrowth = watch.lap();
-    // The search structures go before the cleanup allocates its own.
     stat.workingBytes = mesher.memoryBytes();
-    mesher.releaseGrowthState();
     stat.seeds = mesher.seeds();
     stat.seedAttempts = mesher.seedAttempts();
     stat.pointsVisited = mesher.pointsVisited();
@@ -91,10 +91,24 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
       stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
       stat.facesRemoved = cs.facesRemoved;
+      // Not in the paper: no two faces may intersect (g2s_repair.cpp).
+      const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
+      stat.selfIntersectionFacesRemoved = si.facesRemoved;
+      stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
+      stat.facesRemoved += si.fanFacesRemoved;
     } else {
       stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                           std::vector<char>(mesher.triangles().size(), 1));
     }
+    if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
+      const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
+      stat.holesClosed = hs.closed;
+      stat.holeFacesAdded = hs.facesAdded;
+      stat.holeFacesReplaced = hs.facesReplaced;
+    }
+    // The search structures go before the output's memory is taken (the repairs search).
+    stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
+    mesher.releaseGrowthState();
     const Mesher::BoundaryCount boundary = mesher.boundary();
     stat.boundaryEdges = boundary.edges;
     stat.holes = boundary.loops;

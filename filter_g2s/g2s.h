@@ -19,7 +19,8 @@ struct Params {
   double maxSearchRadiusFactor = 0;  // maximum search radius / local spacing (mean mesh edge length at the edge); <= 0: default
   int sizeLevels = 4;                // n, sec. 4.1: search radii from |edge| to the maximum, pl_d = 1..n
   int flatnessLevels = 8;            // m, sec. 4.1: classes of the angle β in [0°, 180°], pl_f = 1..m
-  bool removeNonManifoldVertices = true; // sec. 4.2
+  bool removeNonManifoldVertices = true; // sec. 4.2; with it, self-intersecting faces are removed too
+  int maxHoleEdges = 20;             // hole pass (not in the paper): close boundary loops of at most this many edges; 0: off
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
 };
 
@@ -41,6 +42,10 @@ struct Stat {
   size_t nonManifoldVerticesRemoved = 0;  // sec. 4.2
   size_t facesRemoved = 0;                // faces of the extra fans removed by sec. 4.2
   size_t nonManifoldVertices = 0;         // left in the output (0 unless the removal is off)
+  size_t selfIntersectionFacesRemoved = 0; // faces that intersected others (with the removal above)
+  size_t holesClosed = 0;                 // hole pass: boundary loops closed
+  size_t holeFacesAdded = 0;              // and the faces it added
+  size_t holeFacesReplaced = 0;           // faces it took out at a loop so that it could close
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)

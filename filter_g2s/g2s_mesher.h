@@ -125,6 +125,29 @@ public:
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
   ManifoldCleanupStat removeNonManifoldVertices();
+  // --- Repairs after sec. 4.2 (g2s_repair.cpp; not in the paper). Both need the growth state
+  // (call them before releaseGrowthState) and the cleanup's alive() flags. ---
+  struct SelfIntersectionStat {
+    size_t facesRemoved = 0;        // faces that intersected others
+    size_t nonManifoldVertices = 0; // vertices with two fans after that removal (sec. 4.2 again)
+    size_t fanFacesRemoved = 0;     // the faces of their extra fans
+  };
+  // Removes faces until no two live faces intersect (growth/self_intersections.h, exact) near the
+  // boundary of the mesh and the fans sec. 4.2 removed, then the non-manifold vertices this
+  // leaves. A mesh grown without a free edge left (a clean closed cloud) is not examined at all.
+  SelfIntersectionStat removeSelfIntersections();
+  struct HoleStat {
+    size_t loops = 0;       // boundary loops of at most maxEdges edges, tried
+    size_t closed = 0;      // of them, closed
+    size_t facesAdded = 0;
+    size_t facesReplaced = 0; // faces at a loop taken out so that it could close (one per loop at most)
+  };
+  // Closes the boundary loops of at most maxEdges edges by ear cutting on their vertices; every
+  // new triangle keeps each edge at two triangles with consistent orientation, each vertex one fan,
+  // and intersects no face (exactly). A loop that cannot be closed whole is tried again with one of
+  // its faces taken out (facesReplaced); one that cannot be closed either way is left as it was.
+  HoleStat closeHoles(int maxEdges);
+
   // Orients every connected component so that closed surfaces face out of the material: a
   // component faces outwards of its own volume (positive signed volume about its centroid),
   // except a closed shell inside an odd number of other closed shells (found by the parity of a
@@ -199,6 +222,11 @@ private:
   };
 
   double sampleSpacing() const;
+  // g2s_repair.cpp: the vertices that can lie on a boundary after the cleanup: those with a free
+  // edge at the end of the growth, and those of removed triangles. Empty on a closed mesh.
+  void boundarySuspects(std::vector<std::uint32_t>& out) const;
+  // The live faces at each point: at[first[v]..first[v+1]) (g2s_repair.cpp).
+  void faceIndex(std::vector<std::uint32_t>& first, std::vector<std::uint32_t>& at) const;
   // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).
   void mergeClumps();
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
@@ -265,6 +293,7 @@ private:
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
   std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
+  std::vector<std::uint32_t> loopFaces_;      // triangles that closed a loop of free edges (g2s_repair.cpp)
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;

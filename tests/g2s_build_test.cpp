@@ -349,6 +349,8 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   g2s::Mesher m(growth::readCloud(*cloud, check).points, defaults());
   m.meshAll();
   ASSERT_GT(m.removeNonManifoldVertices().facesRemoved, 0u);
+  m.removeSelfIntersections();
+  m.closeHoles(defaults().maxHoleEdges);
   m.orientComponents();
   const std::vector<growth::Triangle> all = m.triangles();
   const std::vector<char> alive = m.alive();
@@ -557,6 +559,11 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     EXPECT_LE(r->stat.holes, c.maxHoles);
     EXPECT_LE(r->stat.boundaryEdges, 10 * r->stat.holes);
     EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
+    // With the hole pass off (maxHoleEdges 0), every loop it closed is open again.
+    g2s::Params off = defaults();
+    off.maxHoleEdges = 0;
+    const auto paper = run(cloud, off);
+    EXPECT_EQ(paper->stat.holes, r->stat.holes + r->stat.holesClosed);
     // The closures cross neither the mesh nor each other (checked where, unchecked, they did:
     // 3 and 12 intersecting pairs; about 1-2 s per mesh, so not on every sampling).
     const bool checkCrossings = (c.seed == 1 && c.points == 30000) || c.seed == 7;

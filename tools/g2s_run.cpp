@@ -6,7 +6,8 @@
 //           [--rings R --segments S] [--inner-radius r] [--thickness T] [options]   a generated cloud
 // adversarial addition to either: --near-triples K (K points of the cloud each get two more within a
 // few float rounding steps: seeds of almost no size)
-// options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --random-seed S
+// options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --holes E (close holes of <= E edges; 0 off)
+//          --random-seed S
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (g2s::Stat::seconds, wall clock);
@@ -41,7 +42,7 @@ static void usage() {
                "               [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
                "               [--rings R --segments S] [--inner-radius r] [--thickness T]\n"
                "       [--near-triples K]\n"
-               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--random-seed S]\n"
+               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--random-seed S]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");
 }
 
@@ -97,6 +98,7 @@ int main(int argc, char** argv) {
       else if (a == "--n") params.sizeLevels = std::atoi(value());
       else if (a == "--m") params.flatnessLevels = std::atoi(value());
       else if (a == "--no-cleanup") params.removeNonManifoldVertices = false;
+      else if (a == "--holes") params.maxHoleEdges = std::atoi(value());
       else if (a == "--random-seed") params.randomSeed = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
       else if (a == "--measure") measure = true;
@@ -173,6 +175,9 @@ int main(int argc, char** argv) {
     std::printf("non_manifold_vertices_removed: %zu\n", st.nonManifoldVerticesRemoved);
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
+    std::printf("self_intersection_faces_removed: %zu\n", st.selfIntersectionFacesRemoved);
+    std::printf("holes_closed: %zu\nhole_faces_added: %zu\nhole_faces_replaced: %zu\n", st.holesClosed,
+                st.holeFacesAdded, st.holeFacesReplaced);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("seconds: %.4f\n", best);
     std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,

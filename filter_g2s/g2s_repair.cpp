@@ -1,0 +1,505 @@
+// Repairs after the paper's method (sec. 4.2's cleanup): self-intersecting faces, then small holes.
+// Measured in docs/g2s-hole-pass.md.
+//
+// Self-intersections. On noisy clouds a triangle that closes a loop of free edges (an ear or a
+// quad, Mesher::findCandidate) can overlap the fan of one of its points, and where two fronts grow
+// over each other (layers of noisy points) their sheets can cross: the G2S and topological tests
+// see points and edges, not faces. Measured on the noisy clouds, every intersecting pair had a
+// face that closed a loop, or lay near the boundary (a crossing of two sheets ends at a free edge
+// of one of them unless it closes on itself). So the exact test (growth/self_intersections.h)
+// takes each loop-closing triangle against the faces at its points and their neighbours, and the
+// faces near the vertices that can be on a boundary (boundarySuspects) against each other; faces
+// are removed greedily until these have no intersecting pair, the test runs again around what was
+// removed (following a crossing inwards) until a round removes nothing, and sec. 4.2 cleans up the
+// fans this leaves. A mesh grown without a free edge left (every clean closed cloud) is not
+// examined at all. build/mesh_measures counts 0 pairs after it on every noisy cloud measured.
+//
+// Holes. A boundary loop of a few edges left by noise (the G2S ball of every triangle that would
+// close it holds a point, or sec. 4.2 and the removal above took faces out) is closed by cutting
+// ears from it: at each step, among the ears (two consecutive loop edges and the new edge joining
+// their ends) the one whose triangle is flattest with its two neighbours is added if the new
+// edge does not exist yet, the points have room for it, it folds by less than kMaxFoldDegrees over
+// either neighbour, and it intersects no face near it (exactly: the faces at the points within
+// kLongEdgeSpacings of the ball around the loop's points, and every face with a longer edge whose
+// box meets its box). Every loop vertex is manifold (one open fan) after the cleanup, so filling its loop whole
+// closes its fan: no edge gets a third triangle, no vertex a second fan, and the orientation is the
+// neighbours' (each new triangle uses the reverse of the loop's half-edges). A loop is closed whole
+// or not at all; one that cannot be closed is tried again with one of its faces taken out (in loop
+// order, the first that lets it close), when that face's third point is inside the mesh: the point
+// joins the loop and leaves it with a closed fan again. On the noisy clouds most loops that failed
+// were loops of three whose triangle met a face nearby.
+#include "g2s_mesher.h"
+
+#include <growth/self_intersections.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace growth {
+namespace g2s {
+
+namespace {
+bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
+// The exact test runs on the faces with a vertex within this many local spacings of a boundary
+// suspect (1: the faces around it; 2 and 3 found no more pairs on the noisy clouds and the bunny).
+constexpr double kSuspectReach = 1.0;
+// Hole pass: edges longer than this many mean spacings are few (their faces are tested apart).
+constexpr double kLongEdgeSpacings = 3.0;
+// A hole triangle may fold over a neighbouring face by at most this angle.
+constexpr double kMaxFoldDegrees = 135.0;
+// A cheap sufficient test that faces t and u do not intersect (growth/self_intersections.h): the
+// points of u that are not points of t lie strictly on one side of t's plane, by far more than
+// the rounding error of the side test. u then meets that plane only in the points the two share,
+// so the two meet at their shared point or edge only (without a fold-over). Applied both ways
+// round; the exact test decides the pairs that pass neither.
+bool apartByPlane(const std::vector<P3>& pos, const Triangle& t, const Triangle& u) {
+  const P3 &a = pos[t[0]], &b = pos[t[1]], &c = pos[t[2]];
+  const P3 n = (b - a) ^ (c - a);
+  const double scale = n.Norm() * ((b - a).Norm() + (c - a).Norm());
+  int above = 0, below = 0;
+  for (std::uint32_t v : u) {
+    if (v == t[0] || v == t[1] || v == t[2]) continue;
+    const P3 d = pos[v] - a;
+    const double side = n * d, margin = 1e-9 * (scale + n.Norm() * d.Norm());
+    above += side > margin;
+    below += side < -margin;
+    if (!(side > margin || side < -margin)) return false;
+  }
+  return (above == 0) != (below == 0);
+}
+
+} // namespace
+
+void Mesher::boundarySuspects(std::vector<std::uint32_t>& out) const {
+  out.clear();
+  const size_t n = grid_.size();
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (freeEdges_[v] != 0) out.push_back(v);
+  if (alive_.size() == tri_.size()) {
+    bool any = false;
+    for (size_t f = 0; f < tri_.size(); ++f)
+      if (!alive_[f]) {
+        for (std::uint32_t v : tri_[f]) out.push_back(v);
+        any = true;
+      }
+    if (any) {
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+    }
+  }
+}
+
+void Mesher::faceIndex(std::vector<std::uint32_t>& first, std::vector<std::uint32_t>& at) const {
+  const size_t n = grid_.size();
+  first.assign(n + 1, 0);
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (alive_[f])
+      for (std::uint32_t v : tri_[f]) ++first[v + 1];
+  for (size_t i = 0; i < n; ++i) first[i + 1] += first[i];
+  at.resize(first[n]);
+  std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (alive_[f])
+      for (std::uint32_t v : tri_[f]) at[next[v]++] = static_cast<std::uint32_t>(f);
+}
+
+Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
+  SelfIntersectionStat st;
+  if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  std::vector<std::uint32_t> seeds;
+  boundarySuspects(seeds);
+  if (seeds.empty()) return st;
+  const size_t n = grid_.size(), faces = tri_.size();
+  const std::vector<P3>& pos = grid_.points();
+  std::vector<char> near(n, 0), sub(faces, 0);
+  std::vector<std::uint32_t> marked, region, removedVertices;
+  // The triangles that closed a loop, each against the faces at the points near it: the faces
+  // meeting one are added to the first round's faces, with it.
+  std::vector<std::uint32_t> extra;
+  std::vector<std::uint32_t> first, at;
+  faceIndex(first, at);
+  {
+    for (std::uint32_t f : loopFaces_) {
+      if (!alive_[f]) continue;
+      const Triangle& t = tri_[f];
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min({pts_[t[0]][k], pts_[t[1]][k], pts_[t[2]][k]});
+        hi[k] = std::max({pts_[t[0]][k], pts_[t[1]][k], pts_[t[2]][k]});
+      }
+      // The faces at its points (a face meeting it away from its points is found in the next
+      // round, around the faces removed here, when it meets them too).
+      for (std::uint32_t i : t)
+        for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) {
+          const std::uint32_t g = at[k];
+          if (g == f) continue;
+          const Triangle& u = tri_[g];
+          // (A face at two ring points is tested twice: harmless.)
+          bool apart = false;
+          for (int d = 0; d < 3 && !apart; ++d)
+            apart = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
+                    std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d];
+          if (!apart && !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u)) {
+            extra.push_back(f);
+            extra.push_back(g);
+          }
+        }
+    }
+  }
+  while (!seeds.empty() || !extra.empty()) {
+    // The points near the seeds, then the live faces with a vertex among them.
+    for (std::uint32_t v : seeds) {
+      const double reach = kSuspectReach * std::max(localSpacing(v), spacing_);
+      grid_.forEachInBall(pts_[v], reach, [&](std::uint32_t i, double) {
+        if (!near[i]) {
+          near[i] = 1;
+          marked.push_back(i);
+        }
+      });
+    }
+    region.clear();
+    for (std::uint32_t f : extra)
+      if (alive_[f] && !sub[f]) {
+        sub[f] = 1;
+        region.push_back(f);
+      }
+    extra.clear();
+    for (std::uint32_t i : marked)
+      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k)
+        if (alive_[at[k]] && !sub[at[k]]) {
+          sub[at[k]] = 1;
+          region.push_back(at[k]);
+        }
+    for (std::uint32_t i : marked) near[i] = 0;
+    marked.clear();
+    const size_t removed = growth::removeSelfIntersections(pos, tri_, sub, 1);
+    seeds.clear();
+    for (std::uint32_t f : region) {
+      if (!sub[f]) {
+        alive_[f] = 0;
+        pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+        for (std::uint32_t v : tri_[f]) seeds.push_back(v);
+      }
+      sub[f] = 0;
+    }
+    st.facesRemoved += removed;
+    std::sort(seeds.begin(), seeds.end());
+    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+    removedVertices.insert(removedVertices.end(), seeds.begin(), seeds.end());
+  }
+  if (st.facesRemoved == 0) return st;
+  // The removal can leave a vertex with two fans: sec. 4.2 again, at the removed faces' vertices.
+  std::sort(removedVertices.begin(), removedVertices.end());
+  removedVertices.erase(std::unique(removedVertices.begin(), removedVertices.end()), removedVertices.end());
+  const std::vector<char> before = alive_;
+  const ManifoldCleanupStat mc = growth::removeNonManifoldVertices(tri_, n, alive_, &removedVertices);
+  st.nonManifoldVertices = mc.nonManifoldVertices;
+  st.fanFacesRemoved = mc.facesRemoved;
+  for (size_t f = 0; f < faces; ++f)
+    if (before[f] && !alive_[f]) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+  return st;
+}
+
+Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
+  HoleStat st;
+  if (maxEdges < 3) return st;
+  if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  std::vector<std::uint32_t> seeds;
+  boundarySuspects(seeds);
+  if (seeds.empty()) return st;
+
+  // The boundary loops of at most maxEdges edges (v0→v1→…: half-edges used by one face each).
+  std::vector<std::vector<std::uint32_t>> loops;
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> walked;
+    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
+      bool found = false;
+      pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
+        if (!found && out && !in && !pem_.marked(v, x)) {
+          w = x;
+          found = true;
+        }
+      });
+      return found;
+    };
+    std::vector<std::uint32_t> loop;
+    for (std::uint32_t v : seeds) {
+      std::uint32_t w = 0;
+      while (nextFrom(v, w)) {
+        loop.clear();
+        std::uint32_t cur = v;
+        do {
+          pem_.setMark(cur, w, true);
+          walked.emplace_back(cur, w);
+          loop.push_back(cur);
+          cur = w;
+        } while (nextFrom(cur, w));
+        // A walk ends where it started on a manifold mesh; anything else is left alone.
+        if (cur == v && loop.size() >= 3 && loop.size() <= size_t(maxEdges)) loops.push_back(loop);
+      }
+    }
+    for (const auto& e : walked) pem_.setMark(e.first, e.second, false);
+  }
+  st.loops = loops.size();
+  if (loops.empty()) return st;
+
+  // Faces at each point (live ones).
+  std::vector<std::uint32_t> first, at;
+  faceIndex(first, at);
+  // Faces with an edge longer than `longest` (few) are found by their boxes, the others at the
+  // points within a new triangle's enclosing radius plus `longest`.
+  const double longest = kLongEdgeSpacings * spacing_;
+  // The long faces in a hash of cells 4·longest wide (each in the cells its box meets; the few
+  // meeting more than kMaxCells cells in a list of their own).
+  const double cell = 4 * longest;
+  const P3 origin = grid_.box().min;
+  constexpr long kMaxCells = 64;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells;
+  std::vector<std::uint32_t> hugeFaces;
+  auto cellRange = [&](const Triangle& t, long lo[3], long hi[3]) {
+    long cells = 1;
+    for (int d = 0; d < 3; ++d) {
+      const double a = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
+      const double b = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
+      lo[d] = static_cast<long>(std::floor(a / cell));
+      hi[d] = static_cast<long>(std::floor(b / cell));
+      cells *= std::min(hi[d] - lo[d] + 1, kMaxCells + 1);
+    }
+    return cells;
+  };
+  auto cellKey = [](long x, long y, long z) {
+    return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
+  };
+  auto addIfLong = [&](std::uint32_t f) {
+    const Triangle& t = tri_[f];
+    bool isLong = false;
+    for (int k = 0; k < 3; ++k)
+      isLong = isLong || (pts_[t[k]] - pts_[t[(k + 1) % 3]]).SquaredNorm() > longest * longest;
+    if (!isLong) return;
+    long lo[3], hi[3];
+    if (cellRange(t, lo, hi) > kMaxCells) {
+      hugeFaces.push_back(f);
+      return;
+    }
+    for (long x = lo[0]; x <= hi[0]; ++x)
+      for (long y = lo[1]; y <= hi[1]; ++y)
+        for (long z = lo[2]; z <= hi[2]; ++z) longCells[cellKey(x, y, z)].push_back(f);
+  };
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (alive_[f]) addIfLong(static_cast<std::uint32_t>(f));
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added; // faces added here, by point
+  std::vector<char> hasAdded(grid_.size(), 0);
+  const std::vector<P3>& pos = grid_.points();
+  const double minCos = std::cos(kMaxFoldDegrees * 3.14159265358979323846 / 180.0);
+
+  // The live face on half-edge v→w (-1: none), and its third point.
+  auto faceOn = [&](std::uint32_t v, std::uint32_t w) -> std::int64_t {
+    for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
+      const Triangle& t = tri_[at[i]];
+      if (!alive_[at[i]]) continue;
+      for (int k = 0; k < 3; ++k)
+        if (t[k] == v && t[(k + 1) % 3] == w) return at[i];
+    }
+    const auto it = added.find(v);
+    if (it != added.end())
+      for (std::uint32_t f : it->second)
+        for (int k = 0; k < 3; ++k)
+          if (tri_[f][k] == v && tri_[f][(k + 1) % 3] == w) return f;
+    return -1;
+  };
+  auto thirdPoint = [&](std::uint32_t f, std::uint32_t v, std::uint32_t w) {
+    const Triangle& t = tri_[f];
+    return t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
+  };
+  auto normal = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return (pts_[b] - pts_[a]) ^ (pts_[c] - pts_[a]);
+  };
+  auto cosBetween = [](const P3& x, const P3& y) {
+    const double d = std::sqrt(x.SquaredNorm() * y.SquaredNorm());
+    return d > 0 ? (x * y) / d : -1.0;
+  };
+  std::vector<Triangle> pending;
+  // The faces that a triangle on the points of `loop` can meet (any such triangle lies in the ball
+  // around the loop's points; a face with no edge longer than `longest` that meets it has a point
+  // within `longest` of that ball), gathered once per loop.
+  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t> loop, opp, face;
+  auto gatherNearLoop = [&]() {
+    near.clear();
+    P3 c(0, 0, 0);
+    for (std::uint32_t v : loop) c += pts_[v];
+    c /= double(loop.size());
+    double r2 = 0;
+    for (std::uint32_t v : loop) r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
+    grid_.forEachInBall(c, (std::sqrt(r2) + longest) * (1 + 1e-9), [&](std::uint32_t i, double) {
+      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) near.push_back(at[k]);
+      if (!hasAdded[i]) return;
+      const auto it = added.find(i);
+      if (it != added.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+    });
+    std::sort(near.begin(), near.end());
+    near.erase(std::unique(near.begin(), near.end()), near.end());
+  };
+  // Triangle t meets no live face, no face added before and none of `pending` (exactly).
+  auto meetsNothing = [&](const Triangle& t) {
+    for (const Triangle& p : pending)
+      if (facesIntersect(pos, t, p)) return false;
+    double lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+      hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    }
+    // Face u meets t (its box first: most faces near t are beside it).
+    auto meets = [&](const Triangle& u) {
+      for (int d = 0; d < 3; ++d)
+        if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
+            std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
+          return false;
+      return !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u);
+    };
+    auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
+      for (std::uint32_t g : list)
+        if (alive_[g] && meets(tri_[g])) return true;
+      return false;
+    };
+    if (meetsLong(hugeFaces)) return false;
+    long clo[3], chi[3];
+    cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
+    for (long x = clo[0]; x <= chi[0]; ++x)
+      for (long y = clo[1]; y <= chi[1]; ++y)
+        for (long z = clo[2]; z <= chi[2]; ++z) {
+          const auto it = longCells.find(cellKey(x, y, z));
+          if (it != longCells.end() && meetsLong(it->second)) return false;
+        }
+    for (std::uint32_t g : near)
+      if (alive_[g] && meets(tri_[g])) return false;
+    return true;
+  };
+
+  struct Ear {
+    double score;
+    std::uint32_t index;
+  };
+  std::vector<Ear> ears;
+  // Closes `loop` (opp[i]: the third point of the face on loop half-edge loop[i]→loop[i+1]):
+  // true with the new triangles in `pending` and the point–edge map; false with both as before.
+  auto close = [&]() {
+    pending.clear();
+    bool ok = true;
+    while (ok && loop.size() >= 3) {
+      const size_t m = loop.size();
+      if (m == 3) {
+        // The last triangle uses the reverse of the three loop edges.
+        const Triangle t{loop[1], loop[0], loop[2]};
+        ok = !isZero(normal(t[0], t[1], t[2])) && pem_.canAddTriangle(t[0], t[1], t[2]);
+        for (size_t i = 0; i < 3 && ok; ++i)
+          ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop[i], loop[(i + 1) % 3], opp[i])) >= minCos;
+        ok = ok && meetsNothing(t);
+        if (ok) {
+          pem_.addTriangle(t[0], t[1], t[2]);
+          pending.push_back(t);
+        }
+        break;
+      }
+      // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours'.
+      ears.clear();
+      for (size_t i = 0; i < m; ++i) {
+        const size_t p = (i + m - 1) % m, q = (i + 1) % m;
+        const std::uint32_t v0 = loop[p], v1 = loop[i], v2 = loop[q];
+        const P3 nt = normal(v1, v0, v2);
+        if (isZero(nt)) continue;
+        const double c1 = cosBetween(nt, normal(v0, v1, opp[p]));
+        const double c2 = cosBetween(nt, normal(v1, v2, opp[i]));
+        const double score = std::min(c1, c2);
+        if (score >= minCos) ears.push_back(Ear{score, static_cast<std::uint32_t>(i)});
+      }
+      std::sort(ears.begin(), ears.end(), [](const Ear& x, const Ear& y) {
+        return x.score != y.score ? x.score > y.score : x.index < y.index;
+      });
+      bool cut = false;
+      for (const Ear& e : ears) {
+        const size_t i = e.index, p = (i + m - 1) % m, q = (i + 1) % m;
+        const std::uint32_t v0 = loop[p], v1 = loop[i], v2 = loop[q];
+        // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
+        if (pem_.triangles(v0, v2) != 0) continue;
+        const Triangle t{v1, v0, v2};
+        if (!pem_.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
+        // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
+        pem_.addTriangle(t[0], t[1], t[2]);
+        pending.push_back(t);
+        // v1 leaves the loop; the new loop edge v0→v2 has v1 opposite.
+        opp[p] = v1;
+        loop.erase(loop.begin() + std::ptrdiff_t(i));
+        opp.erase(opp.begin() + std::ptrdiff_t(i));
+        cut = true;
+        break;
+      }
+      ok = cut;
+    }
+    if (!ok)
+      for (const Triangle& t : pending) pem_.removeTriangle(t[0], t[1], t[2]);
+    return ok;
+  };
+  for (const std::vector<std::uint32_t>& original : loops) {
+    const size_t m = original.size();
+    face.resize(m);
+    bool ok = true;
+    for (size_t i = 0; i < m && ok; ++i) {
+      const std::int64_t f = faceOn(original[i], original[(i + 1) % m]);
+      ok = f >= 0;
+      face[i] = static_cast<std::uint32_t>(f);
+    }
+    if (!ok) continue;
+    auto setUp = [&]() {
+      loop = original;
+      opp.resize(m);
+      for (size_t i = 0; i < m; ++i) opp[i] = thirdPoint(face[i], original[i], original[(i + 1) % m]);
+    };
+    setUp();
+    gatherNearLoop();
+    bool closed = close();
+    // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
+    // first that lets it close): the face's third point must be inside the mesh (its fan closed),
+    // so that it joins the loop and leaves with a closed fan again.
+    for (size_t i = 0; i < m && !closed; ++i) {
+      const std::uint32_t f = face[i], v = original[i], w = original[(i + 1) % m];
+      const std::uint32_t o = thirdPoint(f, v, w);
+      if (!alive_[f] || !pem_.closed(o)) continue;
+      alive_[f] = 0;
+      pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+      setUp();
+      const std::int64_t f1 = faceOn(v, o), f2 = faceOn(o, w);
+      if (f1 >= 0 && f2 >= 0) {
+        loop.insert(loop.begin() + std::ptrdiff_t(i + 1), o);
+        opp[i] = thirdPoint(static_cast<std::uint32_t>(f1), v, o);
+        opp.insert(opp.begin() + std::ptrdiff_t(i + 1), thirdPoint(static_cast<std::uint32_t>(f2), o, w));
+        gatherNearLoop();
+        closed = close();
+      }
+      if (closed) {
+        ++st.facesReplaced;
+      } else {
+        alive_[f] = 1;
+        pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+      }
+    }
+    if (!closed) continue;
+    for (const Triangle& t : pending) {
+      const auto f = static_cast<std::uint32_t>(tri_.size());
+      tri_.push_back(t);
+      alive_.push_back(1);
+      for (std::uint32_t v : t) {
+        added[v].push_back(f);
+        hasAdded[v] = 1;
+      }
+      addIfLong(f);
+    }
+    ++st.closed;
+    st.facesAdded += pending.size();
+  }
+  return st;
+}
+
+} // namespace g2s
+} // namespace growth
