@@ -534,13 +534,20 @@ Params suggestParams(const CMeshO& cloud) {
   return p;
 }
 
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
-  Stopwatch watch;
-  out.Clear();
-  st = Stat();
-  Progress progress(cb);
-  progress.phase("Sphere packing: reading the cloud", 0, 2);
+namespace {
 
+// The phases of build(), in the order of the paper's method.
+
+// The sizes the method runs at.
+struct Sizes {
+  CloudScale scale;    // the cloud's sampling and noise
+  double d = 0;        // sphere diameter: the edge length
+  double s = 0;        // splat size (sec. 4.3)
+  double expected = 0; // vertices expected: the surface area over the area per vertex of a d-lattice
+};
+
+// Input: the cloud's points and normals, checked (what sec. 3.1 assumes of the input).
+InputCloud readInput(const CMeshO& cloud, Stat& st) {
   CloudCheck check;
   check.needNormals = true;
   check.allowFaces = false;
@@ -548,15 +555,21 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   InputCloud in = readCloud(cloud, check);
   st.inputPoints = static_cast<size_t>(cloud.vn);
   st.duplicatesDropped = in.duplicatesDropped;
+  return in;
+}
 
-  // Parameters.
+// Sec. 3.1, 4.3 and 5.3: the parameters checked, the sphere diameter d (given, or from the sampling
+// and the noise), the splat size s, and the vertices expected within Params::maxOutputVertices.
+Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st) {
   if (params.windowSize < 0 || params.windowSize > 1000)
     throw Error("The window size w must be between 0 and 1000 (the paper uses 8).");
   if (params.minComponentFaces < 0)
     throw Error("The smallest piece to keep must be 0 faces (keep all) or more.");
   if (params.maxBorderLength < 3)
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
-  const CloudScale scale = cloudScale(in.points, params.threads);
+  Sizes z;
+  z.scale = cloudScale(in.points, params.threads);
+  const CloudScale& scale = z.scale;
   const double diag = in.box.Diag();
   st.scale = scale;
   double d = params.sphereDiameter;
@@ -596,27 +609,33 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                 std::to_string(params.maxOutputVertices) + ". Use a larger d (at least about " + fmt(dMin) +
                 "; the default for this cloud is " + fmt(defaultDiameter(scale)) + ").");
   }
+  z.d = d;
+  z.s = s;
+  z.expected = expected;
+  return z;
+}
 
-  std::vector<int>().swap(in.vertexIndex); // not needed here
-  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
-
-  // Sec. 4.3: splat radii (from the points' own neighbourhoods, independent of d).
-  progress.phase("Sphere packing: splat sizes", 2, 10);
-  st.secondsInput = watch.lap();
+// Sec. 4.3: the splat radii, from the points' own neighbourhoods (independent of d).
+std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params& params, const Renumbering& order,
+                              Stat& st, Progress& progress) {
   SplatSizeStats splatStats;
-  const std::vector<float> radius =
-      computeSplatRadii(in.points, in.normals, s, kSplatFirstReachPerAreaSpacing * scale.areaSpacing,
+  std::vector<float> radius =
+      computeSplatRadii(in.points, in.normals, z.s, kSplatFirstReachPerAreaSpacing * z.scale.areaSpacing,
                         params.localSplatSizes, &splatStats, &progress, params.threads,
                         order.orig.empty() ? nullptr : &order.orig);
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
-  st.secondsSplats = watch.lap();
+  return radius;
+}
 
-  // Sec. 4.1: box grid, normal filter, box normals. A splat larger than d is referred to by every
-  // box it comes within d of (sec. 4.4 needs all splats within d of a vertex), not only by those
-  // its centre is within d of.
-  progress.phase("Sphere packing: box grid", 10, 20);
+// Sec. 4.1: the box grid, normal filter and box normals. A splat larger than d is referred to by
+// every box it comes within d of (sec. 4.4 needs all splats within d of a vertex), not only by
+// those its centre is within d of. The normals of the boxes holding input points are deferred:
+// computed on another thread while the growth (one thread) runs, which asks for them as it goes
+// (BoxGrid::startNormals).
+void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>& radius, double d,
+                  const Params& params, const Renumbering& order, Stat& st, Progress& progress) {
   std::vector<float> extraReach;
   {
     size_t large = 0;
@@ -627,13 +646,35 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
         if (radius[i] > kLargeSplatPerD * d) extraReach[i] = radius[i];
     }
   }
-  // The normals of the boxes holding input points are deferred: computed on another thread while
-  // the growth (one thread) runs, which asks for them as it goes.
-  BoxGrid grid;
   grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
              order.rank.empty() ? nullptr : &order.rank, extraReach.empty() ? nullptr : &extraReach);
   std::vector<float>().swap(extraReach);
   st.boxes = grid.boxCount();
+}
+
+} // namespace
+
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+  Stopwatch watch;
+  out.Clear();
+  st = Stat();
+  Progress progress(cb);
+  progress.phase("Sphere packing: reading the cloud", 0, 2);
+  InputCloud in = readInput(cloud, st);
+  const Sizes sizes = chooseSizes(in, params, st);
+  const CloudScale& scale = sizes.scale;
+  const double d = sizes.d, s = sizes.s, expected = sizes.expected;
+  std::vector<int>().swap(in.vertexIndex); // not needed here
+  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
+
+  progress.phase("Sphere packing: splat sizes", 2, 10);
+  st.secondsInput = watch.lap();
+  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
+  st.secondsSplats = watch.lap();
+
+  progress.phase("Sphere packing: box grid", 10, 20);
+  BoxGrid grid;
+  buildBoxGrid(grid, in, radius, d, params, order, st, progress);
   st.secondsBoxGrid = watch.lap();
 
   // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
