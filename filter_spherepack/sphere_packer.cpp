@@ -652,6 +652,84 @@ void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>&
   st.boxes = grid.boxCount();
 }
 
+// Sec. 3.3: the first starting pair, projected onto their closest splats, between d and 2d apart:
+// the user's two points, or "around the maximum z-coordinate of the input".
+StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
+                         const Renumbering& order, double d, double s, const Params& params) {
+  StartPair first;
+  bool haveFirst = false;
+  auto noVertexYet = [](const vcg::Point3d&) { return true; };
+  if (params.useStartPoints) {
+    for (const auto& q : params.startPoint)
+      if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
+        throw Error("The starting points must have finite coordinates.");
+    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, true, first.s1, first.splat1);
+    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, true, first.s2, first.splat2);
+    const double dist = (first.s1 - first.s2).Norm();
+    if (dist < d || dist > 2 * d)
+      throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
+                  " apart; they must be between d = " + fmt(d) + " and 2d = " + fmt(2 * d) +
+                  " apart (paper, section 3.3). Move them, or let the filter choose them.");
+    haveFirst = true;
+  } else {
+    // Automatic: the highest points in turn; when none of the 64 highest can start, the first
+    // usable point in input order.
+    std::vector<std::uint32_t> highest;
+    reserveHuge(highest, in.points.size(), /*populate=*/true);
+    highest.resize(in.points.size());
+    for (std::uint32_t i = 0; i < highest.size(); ++i) highest[i] = i;
+    const size_t tries = std::min<size_t>(highest.size(), 64);
+    std::partial_sort(highest.begin(), highest.begin() + std::ptrdiff_t(tries), highest.end(),
+                      [&](std::uint32_t a, std::uint32_t b) {
+                        return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2]
+                                                                  : order.origOf(a) < order.origOf(b);
+                      });
+    for (size_t t = 0; t < tries && !haveFirst; ++t)
+      haveFirst = startPairAt(highest[t], in, radius, grid, order, d, noVertexYet, first);
+    for (std::uint32_t k = 0; k < in.points.size() && !haveFirst; ++k)
+      haveFirst = startPairAt(order.rankOf(k), in, radius, grid, order, d, noVertexYet, first);
+    if (!haveFirst)
+      throw Error("Could not place two starting vertices between d and 2d apart anywhere on the cloud: d = " +
+                  fmt(d) + " is probably too large for it, or the splats too small (s = " + fmt(s) +
+                  "). Try the default d, or give the starting points by hand.");
+  }
+  return first;
+}
+
+// Sec. 3.4–3.6: the disk growing from the first pair; then sec. 3.3 again on every further part of
+// the cloud. When the growth has stopped and points are left that no vertex reached, a new
+// starting pair on the first of them in input order (every point is tried once, so the scan is
+// linear), at least kStartClearancePerD·d from every vertex placed so far: a point with a vertex
+// between d and that far lies on a surface already meshed there (a misregistered second scan
+// layer, or the rim of a gap the growth left), and a start on it would only grow a separate sheet
+// over or beside the mesh (docs/spherepack-components.md).
+void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in, const std::vector<float>& radius,
+                   const BoxGrid& grid, const Renumbering& order, double d, Stat& st) {
+  growth.start(first.s1, first.splat1, first.s2, first.splat2);
+  growth.run();
+  st.componentsStarted = 1;
+  bool nearMesh = false;
+  auto farFromVertices = [&](const vcg::Point3d& x) {
+    if (growth.anyVertexCloserThan(x, d)) return false;
+    if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
+    nearMesh = true;
+    return false;
+  };
+  for (std::uint32_t k = 0; k < in.points.size(); ++k) {
+    const std::uint32_t i = order.rankOf(k);
+    if (!growth.lists().empty(i)) continue;
+    StartPair pair;
+    nearMesh = false;
+    if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) {
+      st.startsRefusedNearMesh += nearMesh ? 1 : 0;
+      continue;
+    }
+    growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
+    growth.run();
+    ++st.componentsStarted;
+  }
+}
+
 } // namespace
 
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
@@ -677,82 +755,15 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   buildBoxGrid(grid, in, radius, d, params, order, st, progress);
   st.secondsBoxGrid = watch.lap();
 
-  // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
   progress.phase("Sphere packing: starting vertices", 20, 21);
-  StartPair first;
-  bool haveFirst = false;
-  auto noVertexYet = [](const vcg::Point3d&) { return true; };
-  if (params.useStartPoints) {
-    for (const auto& q : params.startPoint)
-      if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
-        throw Error("The starting points must have finite coordinates.");
-    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, true, first.s1, first.splat1);
-    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, true, first.s2, first.splat2);
-    const double dist = (first.s1 - first.s2).Norm();
-    if (dist < d || dist > 2 * d)
-      throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +
-                  " apart; they must be between d = " + fmt(d) + " and 2d = " + fmt(2 * d) +
-                  " apart (paper, section 3.3). Move them, or let the filter choose them.");
-    haveFirst = true;
-  } else {
-    // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
-    // in turn; when none of the 64 highest can start, the first usable point in input order.
-    std::vector<std::uint32_t> highest;
-    reserveHuge(highest, in.points.size(), /*populate=*/true);
-    highest.resize(in.points.size());
-    for (std::uint32_t i = 0; i < highest.size(); ++i) highest[i] = i;
-    const size_t tries = std::min<size_t>(highest.size(), 64);
-    std::partial_sort(highest.begin(), highest.begin() + std::ptrdiff_t(tries), highest.end(),
-                      [&](std::uint32_t a, std::uint32_t b) {
-                        return in.points[a][2] != in.points[b][2] ? in.points[a][2] > in.points[b][2]
-                                                                  : order.origOf(a) < order.origOf(b);
-                      });
-    for (size_t t = 0; t < tries && !haveFirst; ++t)
-      haveFirst = startPairAt(highest[t], in, radius, grid, order, d, noVertexYet, first);
-    for (std::uint32_t k = 0; k < in.points.size() && !haveFirst; ++k)
-      haveFirst = startPairAt(order.rankOf(k), in, radius, grid, order, d, noVertexYet, first);
-    if (!haveFirst)
-      throw Error("Could not place two starting vertices between d and 2d apart anywhere on the cloud: d = " +
-                  fmt(d) + " is probably too large for it, or the splats too small (s = " + fmt(s) +
-                  "). Try the default d, or give the starting points by hand.");
-  }
+  const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
 
-  // Sec. 3.4–3.6: disk growing; meanwhile the deferred box normals on another thread, those near
-  // the start first (the growth spreads from there).
+  // Meanwhile the deferred box normals on another thread, those near the start first (the growth
+  // spreads from there).
   grid.startNormals(params.threads, first.s1);
   progress.phase("Sphere packing: growing", 21, 92);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
-  growth.start(first.s1, first.splat1, first.s2, first.splat2);
-  growth.run();
-  st.componentsStarted = 1;
-  // Every further part of the cloud (sec. 3.3 again): when the growth has stopped and points are
-  // left that no vertex reached, a new starting pair on the first of them in input order (every
-  // point is tried once, so the scan is linear), at least kStartClearancePerD·d from every vertex
-  // placed so far: a point with a vertex between d and that far lies on a surface already meshed
-  // there (a misregistered second scan layer, or the rim of a gap the growth left), and a start
-  // on it would only grow a separate sheet over or beside the mesh (docs/spherepack-components.md).
-  {
-    bool nearMesh = false;
-    auto farFromVertices = [&](const vcg::Point3d& x) {
-      if (growth.anyVertexCloserThan(x, d)) return false;
-      if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
-      nearMesh = true;
-      return false;
-    };
-    for (std::uint32_t k = 0; k < in.points.size(); ++k) {
-      const std::uint32_t i = order.rankOf(k);
-      if (!growth.lists().empty(i)) continue;
-      StartPair pair;
-      nearMesh = false;
-      if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) {
-        st.startsRefusedNearMesh += nearMesh ? 1 : 0;
-        continue;
-      }
-      growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
-      growth.run();
-      ++st.componentsStarted;
-    }
-  }
+  growEveryPart(growth, first, in, radius, grid, order, d, st);
   std::vector<std::uint32_t>().swap(order.orig);
   std::vector<std::uint32_t>().swap(order.rank);
   const BorderGraph& g = growth.graph();
