@@ -730,49 +730,9 @@ void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in,
   }
 }
 
-} // namespace
-
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
-  Stopwatch watch;
-  out.Clear();
-  st = Stat();
-  Progress progress(cb);
-  progress.phase("Sphere packing: reading the cloud", 0, 2);
-  InputCloud in = readInput(cloud, st);
-  const Sizes sizes = chooseSizes(in, params, st);
-  const CloudScale& scale = sizes.scale;
-  const double d = sizes.d, s = sizes.s, expected = sizes.expected;
-  std::vector<int>().swap(in.vertexIndex); // not needed here
-  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
-
-  progress.phase("Sphere packing: splat sizes", 2, 10);
-  st.secondsInput = watch.lap();
-  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
-  st.secondsSplats = watch.lap();
-
-  progress.phase("Sphere packing: box grid", 10, 20);
-  BoxGrid grid;
-  buildBoxGrid(grid, in, radius, d, params, order, st, progress);
-  st.secondsBoxGrid = watch.lap();
-
-  progress.phase("Sphere packing: starting vertices", 20, 21);
-  const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
-
-  // Meanwhile the deferred box normals on another thread, those near the start first (the growth
-  // spreads from there).
-  grid.startNormals(params.threads, first.s1);
-  progress.phase("Sphere packing: growing", 21, 92);
-  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
-  growEveryPart(growth, first, in, radius, grid, order, d, st);
-  std::vector<std::uint32_t>().swap(order.orig);
-  std::vector<std::uint32_t>().swap(order.rank);
-  const BorderGraph& g = growth.graph();
-  grid.finishNormals();
-  st.boxesDTooLarge = grid.dTooLargeCount();
-  st.secondsGrowth = watch.lap();
-
-  // Sec. 3.7: triangulate the regions.
-  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+// Sec. 3.7: the regions the borders enclose, triangulated (up to Params::maxBorderLength edges;
+// longer borders are left as holes).
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st) {
   EdgeSet edges(g.edgeCount() * 2 + 16);
   for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
     for (int k = 0; k < g.degree(v); ++k)
@@ -783,53 +743,62 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.holes = rs.holes;
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
-  st.secondsTriangulation = watch.lap();
+  return faces;
+}
 
-  // Manifold whatever the input. Sec. 3.1 guarantees it for a suitable d on a cloud sampling a
-  // manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
-  // growth's checks and the ear cut of sec. 3.7 can leave a vertex with two fans of faces or an
-  // edge with three. The fewest faces are removed: the extra fans of every non-manifold vertex
-  // (Robust G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an
-  // edge too. Every edge left is still an edge of the packing (>= d).
-  // Then no two faces may intersect (two sheets of a thin part or of misregistered scans meshed
-  // through each other, a fold of the ear cut): of each intersecting pair, faces are removed
-  // greedily (the one in most pairs first, growth/self_intersections.h), and the fans that this
-  // leaves at a vertex are cleaned up again.
-  {
-    std::vector<char> alive(faces.size(), 1);
-    ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
-    st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
-    st.facesRemoved = mc.facesRemoved;
-    {
-      // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not
-      // make faces that nearly touch intersect.
-      st.selfIntersectionFacesRemoved =
-          removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
-    }
-    if (st.selfIntersectionFacesRemoved > 0) {
-      mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
-      st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;
-      st.facesRemoved += mc.facesRemoved + st.selfIntersectionFacesRemoved;
-    }
-    if (st.facesRemoved > 0) {
-      size_t w = 0;
-      for (size_t f = 0; f < faces.size(); ++f)
-        if (alive[f]) faces[w++] = faces[f];
-      faces.resize(w);
-    }
+// Sec. 3.1's manifold guarantee made unconditional: it holds for a suitable d on a cloud sampling a
+// manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
+// growth's checks and the ear cut of sec. 3.7 can leave a vertex with two fans of faces or an edge
+// with three. The fewest faces are removed: the extra fans of every non-manifold vertex (Robust
+// G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an edge too.
+// Every edge left is still an edge of the packing (>= d). Then no two faces may intersect (two
+// sheets of a thin part or of misregistered scans meshed through each other, a fold of the ear
+// cut): of each intersecting pair, faces are removed greedily (the one in most pairs first,
+// growth/self_intersections.h), and the fans that this leaves at a vertex are cleaned up again.
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
+  std::vector<char> alive(faces.size(), 1);
+  ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+  st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
+  st.facesRemoved = mc.facesRemoved;
+  // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not make
+  // faces that nearly touch intersect.
+  st.selfIntersectionFacesRemoved =
+      removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
+  if (st.selfIntersectionFacesRemoved > 0) {
+    mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+    st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;
+    st.facesRemoved += mc.facesRemoved + st.selfIntersectionFacesRemoved;
   }
+  if (st.facesRemoved > 0) {
+    size_t w = 0;
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (alive[f]) faces[w++] = faces[f];
+    faces.resize(w);
+  }
+}
 
-  // Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
-  // layer, cut off from the mesh by the regions left open between the layers, and bits of stray
-  // points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+// Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
+// layer, cut off from the mesh by the regions left open between the layers, and bits of stray
+// points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
   if (params.minComponentFaces > 1)
     st.componentsDropped = dropSmallComponents(faces, g.vertexCount(), size_t(params.minComponentFaces),
                                                st.componentFacesDropped);
+}
 
-  st.secondsCleanup = watch.lap();
+// Input points no vertex came within d of.
+size_t unreachedPoints(const Growth& growth, size_t points) {
+  size_t unreached = 0;
+  for (std::uint32_t i = 0; i < points; ++i) {
+    unreached += growth.lists().empty(i) ? 1 : 0;
+  }
+  return unreached;
+}
 
-  // Output: referenced vertices only, the mesh's own normals, Q_t per face.
-  progress.phase("Sphere packing: writing the mesh", 97, 100);
+// Output: referenced vertices only (in the order of creation), the mesh's own normals, the
+// triangle quality Q_t of sec. 5 per face; its topology measured.
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+               Stat& st) {
   std::vector<std::int32_t> remap;
   assignHuge(remap, g.vertexCount(), std::int32_t(-1));
   std::vector<std::uint32_t> used;
@@ -843,14 +812,6 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   // Deterministic vertex order: by the order of creation.
   std::sort(used.begin(), used.end());
   for (size_t i = 0; i < used.size(); ++i) remap[used[i]] = static_cast<std::int32_t>(i);
-
-  {
-    size_t unreached = 0;
-    for (std::uint32_t i = 0; i < in.points.size(); ++i) {
-      unreached += growth.lists().empty(i) ? 1 : 0;
-    }
-    st.unreachedPoints = unreached;
-  }
 
   if (!faces.empty()) {
     // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
@@ -891,7 +852,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   }
   st.vertices = used.size();
   st.faces = faces.size();
+}
 
+// The report: warnings on what the cloud made the method do (unoriented normals, d too large for
+// sec. 4.1's normal filter, faces removed, points unreached), and the errors of a non-manifold or
+// empty result.
+void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
+            bool noFaces, Stat& st) {
   const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
                               ? oppositeNeighbourShare(in.points, in.normals, scale.spacing)
                               : 0.0;
@@ -915,18 +882,81 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                           "there (the fewest that make it manifold and free of intersections), leaving holes. "
                           "Usual causes: noise beyond d/2 (paper, section 5.3: use a larger d), thin parts (a "
                           "smaller d), misregistered scans.");
-  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: the clean-up above
+  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: makeManifold
     throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
   if (st.unreachedPoints * 100 > in.points.size())
     st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
                           " % of the points have no vertex within d: parts too small or too sparse to hold a "
                           "triangle of side d (a growth was started on every part that could), or the growth "
                           "was stopped by a defect there.");
-  if (faces.empty())
+  if (noFaces)
     throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
                 "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
+}
 
+} // namespace
+
+// The method's phases in the paper's order; each phase's time goes to its Stat::seconds* field.
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+  Stopwatch watch;
+  out.Clear();
+  st = Stat();
+  Progress progress(cb);
+
+  // Input and sizes; the points renumbered in a spatial order (the same mesh, faster).
+  progress.phase("Sphere packing: reading the cloud", 0, 2);
+  InputCloud in = readInput(cloud, st);
+  const Sizes sizes = chooseSizes(in, params, st);
+  const CloudScale& scale = sizes.scale;
+  const double d = sizes.d, s = sizes.s, expected = sizes.expected;
+  std::vector<int>().swap(in.vertexIndex); // not needed here
+  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
+
+  // Sec. 4.3: splat radii.
+  progress.phase("Sphere packing: splat sizes", 2, 10);
+  st.secondsInput = watch.lap();
+  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
+  st.secondsSplats = watch.lap();
+
+  // Sec. 4.1: box grid.
+  progress.phase("Sphere packing: box grid", 10, 20);
+  BoxGrid grid;
+  buildBoxGrid(grid, in, radius, d, params, order, st, progress);
+  st.secondsBoxGrid = watch.lap();
+
+  // Sec. 3.3: start.
+  progress.phase("Sphere packing: starting vertices", 20, 21);
+  const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
+
+  // Sec. 3.4-3.6: growth of the front, on every part of the cloud; meanwhile the deferred box
+  // normals (sec. 4.1) on another thread, those near the start first (the growth spreads from there).
+  grid.startNormals(params.threads, first.s1);
+  progress.phase("Sphere packing: growing", 21, 92);
+  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+  growEveryPart(growth, first, in, radius, grid, order, d, st);
+  std::vector<std::uint32_t>().swap(order.orig);
+  std::vector<std::uint32_t>().swap(order.rank);
+  const BorderGraph& g = growth.graph();
+  grid.finishNormals();
+  st.boxesDTooLarge = grid.dTooLargeCount();
+  st.secondsGrowth = watch.lap();
+
+  // Sec. 3.7: region triangulation.
+  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+  std::vector<Triangle> faces = triangulate(g, params, st);
+  st.secondsTriangulation = watch.lap();
+
+  // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
+  makeManifold(faces, g, params, st);
+  dropSmallPieces(faces, g, params, st);
+  st.secondsCleanup = watch.lap();
+
+  // Output and report.
+  progress.phase("Sphere packing: writing the mesh", 97, 100);
+  st.unreachedPoints = unreachedPoints(growth, in.points.size());
+  writeMesh(faces, g, params, out, st);
+  report(in, scale, d, s, g, faces.empty(), st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();
 }
