@@ -534,13 +534,20 @@ Params suggestParams(const CMeshO& cloud) {
   return p;
 }
 
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
-  Stopwatch watch;
-  out.Clear();
-  st = Stat();
-  Progress progress(cb);
-  progress.phase("Sphere packing: reading the cloud", 0, 2);
+namespace {
 
+// The phases of build(), in the order of the paper's method.
+
+// The sizes the method runs at.
+struct Sizes {
+  CloudScale scale;    // the cloud's sampling and noise
+  double d = 0;        // sphere diameter: the edge length
+  double s = 0;        // splat size (sec. 4.3)
+  double expected = 0; // vertices expected: the surface area over the area per vertex of a d-lattice
+};
+
+// Input: the cloud's points and normals, checked (what sec. 3.1 assumes of the input).
+InputCloud readInput(const CMeshO& cloud, Stat& st) {
   CloudCheck check;
   check.needNormals = true;
   check.allowFaces = false;
@@ -548,15 +555,21 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   InputCloud in = readCloud(cloud, check);
   st.inputPoints = static_cast<size_t>(cloud.vn);
   st.duplicatesDropped = in.duplicatesDropped;
+  return in;
+}
 
-  // Parameters.
+// Sec. 3.1, 4.3 and 5.3: the parameters checked, the sphere diameter d (given, or from the sampling
+// and the noise), the splat size s, and the vertices expected within Params::maxOutputVertices.
+Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st) {
   if (params.windowSize < 0 || params.windowSize > 1000)
     throw Error("The window size w must be between 0 and 1000 (the paper uses 8).");
   if (params.minComponentFaces < 0)
     throw Error("The smallest piece to keep must be 0 faces (keep all) or more.");
   if (params.maxBorderLength < 3)
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
-  const CloudScale scale = cloudScale(in.points, params.threads);
+  Sizes z;
+  z.scale = cloudScale(in.points, params.threads);
+  const CloudScale& scale = z.scale;
   const double diag = in.box.Diag();
   st.scale = scale;
   double d = params.sphereDiameter;
@@ -596,27 +609,33 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                 std::to_string(params.maxOutputVertices) + ". Use a larger d (at least about " + fmt(dMin) +
                 "; the default for this cloud is " + fmt(defaultDiameter(scale)) + ").");
   }
+  z.d = d;
+  z.s = s;
+  z.expected = expected;
+  return z;
+}
 
-  std::vector<int>().swap(in.vertexIndex); // not needed here
-  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
-
-  // Sec. 4.3: splat radii (from the points' own neighbourhoods, independent of d).
-  progress.phase("Sphere packing: splat sizes", 2, 10);
-  st.secondsInput = watch.lap();
+// Sec. 4.3: the splat radii, from the points' own neighbourhoods (independent of d).
+std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params& params, const Renumbering& order,
+                              Stat& st, Progress& progress) {
   SplatSizeStats splatStats;
-  const std::vector<float> radius =
-      computeSplatRadii(in.points, in.normals, s, kSplatFirstReachPerAreaSpacing * scale.areaSpacing,
+  std::vector<float> radius =
+      computeSplatRadii(in.points, in.normals, z.s, kSplatFirstReachPerAreaSpacing * z.scale.areaSpacing,
                         params.localSplatSizes, &splatStats, &progress, params.threads,
                         order.orig.empty() ? nullptr : &order.orig);
   st.meanSplatRadius = splatStats.meanRadius;
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
-  st.secondsSplats = watch.lap();
+  return radius;
+}
 
-  // Sec. 4.1: box grid, normal filter, box normals. A splat larger than d is referred to by every
-  // box it comes within d of (sec. 4.4 needs all splats within d of a vertex), not only by those
-  // its centre is within d of.
-  progress.phase("Sphere packing: box grid", 10, 20);
+// Sec. 4.1: the box grid, normal filter and box normals. A splat larger than d is referred to by
+// every box it comes within d of (sec. 4.4 needs all splats within d of a vertex), not only by
+// those its centre is within d of. The normals of the boxes holding input points are deferred:
+// computed on another thread while the growth (one thread) runs, which asks for them as it goes
+// (BoxGrid::startNormals).
+void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>& radius, double d,
+                  const Params& params, const Renumbering& order, Stat& st, Progress& progress) {
   std::vector<float> extraReach;
   {
     size_t large = 0;
@@ -627,17 +646,16 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
         if (radius[i] > kLargeSplatPerD * d) extraReach[i] = radius[i];
     }
   }
-  // The normals of the boxes holding input points are deferred: computed on another thread while
-  // the growth (one thread) runs, which asks for them as it goes.
-  BoxGrid grid;
   grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
              order.rank.empty() ? nullptr : &order.rank, extraReach.empty() ? nullptr : &extraReach);
   std::vector<float>().swap(extraReach);
   st.boxes = grid.boxCount();
-  st.secondsBoxGrid = watch.lap();
+}
 
-  // Sec. 3.3: starting vertices, projected onto their closest splats, between d and 2d apart.
-  progress.phase("Sphere packing: starting vertices", 20, 21);
+// Sec. 3.3: the first starting pair, projected onto their closest splats, between d and 2d apart:
+// the user's two points, or "around the maximum z-coordinate of the input".
+StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
+                         const Renumbering& order, double d, double s, const Params& params) {
   StartPair first;
   bool haveFirst = false;
   auto noVertexYet = [](const vcg::Point3d&) { return true; };
@@ -654,8 +672,8 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                   " apart (paper, section 3.3). Move them, or let the filter choose them.");
     haveFirst = true;
   } else {
-    // Automatic, "around the maximum z-coordinate of the input" (sec. 3.3): the highest points
-    // in turn; when none of the 64 highest can start, the first usable point in input order.
+    // Automatic: the highest points in turn; when none of the 64 highest can start, the first
+    // usable point in input order.
     std::vector<std::uint32_t> highest;
     reserveHuge(highest, in.points.size(), /*populate=*/true);
     highest.resize(in.points.size());
@@ -675,52 +693,46 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                   fmt(d) + " is probably too large for it, or the splats too small (s = " + fmt(s) +
                   "). Try the default d, or give the starting points by hand.");
   }
+  return first;
+}
 
-  // Sec. 3.4–3.6: disk growing; meanwhile the deferred box normals on another thread, those near
-  // the start first (the growth spreads from there).
-  grid.startNormals(params.threads, first.s1);
-  progress.phase("Sphere packing: growing", 21, 92);
-  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+// Sec. 3.4–3.6: the disk growing from the first pair; then sec. 3.3 again on every further part of
+// the cloud. When the growth has stopped and points are left that no vertex reached, a new
+// starting pair on the first of them in input order (every point is tried once, so the scan is
+// linear), at least kStartClearancePerD·d from every vertex placed so far: a point with a vertex
+// between d and that far lies on a surface already meshed there (a misregistered second scan
+// layer, or the rim of a gap the growth left), and a start on it would only grow a separate sheet
+// over or beside the mesh (docs/spherepack-components.md).
+void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in, const std::vector<float>& radius,
+                   const BoxGrid& grid, const Renumbering& order, double d, Stat& st) {
   growth.start(first.s1, first.splat1, first.s2, first.splat2);
   growth.run();
   st.componentsStarted = 1;
-  // Every further part of the cloud (sec. 3.3 again): when the growth has stopped and points are
-  // left that no vertex reached, a new starting pair on the first of them in input order (every
-  // point is tried once, so the scan is linear), at least kStartClearancePerD·d from every vertex
-  // placed so far: a point with a vertex between d and that far lies on a surface already meshed
-  // there (a misregistered second scan layer, or the rim of a gap the growth left), and a start
-  // on it would only grow a separate sheet over or beside the mesh (docs/spherepack-components.md).
-  {
-    bool nearMesh = false;
-    auto farFromVertices = [&](const vcg::Point3d& x) {
-      if (growth.anyVertexCloserThan(x, d)) return false;
-      if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
-      nearMesh = true;
-      return false;
-    };
-    for (std::uint32_t k = 0; k < in.points.size(); ++k) {
-      const std::uint32_t i = order.rankOf(k);
-      if (!growth.lists().empty(i)) continue;
-      StartPair pair;
-      nearMesh = false;
-      if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) {
-        st.startsRefusedNearMesh += nearMesh ? 1 : 0;
-        continue;
-      }
-      growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
-      growth.run();
-      ++st.componentsStarted;
+  bool nearMesh = false;
+  auto farFromVertices = [&](const vcg::Point3d& x) {
+    if (growth.anyVertexCloserThan(x, d)) return false;
+    if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
+    nearMesh = true;
+    return false;
+  };
+  for (std::uint32_t k = 0; k < in.points.size(); ++k) {
+    const std::uint32_t i = order.rankOf(k);
+    if (!growth.lists().empty(i)) continue;
+    StartPair pair;
+    nearMesh = false;
+    if (!startPairAt(i, in, radius, grid, order, d, farFromVertices, pair)) {
+      st.startsRefusedNearMesh += nearMesh ? 1 : 0;
+      continue;
     }
+    growth.start(pair.s1, pair.splat1, pair.s2, pair.splat2);
+    growth.run();
+    ++st.componentsStarted;
   }
-  std::vector<std::uint32_t>().swap(order.orig);
-  std::vector<std::uint32_t>().swap(order.rank);
-  const BorderGraph& g = growth.graph();
-  grid.finishNormals();
-  st.boxesDTooLarge = grid.dTooLargeCount();
-  st.secondsGrowth = watch.lap();
+}
 
-  // Sec. 3.7: triangulate the regions.
-  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+// Sec. 3.7: the regions the borders enclose, triangulated (up to Params::maxBorderLength edges;
+// longer borders are left as holes).
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st) {
   EdgeSet edges(g.edgeCount() * 2 + 16);
   for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
     for (int k = 0; k < g.degree(v); ++k)
@@ -731,53 +743,62 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   st.holes = rs.holes;
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
-  st.secondsTriangulation = watch.lap();
+  return faces;
+}
 
-  // Manifold whatever the input. Sec. 3.1 guarantees it for a suitable d on a cloud sampling a
-  // manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
-  // growth's checks and the ear cut of sec. 3.7 can leave a vertex with two fans of faces or an
-  // edge with three. The fewest faces are removed: the extra fans of every non-manifold vertex
-  // (Robust G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an
-  // edge too. Every edge left is still an edge of the packing (>= d).
-  // Then no two faces may intersect (two sheets of a thin part or of misregistered scans meshed
-  // through each other, a fold of the ear cut): of each intersecting pair, faces are removed
-  // greedily (the one in most pairs first, growth/self_intersections.h), and the fans that this
-  // leaves at a vertex are cleaned up again.
-  {
-    std::vector<char> alive(faces.size(), 1);
-    ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
-    st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
-    st.facesRemoved = mc.facesRemoved;
-    {
-      // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not
-      // make faces that nearly touch intersect.
-      st.selfIntersectionFacesRemoved =
-          removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
-    }
-    if (st.selfIntersectionFacesRemoved > 0) {
-      mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
-      st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;
-      st.facesRemoved += mc.facesRemoved + st.selfIntersectionFacesRemoved;
-    }
-    if (st.facesRemoved > 0) {
-      size_t w = 0;
-      for (size_t f = 0; f < faces.size(); ++f)
-        if (alive[f]) faces[w++] = faces[f];
-      faces.resize(w);
-    }
+// Sec. 3.1's manifold guarantee made unconditional: it holds for a suitable d on a cloud sampling a
+// manifold; elsewhere (noise beyond d/2, thin parts, misregistered scans, flipped normals) the
+// growth's checks and the ear cut of sec. 3.7 can leave a vertex with two fans of faces or an edge
+// with three. The fewest faces are removed: the extra fans of every non-manifold vertex (Robust
+// G2S, sec. 4.2: growth/manifold_cleanup.h), which removes every face beyond two at an edge too.
+// Every edge left is still an edge of the packing (>= d). Then no two faces may intersect (two
+// sheets of a thin part or of misregistered scans meshed through each other, a fold of the ear
+// cut): of each intersecting pair, faces are removed greedily (the one in most pairs first,
+// growth/self_intersections.h), and the fans that this leaves at a vertex are cleaned up again.
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
+  std::vector<char> alive(faces.size(), 1);
+  ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+  st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
+  st.facesRemoved = mc.facesRemoved;
+  // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not make
+  // faces that nearly touch intersect.
+  st.selfIntersectionFacesRemoved =
+      removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
+  if (st.selfIntersectionFacesRemoved > 0) {
+    mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
+    st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;
+    st.facesRemoved += mc.facesRemoved + st.selfIntersectionFacesRemoved;
   }
+  if (st.facesRemoved > 0) {
+    size_t w = 0;
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (alive[f]) faces[w++] = faces[f];
+    faces.resize(w);
+  }
+}
 
-  // Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
-  // layer, cut off from the mesh by the regions left open between the layers, and bits of stray
-  // points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+// Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
+// layer, cut off from the mesh by the regions left open between the layers, and bits of stray
+// points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
   if (params.minComponentFaces > 1)
     st.componentsDropped = dropSmallComponents(faces, g.vertexCount(), size_t(params.minComponentFaces),
                                                st.componentFacesDropped);
+}
 
-  st.secondsCleanup = watch.lap();
+// Input points no vertex came within d of.
+size_t unreachedPoints(const Growth& growth, size_t points) {
+  size_t unreached = 0;
+  for (std::uint32_t i = 0; i < points; ++i) {
+    unreached += growth.lists().empty(i) ? 1 : 0;
+  }
+  return unreached;
+}
 
-  // Output: referenced vertices only, the mesh's own normals, Q_t per face.
-  progress.phase("Sphere packing: writing the mesh", 97, 100);
+// Output: referenced vertices only (in the order of creation), the mesh's own normals, the
+// triangle quality Q_t of sec. 5 per face; its topology measured.
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+               Stat& st) {
   std::vector<std::int32_t> remap;
   assignHuge(remap, g.vertexCount(), std::int32_t(-1));
   std::vector<std::uint32_t> used;
@@ -791,14 +812,6 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   // Deterministic vertex order: by the order of creation.
   std::sort(used.begin(), used.end());
   for (size_t i = 0; i < used.size(); ++i) remap[used[i]] = static_cast<std::int32_t>(i);
-
-  {
-    size_t unreached = 0;
-    for (std::uint32_t i = 0; i < in.points.size(); ++i) {
-      unreached += growth.lists().empty(i) ? 1 : 0;
-    }
-    st.unreachedPoints = unreached;
-  }
 
   if (!faces.empty()) {
     // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
@@ -839,7 +852,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   }
   st.vertices = used.size();
   st.faces = faces.size();
+}
 
+// The report: warnings on what the cloud made the method do (unoriented normals, d too large for
+// sec. 4.1's normal filter, faces removed, points unreached), and the errors of a non-manifold or
+// empty result.
+void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
+            bool noFaces, Stat& st) {
   const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
                               ? oppositeNeighbourShare(in.points, in.normals, scale.spacing)
                               : 0.0;
@@ -863,18 +882,81 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
                           "there (the fewest that make it manifold and free of intersections), leaving holes. "
                           "Usual causes: noise beyond d/2 (paper, section 5.3: use a larger d), thin parts (a "
                           "smaller d), misregistered scans.");
-  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: the clean-up above
+  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: makeManifold
     throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
   if (st.unreachedPoints * 100 > in.points.size())
     st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
                           " % of the points have no vertex within d: parts too small or too sparse to hold a "
                           "triangle of side d (a growth was started on every part that could), or the growth "
                           "was stopped by a defect there.");
-  if (faces.empty())
+  if (noFaces)
     throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
                 "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
+}
 
+} // namespace
+
+// The method's phases in the paper's order; each phase's time goes to its Stat::seconds* field.
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+  Stopwatch watch;
+  out.Clear();
+  st = Stat();
+  Progress progress(cb);
+
+  // Input and sizes; the points renumbered in a spatial order (the same mesh, faster).
+  progress.phase("Sphere packing: reading the cloud", 0, 2);
+  InputCloud in = readInput(cloud, st);
+  const Sizes sizes = chooseSizes(in, params, st);
+  const CloudScale& scale = sizes.scale;
+  const double d = sizes.d, s = sizes.s, expected = sizes.expected;
+  std::vector<int>().swap(in.vertexIndex); // not needed here
+  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
+
+  // Sec. 4.3: splat radii.
+  progress.phase("Sphere packing: splat sizes", 2, 10);
+  st.secondsInput = watch.lap();
+  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
+  st.secondsSplats = watch.lap();
+
+  // Sec. 4.1: box grid.
+  progress.phase("Sphere packing: box grid", 10, 20);
+  BoxGrid grid;
+  buildBoxGrid(grid, in, radius, d, params, order, st, progress);
+  st.secondsBoxGrid = watch.lap();
+
+  // Sec. 3.3: start.
+  progress.phase("Sphere packing: starting vertices", 20, 21);
+  const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
+
+  // Sec. 3.4-3.6: growth of the front, on every part of the cloud; meanwhile the deferred box
+  // normals (sec. 4.1) on another thread, those near the start first (the growth spreads from there).
+  grid.startNormals(params.threads, first.s1);
+  progress.phase("Sphere packing: growing", 21, 92);
+  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+  growEveryPart(growth, first, in, radius, grid, order, d, st);
+  std::vector<std::uint32_t>().swap(order.orig);
+  std::vector<std::uint32_t>().swap(order.rank);
+  const BorderGraph& g = growth.graph();
+  grid.finishNormals();
+  st.boxesDTooLarge = grid.dTooLargeCount();
+  st.secondsGrowth = watch.lap();
+
+  // Sec. 3.7: region triangulation.
+  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+  std::vector<Triangle> faces = triangulate(g, params, st);
+  st.secondsTriangulation = watch.lap();
+
+  // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
+  makeManifold(faces, g, params, st);
+  dropSmallPieces(faces, g, params, st);
+  st.secondsCleanup = watch.lap();
+
+  // Output and report.
+  progress.phase("Sphere packing: writing the mesh", 97, 100);
+  st.unreachedPoints = unreachedPoints(growth, in.points.size());
+  writeMesh(faces, g, params, out, st);
+  report(in, scale, d, s, g, faces.empty(), st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();
 }
