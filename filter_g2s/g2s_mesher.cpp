@@ -655,7 +655,7 @@ void Mesher::grow(Progress* progress) {
         continue;
       }
     }
-    if (loop) loopFaces_.push_back(static_cast<std::uint32_t>(tri_.size()));
+    if (loop) loopFaces_.push_back(Triangle{e.b, e.a, e.p});
     addTriangle(e.b, e.a, e.p);
     if (progress != nullptr && (++tick & 1023) == 0)
       progress->update(double(usedPoints_) / double(grid_.size()));

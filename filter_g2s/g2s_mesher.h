@@ -293,7 +293,9 @@ private:
   std::vector<char> alive_;
   std::vector<std::uint32_t> scratch_;        // per point: union–find in orientComponents
   std::vector<std::uint32_t> joinedAtVertex_; // vertices that got a triangle sharing no edge there
-  std::vector<std::uint32_t> loopFaces_;      // triangles that closed a loop of free edges (g2s_repair.cpp)
+  // Triangles that closed a loop of free edges (g2s_repair.cpp), by their vertices as added: the
+  // rim-loop pass (g2s_thin.cpp) moves triangles within tri_, so an index would go stale.
+  std::vector<Triangle> loopFaces_;
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t seeds_ = 0, seedAttempts_ = 0;

@@ -120,8 +120,12 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   std::vector<std::uint32_t> first, at;
   faceIndex(first, at);
   {
-    for (std::uint32_t f : loopFaces_) {
-      if (!alive_[f]) continue;
+    for (const Triangle& loopFace : loopFaces_) {
+      // Its index now (none when it was taken off since).
+      std::uint32_t f = ~0u;
+      for (std::uint32_t k = first[loopFace[0]]; k < first[loopFace[0] + 1] && f == ~0u; ++k)
+        if (tri_[at[k]] == loopFace) f = at[k];
+      if (f == ~0u || !alive_[f]) continue;
       const Triangle& t = tri_[f];
       double lo[3], hi[3];
       for (int k = 0; k < 3; ++k) {
