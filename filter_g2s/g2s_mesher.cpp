@@ -1003,16 +1003,7 @@ Mesher::BoundaryCount Mesher::boundary() {
   // marked; the marks are then taken off the walked half-edges only (the map is left as it was).
   BoundaryCount count;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
-  auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
-    bool found = false;
-    pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
-      if (!found && out && !in && !pem_.marked(v, x)) {
-        w = x;
-        found = true;
-      }
-    });
-    return found;
-  };
+  auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
   for (std::uint32_t v = 0; v < grid_.size(); ++v) {
     bool boundaryHere = false;
     pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) {

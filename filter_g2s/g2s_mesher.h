@@ -214,6 +214,18 @@ public:
   std::vector<std::uint32_t>& scratch() { return scratch_; }
 
 private:
+  // The first boundary half-edge v→w (used, w→v unused) leaving v that is not marked in the
+  // point-edge map, into w; false when there is none (the walk along a boundary loop).
+  bool nextBoundaryHalfEdge(std::uint32_t v, std::uint32_t& w) const {
+    bool found = false;
+    pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
+      if (!found && out && !in && !pem_.marked(v, x)) {
+        w = x;
+        found = true;
+      }
+    });
+    return found;
+  }
   struct Scored {
     int flatLevel;     // pl_f
     double radius2;    // squared circumradius of the candidate triangle

@@ -217,16 +217,7 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   std::vector<std::vector<std::uint32_t>> loops;
   {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> walked;
-    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
-      bool found = false;
-      pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
-        if (!found && out && !in && !pem_.marked(v, x)) {
-          w = x;
-          found = true;
-        }
-      });
-      return found;
-    };
+    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
     std::vector<std::uint32_t> loop;
     for (std::uint32_t v : seeds) {
       std::uint32_t w = 0;

@@ -81,16 +81,7 @@ void Mesher::closeRimLoops() {
     // each walk marking its half-edges; loops through a vertex more than once are left alone.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
     std::vector<std::vector<std::uint32_t>> loops;
-    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) {
-      bool found = false;
-      pem_.forEachEdge(v, [&](std::uint32_t x, bool out, bool in) {
-        if (!found && out && !in && !pem_.marked(v, x)) {
-          w = x;
-          found = true;
-        }
-      });
-      return found;
-    };
+    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
     for (std::uint32_t v = 0; v < n; ++v) {
       if (freeEdges_[v] == 0) continue;
       std::uint32_t w = 0;
