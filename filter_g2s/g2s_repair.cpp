@@ -257,8 +257,14 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
     for (int d = 0; d < 3; ++d) {
       const double a = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
       const double b = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
-      lo[d] = static_cast<long>(std::floor(a / cell));
-      hi[d] = static_cast<long>(std::floor(b / cell));
+      // Clamped to ±2^40 cells (a far point or a tiny cell would overflow a long): points beyond
+      // share the last cell, which only lists more faces for the exact test.
+      auto clampCell = [](double c) {
+        constexpr double kFar = 1099511627776.0; // 2^40
+        return static_cast<long>(c >= kFar ? kFar : (c >= -kFar ? c : -kFar)); // NaN: -2^40
+      };
+      lo[d] = clampCell(std::floor(a / cell));
+      hi[d] = clampCell(std::floor(b / cell));
       cells *= std::min(hi[d] - lo[d] + 1, kMaxCells + 1);
     }
     return cells;
