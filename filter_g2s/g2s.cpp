@@ -39,6 +39,139 @@ void checkParams(const Params& p) {
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
 
+// The distinct finite points of the layer (input checks: growth/input_cloud.h).
+InputCloud readPoints(const CMeshO& cloud, Stat& stat) {
+  CloudCheck check;
+  check.minPoints = 3;
+  InputCloud input = readCloud(cloud, check);
+  stat.inputPoints = static_cast<size_t>(cloud.vn);
+  stat.duplicatesDropped = input.duplicatesDropped;
+  if (input.points.size() > PointEdgeMap::kMaxPoints)
+    throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
+                " points, more than this filter can handle; subsample it first.");
+  return input;
+}
+
+// Seeds and front growth (sec. 3.1-3.2, 4.1), with their counts.
+void grow(Mesher& mesher, Stat& stat, Progress& progress) {
+  mesher.meshAll(&progress);
+  stat.workingBytes = mesher.memoryBytes();
+  stat.seeds = mesher.seeds();
+  stat.seedAttempts = mesher.seedAttempts();
+  stat.pointsVisited = mesher.pointsVisited();
+  stat.candidateSearches = mesher.candidateSearches();
+  stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
+  if (stat.edgesLeftAtFullPoints > 0)
+    stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "
+                            "that already had " + std::to_string(PointEdgeMap::kMaxEntries) +
+                            " neighbours (the most one point can hold): the mesh has holes there.");
+}
+
+// Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
+// small holes closed; then the boundary counts and the orientation of every component.
+void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
+  if (p.removeNonManifoldVertices) {
+    const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
+    stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
+    stat.facesRemoved = cs.facesRemoved;
+    // Not in the paper: no two faces may intersect (g2s_repair.cpp).
+    const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
+    stat.selfIntersectionFacesRemoved = si.facesRemoved;
+    stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
+    stat.facesRemoved += si.fanFacesRemoved;
+  } else {
+    stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
+                                                        std::vector<char>(mesher.triangles().size(), 1));
+  }
+  // Not in the paper: pieces too small to be a part of the surface (triangles among stray points)
+  // go before the hole pass, which then spends no time on their loops.
+  if (p.minComponentFaces > 1)
+    stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
+  if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
+    const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
+    stat.holesClosed = hs.closed;
+    stat.holeFacesAdded = hs.facesAdded;
+    stat.holeFacesReplaced = hs.facesReplaced;
+  }
+  // The search structures go before the output's memory is taken (the repairs search).
+  stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
+  mesher.releaseGrowthState();
+  const Mesher::BoundaryCount boundary = mesher.boundary();
+  stat.boundaryEdges = boundary.edges;
+  stat.holes = boundary.loops;
+  mesher.orientComponents();
+  stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
+  mesher.releaseWorkingState();
+  releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
+}
+
+// The live triangles into `out`, on copies of the layer's points that they use (see build()).
+void writeMesh(const CMeshO& cloud, InputCloud& input, Mesher& mesher, CMeshO& out, Stat& stat, Progress& progress) {
+  // The live triangles, in order, taken out of the mesher (with alive() freed): they are
+  // consumed below while the output faces are written.
+  std::vector<Triangle> tri = mesher.takeLiveTriangles();
+  const std::vector<std::uint32_t>& order = mesher.order();
+  // Output vertices: the used points in the mesher's (spatially coherent) order, copied from the
+  // layer's own vertices (mesher point i is distinct point order[i], layer vertex
+  // vertexIndex[order[i]]): the input points bit for bit. The mesher's working state is freed
+  // first, so that its memory and the output layer's do not add up.
+  const size_t points = order.size();
+  std::vector<std::uint32_t>& outIndex = mesher.scratch();
+  outIndex.assign(points, 0);
+  for (const Triangle& t : tri)
+    for (std::uint32_t v : t) outIndex[v] = 1;
+  std::uint32_t next = 0;
+  for (std::uint32_t& o : outIndex) o = o != 0 ? next++ : ~0u;
+  stat.vertices = next;
+  stat.unusedPoints = points - stat.vertices;
+  const size_t faces = tri.size();
+  stat.faces = faces;
+  if (faces > 0) {
+    // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
+    reserveHuge(out.vert, stat.vertices, true);
+    vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
+    for (size_t i = 0; i < points; ++i)
+      if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
+    // Only outIndex is needed from here on.
+    mesher.releaseOrder();
+    decltype(input.vertexIndex)().swap(input.vertexIndex);
+    out.face.EnableQuality();
+    reserveHuge(out.face, faces); // (vcglib's reserve reserves the quality vector too)
+    // The faces are added a block at a time, and the block's triangles are given back (whole
+    // pages, growth::discardPages) once it is written: the faces take four times the
+    // triangles' memory, so the two would otherwise add up at the peak. Within the reserved
+    // room no face moves. Blocks of 8192 faces (384 KiB of faces, 96 KiB of triangles): with
+    // 65536, a cloud of 30k points kept all its 720 KB of triangles to the end, and the
+    // meshlabserver peak on torus-30k was 420 kB higher.
+    constexpr size_t kBlock = size_t(1) << 13;
+    for (size_t first = 0; first < faces; first += kBlock) {
+      const size_t last = std::min(faces, first + kBlock);
+      // The block's room made resident at once (within the reserved capacity), block by block
+      // so that the faces do not take their memory before the triangles give theirs back.
+      prefault(out.face.data() + first, (last - first) * sizeof(CFaceO));
+      prefault(out.face.QV.data() + first, (last - first) * sizeof(out.face.QV[0]));
+      vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
+      for (size_t f = first; f < last; ++f) {
+        CFaceO& face = out.face[f];
+        for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
+        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(
+            P3::Construct(face.cP(0)), P3::Construct(face.cP(1)), P3::Construct(face.cP(2))));
+      }
+      discardPages(tri.data(), last * sizeof(Triangle));
+      progress.update(double(last) / double(faces));
+    }
+    std::vector<Triangle>().swap(tri);
+    // What MeshLab expects of a new layer (its creation filters call UpdateBoxAndNormals): the
+    // bounding box, and face and angle-weighted vertex normals. Part of the filter's time.
+    vcg::tri::UpdateBounding<CMeshO>::Box(out);
+    updateNormals(out);
+    progress.update(1.0);
+  } else {
+    stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
+                            "few or too scattered to lie on a surface (try a larger seed search factor k).");
+  }
+}
+
 } // namespace
 
 Params suggestParams(const CMeshO&) {
@@ -59,14 +192,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
 
     Progress progress(cb);
     progress.phase("Robust G2S: reading the points", 0, 3);
-    CloudCheck check;
-    check.minPoints = 3;
-    InputCloud input = readCloud(cloud, check);
-    stat.inputPoints = static_cast<size_t>(cloud.vn);
-    stat.duplicatesDropped = input.duplicatesDropped;
-    if (input.points.size() > PointEdgeMap::kMaxPoints)
-      throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
-                  " points, more than this filter can handle; subsample it first.");
+    InputCloud input = readPoints(cloud, stat);
     // The mesher sorts the points into its grid's cell order and measures their spacing.
     // input.vertexIndex (layer vertex of each distinct point) is kept for the output.
     progress.phase("Robust G2S: growing the mesh", 3, 92);
@@ -75,119 +201,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     stat.clumps = mesher.clumps();
     stat.clumpPointsMerged = mesher.clumpPointsMerged();
     stat.secondsSetup = watch.lap();
-    mesher.meshAll(&progress);
+    grow(mesher, stat, progress); // sec. 3
     stat.secondsGrowth = watch.lap();
-    stat.workingBytes = mesher.memoryBytes();
-    stat.seeds = mesher.seeds();
-    stat.seedAttempts = mesher.seedAttempts();
-    stat.pointsVisited = mesher.pointsVisited();
-    stat.candidateSearches = mesher.candidateSearches();
-    stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
-    if (stat.edgesLeftAtFullPoints > 0)
-      stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "
-                              "that already had " + std::to_string(PointEdgeMap::kMaxEntries) +
-                              " neighbours (the most one point can hold): the mesh has holes there.");
-
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
-    if (p.removeNonManifoldVertices) {
-      const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
-      stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
-      stat.facesRemoved = cs.facesRemoved;
-      // Not in the paper: no two faces may intersect (g2s_repair.cpp).
-      const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
-      stat.selfIntersectionFacesRemoved = si.facesRemoved;
-      stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
-      stat.facesRemoved += si.fanFacesRemoved;
-    } else {
-      stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
-                                                          std::vector<char>(mesher.triangles().size(), 1));
-    }
-    // Not in the paper: pieces too small to be a part of the surface (triangles among stray points)
-    // go before the hole pass, which then spends no time on their loops.
-    if (p.minComponentFaces > 1)
-      stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
-    if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
-      const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
-      stat.holesClosed = hs.closed;
-      stat.holeFacesAdded = hs.facesAdded;
-      stat.holeFacesReplaced = hs.facesReplaced;
-    }
-    // The search structures go before the output's memory is taken (the repairs search).
-    stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
-    mesher.releaseGrowthState();
-    const Mesher::BoundaryCount boundary = mesher.boundary();
-    stat.boundaryEdges = boundary.edges;
-    stat.holes = boundary.loops;
-    mesher.orientComponents();
-    stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
-    mesher.releaseWorkingState();
-    releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
-
+    cleanUp(mesher, p, stat); // sec. 4.2 and the repairs after it
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
-    // The live triangles, in order, taken out of the mesher (with alive() freed): they are
-    // consumed below while the output faces are written.
-    std::vector<Triangle> tri = mesher.takeLiveTriangles();
-    const std::vector<std::uint32_t>& order = mesher.order();
-    // Output vertices: the used points in the mesher's (spatially coherent) order, copied from the
-    // layer's own vertices (mesher point i is distinct point order[i], layer vertex
-    // vertexIndex[order[i]]): the input points bit for bit. The mesher's working state is freed
-    // first, so that its memory and the output layer's do not add up.
-    const size_t points = order.size();
-    std::vector<std::uint32_t>& outIndex = mesher.scratch();
-    outIndex.assign(points, 0);
-    for (const Triangle& t : tri)
-      for (std::uint32_t v : t) outIndex[v] = 1;
-    std::uint32_t next = 0;
-    for (std::uint32_t& o : outIndex) o = o != 0 ? next++ : ~0u;
-    stat.vertices = next;
-    stat.unusedPoints = points - stat.vertices;
-    const size_t faces = tri.size();
-    stat.faces = faces;
-    if (faces > 0) {
-      // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
-      reserveHuge(out.vert, stat.vertices, true);
-      vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
-      for (size_t i = 0; i < points; ++i)
-        if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
-      // Only outIndex is needed from here on.
-      mesher.releaseOrder();
-      decltype(input.vertexIndex)().swap(input.vertexIndex);
-      out.face.EnableQuality();
-      reserveHuge(out.face, faces); // (vcglib's reserve reserves the quality vector too)
-      // The faces are added a block at a time, and the block's triangles are given back (whole
-      // pages, growth::discardPages) once it is written: the faces take four times the
-      // triangles' memory, so the two would otherwise add up at the peak. Within the reserved
-      // room no face moves. Blocks of 8192 faces (384 KiB of faces, 96 KiB of triangles): with
-      // 65536, a cloud of 30k points kept all its 720 KB of triangles to the end, and the
-      // meshlabserver peak on torus-30k was 420 kB higher.
-      constexpr size_t kBlock = size_t(1) << 13;
-      for (size_t first = 0; first < faces; first += kBlock) {
-        const size_t last = std::min(faces, first + kBlock);
-        // The block's room made resident at once (within the reserved capacity), block by block
-        // so that the faces do not take their memory before the triangles give theirs back.
-        prefault(out.face.data() + first, (last - first) * sizeof(CFaceO));
-        prefault(out.face.QV.data() + first, (last - first) * sizeof(out.face.QV[0]));
-        vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
-        for (size_t f = first; f < last; ++f) {
-          CFaceO& face = out.face[f];
-          for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
-          face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(
-              P3::Construct(face.cP(0)), P3::Construct(face.cP(1)), P3::Construct(face.cP(2))));
-        }
-        discardPages(tri.data(), last * sizeof(Triangle));
-        progress.update(double(last) / double(faces));
-      }
-      std::vector<Triangle>().swap(tri);
-      // What MeshLab expects of a new layer (its creation filters call UpdateBoxAndNormals): the
-      // bounding box, and face and angle-weighted vertex normals. Part of the filter's time.
-      vcg::tri::UpdateBounding<CMeshO>::Box(out);
-      updateNormals(out);
-      progress.update(1.0);
-    } else {
-      stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
-                              "few or too scattered to lie on a surface (try a larger seed search factor k).");
-    }
+    writeMesh(cloud, input, mesher, out, stat, progress);
   } catch (...) {
     // Cancelled, bad input, out of memory: nothing of a partial result is kept.
     out.Clear();
