@@ -1,11 +1,11 @@
 #include "sphere_packer.h"
 
-#include <growth/borders.h>
-#include <growth/box_grid.h>
+#include "borders.h"
+#include "box_grid.h"
 #include <growth/bucket_queue.h>
-#include <growth/candidates.h>
+#include "candidates.h"
 #include <growth/cloud_scale.h>
-#include <growth/crossing.h>
+#include "crossing.h"
 #include <growth/error.h>
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
@@ -18,11 +18,11 @@
 #include <growth/progress.h>
 #include <growth/radix_order.h>
 #include <growth/self_intersections.h>
-#include <growth/region_triangulation.h>
-#include <growth/splats.h>
+#include "region_triangulation.h"
+#include "splats.h"
 #include <growth/stopwatch.h>
-#include <growth/stored_positions.h>
-#include <growth/vertex_grid.h>
+#include "stored_positions.h"
+#include "vertex_grid.h"
 
 #include <common/ml_mesh_type.h>
 #include <vcg/complex/allocate.h>
