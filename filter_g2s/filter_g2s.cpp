@@ -70,6 +70,9 @@ void FilterG2SPlugin::addParameters(FilterID filter, const MeshModel& m, RichPar
       "manifold, consistently oriented and free of intersecting faces; a loop that cannot be closed "
       "so is left open. 0 turns the pass off (it runs only with the non-manifold removal on). Real "
       "holes of the object that small are closed too."));
+  parlst.addParam(RichInt("minComponentFaces", def.minComponentFaces, "Smallest piece kept",
+      "Connected pieces of the mesh with fewer faces are dropped (the largest piece always stays): "
+      "triangles built among stray points and outliers, apart from the surface. 0 keeps all."));
   parlst.addParam(RichInt("randomSeed", int(def.randomSeed), "Random seed",
       "Seed of the random choice of seed points: the same seed gives the same mesh."));
 }
@@ -95,6 +98,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   p.flatnessLevels = par.getInt("flatnessLevels");
   p.removeNonManifoldVertices = par.getBool("removeNonManifoldVertices");
   p.maxHoleEdges = par.getInt("maxHoleEdges");
+  p.minComponentFaces = par.getInt("minComponentFaces");
   p.randomSeed = static_cast<std::uint64_t>(par.getInt("randomSeed"));
 
   // The engine writes straight into the new layer (no copy of a large mesh); on any failure the
@@ -135,6 +139,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["holes_closed"] = int(st.holesClosed);
   outputs["hole_faces_added"] = int(st.holeFacesAdded);
   outputs["hole_faces_replaced"] = int(st.holeFacesReplaced);
+  outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Robust G2S warning: %s", w.c_str());
@@ -149,6 +154,9 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
       "(%zu faces at them replaced)",
       st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced);
+  if (st.componentsDropped > 0)
+    Log("Robust G2S: %zu piece%s of fewer than %d faces dropped (%zu faces): triangles among stray points",
+        st.componentsDropped, st.componentsDropped == 1 ? "" : "s", p.minComponentFaces, st.componentFacesDropped);
   Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

@@ -12,6 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -145,4 +148,73 @@ TEST(G2SRepair, LongBorderStaysOpen) {
   const auto r = run(*cloud, 20);
   EXPECT_EQ(r->stat.holes, 1u);
   EXPECT_EQ(r->stat.holesClosed, 0u);
+}
+
+// Triangles among the outliers form small pieces apart from the surface: with minComponentFaces
+// they are dropped, every piece left but the largest has at least that many faces, and the rest
+// of the mesh is the one the pass off gives (the same faces in the same order, on fewer vertices;
+// compared with the hole pass off, which would otherwise also close loops of the small pieces).
+TEST(G2SRepair, SmallPiecesAmongOutliersAreDroppedAndNothingElse) {
+  const Mesh cloud = noisyCloud(Shape::Patch, 20000, 0, 0.2, 7);
+  CMeshO none;
+  g2s::Params p = g2s::suggestParams(none);
+  ASSERT_EQ(p.minComponentFaces, 50);
+  p.minComponentFaces = 0;
+  p.maxHoleEdges = 0;
+  g2s::Stat offStat, onStat;
+  CMeshO off, on;
+  g2s::build(*cloud, off, p, offStat);
+  EXPECT_EQ(offStat.componentsDropped, 0u);
+  const growth::MeshTopology offTop = growth::measureTopology(off);
+  ASSERT_GT(offTop.components, 5u); // the outliers gave pieces (checked: 23 with this cloud)
+  p.minComponentFaces = 50;
+  g2s::build(*cloud, on, p, onStat);
+  const growth::MeshTopology t = growth::measureTopology(on);
+  EXPECT_GT(onStat.componentsDropped, 0u);
+  EXPECT_EQ(t.components + onStat.componentsDropped, offTop.components);
+  EXPECT_EQ(size_t(on.fn) + onStat.componentFacesDropped, size_t(off.fn));
+  EXPECT_EQ(t.boundaryLoops, onStat.holes);
+  EXPECT_LT(onStat.holes, offStat.holes);
+  EXPECT_EQ(t.nonManifoldVertices, 0u);
+  EXPECT_EQ(t.nonManifoldEdges, 0u);
+  EXPECT_EQ(t.inconsistentEdges, 0u);
+  EXPECT_EQ(growth::countSelfIntersections(on), 0u);
+  // Each face of `on` is a face of `off` with the same points in the same order (the pass only
+  // takes faces out, and keeps the orientation).
+  std::vector<std::array<vcg::Point3<CMeshO::ScalarType>, 3>> offFaces, onFaces;
+  for (const auto& f : off.face) offFaces.push_back({f.cP(0), f.cP(1), f.cP(2)});
+  for (const auto& f : on.face) onFaces.push_back({f.cP(0), f.cP(1), f.cP(2)});
+  size_t j = 0;
+  for (const auto& f : onFaces) {
+    while (j < offFaces.size() && offFaces[j] != f) ++j;
+    ASSERT_LT(j, offFaces.size()) << "a face of the mesh with the pass is not in the mesh without it, in order";
+    ++j;
+  }
+  // Every piece but the largest has at least 50 faces.
+  std::vector<size_t> parent(size_t(on.vn)), count(size_t(on.vn), 0);
+  for (size_t v = 0; v < parent.size(); ++v) parent[v] = v;
+  auto find = [&](size_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const auto& f : on.face)
+    for (int k = 1; k < 3; ++k) parent[find(vcg::tri::Index(on, f.cV(k)))] = find(vcg::tri::Index(on, f.cV(0)));
+  for (const auto& f : on.face) ++count[find(vcg::tri::Index(on, f.cV(0)))];
+  std::sort(count.begin(), count.end(), std::greater<size_t>());
+  ASSERT_GT(count[0], 10000u);
+  for (size_t k = 1; k < count.size() && count[k] > 0; ++k) EXPECT_GE(count[k], 50u);
+  // With the defaults (the hole pass on): fewer holes than without the drop, no defects, and the
+  // same mesh twice.
+  p = g2s::suggestParams(none);
+  CMeshO full, again, keep;
+  g2s::Stat fullStat, againStat, keepStat;
+  g2s::build(*cloud, full, p, fullStat);
+  g2s::build(*cloud, again, p, againStat);
+  EXPECT_TRUE(sameMesh(full, again));
+  const growth::MeshTopology ft = growth::measureTopology(full);
+  EXPECT_EQ(ft.nonManifoldVertices + ft.nonManifoldEdges + ft.inconsistentEdges, 0u);
+  EXPECT_EQ(growth::countSelfIntersections(full), 0u);
+  p.minComponentFaces = 0;
+  g2s::build(*cloud, keep, p, keepStat);
+  EXPECT_LT(fullStat.holes, keepStat.holes);
 }

@@ -285,3 +285,28 @@ TEST(ManifoldCleanup, FanCountsAgreeWithAPlainReferenceOnRandomPatches) {
         << "round " << round;
   }
 }
+
+// Pieces below the size go, the largest stays even when it is below it too, and dead triangles
+// neither count nor join pieces.
+TEST(ManifoldCleanup, SmallComponentsAreDroppedButNeverTheLargest) {
+  std::vector<Triangle> tri;
+  closedFan(tri, 0, 1, 6);   // piece A: 6 triangles (vertices 0-6)
+  closedFan(tri, 10, 11, 4); // piece B: 4 triangles (10-14)
+  tri.push_back({20, 21, 22}); // piece C: 1 triangle
+  tri.push_back({22, 21, 23}); // ... 2 triangles with this one
+  tri.push_back({2, 11, 30});  // dead: would join A and B
+  std::vector<char> a(tri.size(), 1);
+  a.back() = 0;
+  size_t faces = 0;
+  EXPECT_EQ(growth::dropSmallComponents(tri, 31, a, 1, faces), 0u); // minFaces <= 1: nothing
+  EXPECT_EQ(growth::dropSmallComponents(tri, 31, a, 4, faces), 1u); // C only: B has 4
+  EXPECT_EQ(faces, 2u);
+  EXPECT_EQ(alive(a), 10u);
+  EXPECT_EQ(a[10], 0);
+  EXPECT_EQ(a[11], 0);
+  EXPECT_EQ(growth::dropSmallComponents(tri, 31, a, 100, faces), 1u); // B; A is the largest
+  EXPECT_EQ(faces, 4u);
+  EXPECT_EQ(alive(a), 6u);
+  for (size_t f = 0; f < 6; ++f) EXPECT_EQ(a[f], 1);
+  EXPECT_EQ(growth::dropSmallComponents(tri, 31, a, 100, faces), 0u); // one piece left
+}

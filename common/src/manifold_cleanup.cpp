@@ -239,4 +239,47 @@ size_t countNonManifoldVertices(const std::vector<Triangle>& faces, size_t verte
   return n;
 }
 
+size_t dropSmallComponents(const std::vector<Triangle>& faces, size_t vertexCount, std::vector<char>& alive,
+                           size_t minFaces, size_t& facesDropped) {
+  facesDropped = 0;
+  if (minFaces <= 1 || faces.empty()) return 0;
+  std::vector<std::uint32_t> parent(vertexCount);
+  for (std::uint32_t v = 0; v < vertexCount; ++v) parent[v] = v;
+  auto find = [&](std::uint32_t v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  auto unite = [&](std::uint32_t a, std::uint32_t b) {
+    a = find(a), b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  };
+  size_t firstAlive = faces.size();
+  for (size_t f = 0; f < faces.size(); ++f)
+    if (alive[f]) {
+      unite(faces[f][0], faces[f][1]), unite(faces[f][1], faces[f][2]);
+      firstAlive = std::min(firstAlive, f);
+    }
+  if (firstAlive == faces.size()) return 0;
+  std::vector<std::uint32_t> count(vertexCount, 0);
+  std::uint32_t largest = find(faces[firstAlive][0]);
+  for (size_t f = firstAlive; f < faces.size(); ++f) {
+    if (!alive[f]) continue;
+    const std::uint32_t r = find(faces[f][0]);
+    if (++count[r] > count[largest]) largest = r;
+  }
+  size_t dropped = 0;
+  for (std::uint32_t v = 0; v < vertexCount; ++v)
+    dropped += parent[v] == v && count[v] > 0 && count[v] < minFaces && v != largest ? 1 : 0;
+  if (dropped == 0) return 0;
+  for (size_t f = firstAlive; f < faces.size(); ++f) {
+    if (!alive[f]) continue;
+    const std::uint32_t r = find(faces[f][0]);
+    if (count[r] < minFaces && r != largest) {
+      alive[f] = 0;
+      ++facesDropped;
+    }
+  }
+  return dropped;
+}
+
 } // namespace growth

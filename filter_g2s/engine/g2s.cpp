@@ -33,6 +33,8 @@ void checkParams(const Params& p) {
     throw Error("The number of size priority levels n must be between 1 and 64 (default 4).");
   if (p.maxHoleEdges < 0 || p.maxHoleEdges > 10000)
     throw Error("The largest hole to close must be between 0 (off) and 10000 edges.");
+  if (p.minComponentFaces < 0)
+    throw Error("The smallest piece kept must be at least 0 faces (0 keeps all).");
   if (p.flatnessLevels < 1 || p.flatnessLevels > 180)
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
@@ -100,6 +102,10 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
       stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                           std::vector<char>(mesher.triangles().size(), 1));
     }
+    // Not in the paper: pieces too small to be a part of the surface (triangles among stray points)
+    // go before the hole pass, which then spends no time on their loops.
+    if (p.minComponentFaces > 1)
+      stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
     if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
       const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
       stat.holesClosed = hs.closed;

@@ -21,6 +21,8 @@ struct Params {
   int flatnessLevels = 8;            // m, sec. 4.1: classes of the angle β in [0°, 180°], pl_f = 1..m
   bool removeNonManifoldVertices = true; // sec. 4.2; with it, self-intersecting faces are removed too
   int maxHoleEdges = 20;             // hole pass (not in the paper): close boundary loops of at most this many edges; 0: off
+  int minComponentFaces = 50;        // not in the paper: connected pieces with fewer faces are dropped (the largest
+                                     // always stays): triangles among stray points; 0 keeps all
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
 };
 
@@ -46,6 +48,8 @@ struct Stat {
   size_t holesClosed = 0;                 // hole pass: boundary loops closed
   size_t holeFacesAdded = 0;              // and the faces it added
   size_t holeFacesReplaced = 0;           // faces it took out at a loop so that it could close
+  size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
+  size_t componentFacesDropped = 0;       // and their faces
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)

@@ -147,6 +147,10 @@ public:
   // and intersects no face (exactly). A loop that cannot be closed whole is tried again with one of
   // its faces taken out (facesReplaced); one that cannot be closed either way is left as it was.
   HoleStat closeHoles(int maxEdges);
+  // Removes the connected pieces of fewer than minFaces live faces but the largest
+  // (growth::dropSmallComponents) from the mesh and the point-edge map. Returns the pieces removed;
+  // facesDropped gets their faces.
+  size_t dropSmallComponents(size_t minFaces, size_t& facesDropped);
 
   // Orients every connected component so that closed surfaces face out of the material: a
   // component faces outwards of its own volume (positive signed volume about its centroid),

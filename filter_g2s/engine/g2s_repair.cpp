@@ -205,6 +205,17 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   return st;
 }
 
+size_t Mesher::dropSmallComponents(size_t minFaces, size_t& facesDropped) {
+  facesDropped = 0;
+  if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  const std::vector<char> before(alive_.begin(), alive_.end());
+  const size_t dropped = growth::dropSmallComponents(tri_, grid_.size(), alive_, minFaces, facesDropped);
+  if (dropped > 0)
+    for (size_t f = 0; f < tri_.size(); ++f)
+      if (before[f] && !alive_[f]) pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
+  return dropped;
+}
+
 Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   HoleStat st;
   if (maxEdges < 3) return st;

@@ -63,41 +63,17 @@ void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Para
 
 namespace {
 
-// Drops the connected pieces of `faces` with fewer than minFaces faces, except the largest (the
-// first of equal ones). Pieces are joined through shared vertices: after the manifold clean-up
-// every vertex has one fan of faces, so these are the edge-connected pieces (mesh_measures.h).
-// The order of the faces kept is unchanged. Returns the number of pieces dropped.
+// Drops the connected pieces of `faces` with fewer than minFaces faces, except the largest
+// (growth::dropSmallComponents). The order of the faces kept is unchanged. Returns the number of
+// pieces dropped.
 size_t dropSmallComponents(std::vector<Triangle>& faces, size_t vertexCount, size_t minFaces,
                            size_t& facesDropped) {
-  facesDropped = 0;
-  if (minFaces <= 1 || faces.empty()) return 0;
-  std::vector<std::uint32_t> parent(vertexCount);
-  for (std::uint32_t v = 0; v < vertexCount; ++v) parent[v] = v;
-  auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  auto unite = [&](std::uint32_t a, std::uint32_t b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  };
-  for (const Triangle& f : faces) unite(f[0], f[1]), unite(f[1], f[2]);
-  std::vector<std::uint32_t> count(vertexCount, 0);
-  std::uint32_t largest = find(faces[0][0]);
-  for (const Triangle& f : faces) {
-    const std::uint32_t r = find(f[0]);
-    if (++count[r] > count[largest]) largest = r;
-  }
-  size_t dropped = 0;
-  for (std::uint32_t v = 0; v < vertexCount; ++v)
-    dropped += parent[v] == v && count[v] > 0 && count[v] < minFaces && v != largest ? 1 : 0;
+  std::vector<char> alive(faces.size(), 1);
+  const size_t dropped = growth::dropSmallComponents(faces, vertexCount, alive, minFaces, facesDropped);
   if (dropped == 0) return 0;
   size_t w = 0;
-  for (const Triangle& f : faces) {
-    const std::uint32_t r = find(f[0]);
-    if (count[r] >= minFaces || r == largest) faces[w++] = f;
-  }
-  facesDropped = faces.size() - w;
+  for (size_t f = 0; f < faces.size(); ++f)
+    if (alive[f]) faces[w++] = faces[f];
   faces.resize(w);
   return dropped;
 }

@@ -23,6 +23,7 @@ sizeLevels: sizelevels: int
 flatnessLevels: flatnesslevels: int
 removeNonManifoldVertices: removenonmanifoldvertices: bool
 maxHoleEdges: maxholeedges: int
+minComponentFaces: mincomponentfaces: int
 randomSeed: randomseed: int"
 [ "$(sed -n 's/^python //p' "$work/apply.log")" = "$python_names" ] \
   || { grep '^python ' "$work/apply.log"; fail "the Python parameter names differ from the README's"; }

@@ -42,6 +42,14 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
                                               std::vector<char>& alive,
                                               const std::vector<std::uint32_t>* suspects = nullptr);
 
+// Drops the connected pieces of the alive triangles that have fewer than minFaces triangles, except
+// the largest piece (of equal ones, the one that reached that size first in triangle order):
+// their triangles get alive[f] = 0. Pieces are joined through shared vertices; once every vertex
+// is manifold these are the edge-connected pieces (mesh_measures.h). minFaces <= 1 drops nothing.
+// Returns the number of pieces dropped; `facesDropped` gets their triangles.
+size_t dropSmallComponents(const std::vector<Triangle>& faces, size_t vertexCount, std::vector<char>& alive,
+                           size_t minFaces, size_t& facesDropped);
+
 // Number of vertices of the alive triangles whose incident triangles form more than one fan.
 size_t countNonManifoldVertices(const std::vector<Triangle>& faces, size_t vertexCount,
                                 const std::vector<char>& alive);
