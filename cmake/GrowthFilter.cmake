@@ -1,5 +1,6 @@
-# growth_add_filter(NAME ENGINE): the filter's engine (every .cpp of the current directory but the
-# glue NAME.cpp) as the static library ENGINE, and the MeshLab plugin NAME from the glue, for
+# growth_add_filter(NAME ENGINE): the filter's engine (every .cpp of the current directory's engine/
+# folder, whose headers are included by their plain names) as the static library ENGINE, and the
+# MeshLab plugin NAME from the glue NAME.cpp at the folder's top, for
 # MeshLab 2020.09 into build/plugins/ and, for each precision P (d, f) of GROWTH_2025_PRECISIONS,
 # the same sources again as ENGINE_2025P and NAME_2025P for MeshLab 2025.07 into
 # ${GROWTH_2025P_DIR}/plugins (build/meshlab-2025.07d/plugins, build/meshlab-2025.07/plugins).
@@ -11,8 +12,7 @@
 # The 2025.07 plugins carry no RUNPATH and name libmeshlab-common and Qt by soname only (linked
 # --as-needed), so in PyMeshLab or the GUI they bind to the host's own, already loaded libraries.
 function(growth_add_filter name engine)
-  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/*.cpp")
-  list(REMOVE_ITEM sources "${CMAKE_CURRENT_SOURCE_DIR}/${name}.cpp")
+  file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/engine/*.cpp")
   set(variants "")
   list(APPEND variants "|growth|MeshLab::common|${PROJECT_BINARY_DIR}/plugins")
   foreach(p IN LISTS GROWTH_2025_PRECISIONS)
@@ -26,7 +26,7 @@ function(growth_add_filter name engine)
     list(GET parts 2 common)
     list(GET parts 3 outdir)
     add_library(${engine}${suffix} STATIC ${sources})
-    target_include_directories(${engine}${suffix} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}")
+    target_include_directories(${engine}${suffix} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/engine")
     target_link_libraries(${engine}${suffix} PUBLIC ${growth} PRIVATE growth_warnings)
     if(GROWTH_BUILD_PLUGINS)
       add_library(${name}${suffix} MODULE ${name}.cpp ${name}.h)

@@ -1,9 +1,9 @@
 // Borders of the regions of G as oriented half-edge cycles (sec. 3.4, 4.2, figures 3 and 6):
 // lone vertices, single edges, split and join on insertion, cyclic order in the plane orthogonal
 // to the vertex normal, the window walk, and the priority levels of sec. 3.5.
-#include <growth/borders.h>
+#include "borders.h"
 #include <growth/cloud_generator.h>
-#include <growth/splats.h>
+#include "splats.h"
 
 #include <gtest/gtest.h>
 

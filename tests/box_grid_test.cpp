@@ -1,7 +1,7 @@
 // Box grid of the sphere packer (sec. 4.1): hash of occupied boxes of side d referring to the
 // points within distance d, the 0.1 normal filter, box normals over a fixed sphere sampling and
 // the "d too large" boxes.
-#include <growth/box_grid.h>
+#include "box_grid.h"
 #include <growth/cloud_generator.h>
 
 #include <gtest/gtest.h>

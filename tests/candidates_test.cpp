@@ -1,7 +1,7 @@
 // Vertex candidates (fig. 4c): the circle of points at distance d from both parents cut by a
 // splat's disk; per-splat lists of the vertices within d (sec. 4.4).
-#include <growth/box_grid.h>
-#include <growth/candidates.h>
+#include "box_grid.h"
+#include "candidates.h"
 #include <growth/cloud_generator.h>
 
 #include <gtest/gtest.h>

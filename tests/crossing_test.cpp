@@ -1,7 +1,7 @@
 // Crossing check (sec. 3.6, fig. 4b): projected along the normal at the candidate, its new edges
 // must not cross existing edges within d in the normal direction.
-#include <growth/borders.h>
-#include <growth/crossing.h>
+#include "borders.h"
+#include "crossing.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Robust G2S's repairs after the paper's method (filter_g2s/g2s_repair.cpp): on noisy clouds the
-// output has no intersecting face pairs, and the hole pass closes small holes while keeping the
+// Robust G2S's repairs after the paper's method (filter_g2s/engine/g2s_repair.cpp): on noisy clouds
+// the output has no intersecting face pairs, and the hole pass closes small holes while keeping the
 // mesh manifold, consistently oriented and free of intersections; both are deterministic, and a
 // clean closed cloud is left exactly as the paper's method meshes it.
 #include "g2s.h"

@@ -1,4 +1,4 @@
-#include <growth/point_edge_map.h>
+#include "point_edge_map.h"
 
 #include <gtest/gtest.h>
 

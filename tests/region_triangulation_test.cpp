@@ -1,6 +1,6 @@
 // Region triangulation (sec. 3.7): smallest inner angle first, angles in the projection onto the
 // vertex normal's plane, regions longer than ∂max stay holes.
-#include <growth/region_triangulation.h>
+#include "region_triangulation.h"
 
 #include <gtest/gtest.h>
 

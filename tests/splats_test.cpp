@@ -1,9 +1,9 @@
 // Splats (sec. 3.2) and their local sizes (sec. 4.3): rotation onto the tangent plane, Delaunay
 // flips of the central fan, farthest Voronoi vertex; global size when switched off.
-#include <growth/box_grid.h>
+#include "box_grid.h"
 #include <growth/cloud_generator.h>
 #include <growth/point_grid.h>
-#include <growth/splats.h>
+#include "splats.h"
 
 #include <gtest/gtest.h>
 

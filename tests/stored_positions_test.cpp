@@ -1,5 +1,5 @@
-// Positions rounded as the output layer stores them (growth/stored_positions.h).
-#include <growth/stored_positions.h>
+// Positions rounded as the output layer stores them (filter_spherepack/engine/stored_positions.h).
+#include "stored_positions.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Dynamic vertex hash grid used by the insertion checks (sec. 3.6).
 #include <growth/cloud_generator.h>
-#include <growth/vertex_grid.h>
+#include "vertex_grid.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // g2s_grid_bench: measures the spatial indexes available to Robust G2S on its own query pattern —
 // small balls (about 2.7 mean spacings, the mesher's gather radius) centred near the surface —
-// and nearest-neighbour queries: the G2S MortonGrid (filter_g2s/g2s_grid.h) at several cell
+// and nearest-neighbour queries: the G2S MortonGrid (filter_g2s/engine/g2s_grid.h) at several cell
 // sizes, growth::PointGrid, and vcglib's GridStaticPtr and KdTree.
 //
 //   g2s_grid_bench [cloud.ply] [--points N] [--queries Q] [--random]

@@ -1,5 +1,5 @@
-#include <growth/borders.h>
-#include <growth/splats.h>
+#include "borders.h"
+#include "splats.h"
 
 #include <cmath>
 

@@ -14,8 +14,8 @@
 // the splat's list, and adds v to the list. (The paper calls the splats near v "a subset of the
 // splats associated to the box containing v"; we take it literally: a splat counts for v when its
 // point is in v's box and its disk comes within d of v.)
-#include <growth/box_grid.h>
-#include <growth/splats.h>
+#include "box_grid.h"
+#include "splats.h"
 
 #include <vcg/space/point3.h>
 

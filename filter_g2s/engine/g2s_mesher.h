@@ -17,7 +17,7 @@
 #include <growth/bucket_queue.h>
 #include <growth/huge_pages.h>
 #include <growth/manifold_cleanup.h>
-#include <growth/point_edge_map.h>
+#include "point_edge_map.h"
 #include <growth/progress.h>
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-#include <growth/box_grid.h>
+#include "box_grid.h"
 #include <growth/error.h>
 #include <growth/parallel.h>
 #include <growth/progress.h>

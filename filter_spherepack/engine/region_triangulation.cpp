@@ -1,5 +1,5 @@
-#include <growth/region_triangulation.h>
-#include <growth/splats.h>
+#include "region_triangulation.h"
+#include "splats.h"
 
 #include <algorithm>
 #include <cmath>

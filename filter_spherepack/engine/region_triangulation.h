@@ -21,7 +21,7 @@
 //    of a triangle already made) and no other vertex of the loop lies inside it in projection;
 //    when no ear qualifies, the smallest angle below 180° whose diagonal is new is cut anyway;
 //    when none is left, the rest of the loop stays open and counts as a hole.
-#include <growth/box_grid.h>
+#include "box_grid.h"
 
 #include <vcg/space/point3.h>
 

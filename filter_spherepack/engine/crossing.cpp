@@ -1,5 +1,5 @@
-#include <growth/crossing.h>
-#include <growth/splats.h>
+#include "crossing.h"
+#include "splats.h"
 
 namespace growth {
 

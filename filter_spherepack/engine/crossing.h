@@ -14,7 +14,7 @@
 // projected segments. Every such edge has an endpoint within √5·d of c (within d in height, and
 // within 2d sideways since edges of G are d long and the crossing point is within d of c), so the
 // caller gathers the vertices within crossingSearchRadius(d) of c.
-#include <growth/borders.h>
+#include "borders.h"
 
 #include <vcg/space/point3.h>
 

@@ -1,7 +1,7 @@
 #include <growth/point_grid.h>
 #include <growth/parallel.h>
 #include <growth/progress.h>
-#include <growth/splats.h>
+#include "splats.h"
 
 #include <algorithm>
 #include <cmath>

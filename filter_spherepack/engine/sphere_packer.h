@@ -5,11 +5,13 @@
 // One entry point, in the manner of vcglib's IsotropicRemeshing: a Params struct with defaults, a
 // Stat struct of counters, and build(). Working state (grids, queues, borders) stays inside.
 //
-// The parts, one header each in common/include/growth/: box_grid.h (sec. 4.1), splats.h (sec. 3.2,
-// 4.3), candidates.h (fig. 4c, sec. 4.4), borders.h (sec. 3.4, 3.5, 4.2), crossing.h (sec. 3.6),
-// region_triangulation.h (sec. 3.7), vertex_grid.h (the vertex look-ups of sec. 3.6 and 4.4),
-// bucket_queue.h (one FIFO per priority level, sec. 4.4). This file holds the initialization
-// (sec. 3.3) and the growth loop (sec. 3.4–3.6) that tie them together.
+// The parts, one header each beside this one in filter_spherepack/engine/: box_grid.h (sec. 4.1),
+// splats.h (sec. 3.2, 4.3), candidates.h (fig. 4c, sec. 4.4), borders.h (sec. 3.4, 3.5, 4.2),
+// crossing.h (sec. 3.6), region_triangulation.h (sec. 3.7), vertex_grid.h (the vertex look-ups of
+// sec. 3.6 and 4.4); in common/, growth/bucket_queue.h (one FIFO per priority level, sec. 4.4),
+// shared with Robust G2S. The method's steps that tie them together, one file per paper section
+// (the initialization of sec. 3.3, the growth loop of sec. 3.4–3.6, ...), are the packer_*.cpp
+// files beside it (packer_steps.h lists them); build() in sphere_packer.cpp runs them in order.
 #include <vcg/space/point3.h>
 #include <cstring> // wrap/callback.h uses strcpy without including <cstring>
 #include <wrap/callback.h>

@@ -5,7 +5,7 @@
 // cells are stored (KeyHash), each a linked list through one `next` index per vertex. Vertices are
 // at least d apart, so a cell holds a bounded number of them and a query costs a constant. (The
 // paper keeps the vertices in its boxes, sec. 4.4; a separate grid keeps the box lists compact.)
-#include <growth/box_grid.h>
+#include "box_grid.h"
 
 #include <vcg/space/point3.h>
 

@@ -1,0 +1,158 @@
+// The output mesh with the triangle quality Q_t of sec. 5, and the report (packer_steps.h).
+#include "packer_steps.h"
+
+#include <growth/error.h>
+#include <growth/huge_pages.h>
+#include <growth/mesh_measures.h>
+#include <growth/mesh_normals.h>
+#include <growth/parallel.h>
+#include <growth/point_grid.h>
+
+#include <common/ml_mesh_type.h>
+#include <vcg/complex/allocate.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace growth {
+namespace spherepack {
+namespace detail {
+
+namespace {
+
+// Unoriented normals (a sign that changes from point to point) are told from thin parts and folds,
+// which also make boxes see two sides (BoxGrid's d-too-large count), by the points' nearest
+// neighbours: their normals point to opposite sides for about half of the points when the signs
+// are random, and for almost none on an oriented cloud (the nearest neighbour of a point of a thin
+// part lies on the same side). Checked when at least kTwoSidedBoxShareToCheck of the boxes see two
+// sides; the normals look unoriented when at least kOppositeNeighbourShare of the points have an
+// opposite nearest neighbour.
+constexpr double kTwoSidedBoxShareToCheck = 0.1;
+constexpr double kOppositeNeighbourShare = 0.2;
+constexpr size_t kOrientationSamples = 4096;
+
+// Share of the sampled points (a fixed stride) whose nearest other point has a normal with a
+// negative product with theirs. `cell`: the grid's cell size (about the spacing).
+double oppositeNeighbourShare(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+                              double cell) {
+  if (points.size() < 2 || !(cell > 0)) return 0;
+  PointGrid grid;
+  grid.build(points, cell);
+  const size_t stride = std::max<size_t>(1, points.size() / kOrientationSamples);
+  size_t sampled = 0, opposite = 0;
+  for (size_t i = 0; i < points.size(); i += stride) {
+    const int j = grid.nearest(points[i], nullptr, int(i));
+    if (j < 0) continue;
+    ++sampled;
+    opposite += normals[i] * normals[size_t(j)] < 0 ? 1 : 0;
+  }
+  return sampled > 0 ? double(opposite) / double(sampled) : 0;
+}
+
+} // namespace
+
+// Output: referenced vertices only (in the order of creation), the mesh's own normals, the
+// triangle quality Q_t of sec. 5 per face; its topology measured.
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+               Stat& st) {
+  std::vector<std::int32_t> remap;
+  assignHuge(remap, g.vertexCount(), std::int32_t(-1));
+  std::vector<std::uint32_t> used;
+  reserveHuge(used, g.vertexCount(), /*populate=*/true); // all of it but unreferenced vertices
+  for (const auto& f : faces)
+    for (std::uint32_t v : f)
+      if (remap[v] < 0) {
+        remap[v] = static_cast<std::int32_t>(used.size());
+        used.push_back(v);
+      }
+  // Deterministic vertex order: by the order of creation.
+  std::sort(used.begin(), used.end());
+  for (size_t i = 0; i < used.size(); ++i) remap[used[i]] = static_cast<std::int32_t>(i);
+
+  if (!faces.empty()) {
+    // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
+    reserveHuge(out.vert, used.size(), /*populate=*/true);
+    auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
+    for (size_t i = 0; i < used.size(); ++i, ++vi) vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
+    out.face.EnableQuality();
+    reserveHuge(out.face, faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
+    prefault(out.face.QV.data(), faces.size() * sizeof(out.face.QV[0]));
+    auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, faces.size());
+    double qsum = 0, minEdge = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < faces.size(); ++k, ++fi) {
+      const auto& f = faces[k];
+      for (int j = 0; j < 3; ++j) fi->V(j) = &out.vert[size_t(remap[f[j]])];
+      const vcg::Point3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
+      const double l1 = (b - a).SquaredNorm(), l2 = (c - b).SquaredNorm(), l3 = (a - c).SquaredNorm();
+      const double area2 = ((b - a) ^ (c - a)).Norm();
+      const double q = (l1 + l2 + l3) > 0 ? 2 * std::sqrt(3.0) * area2 / (l1 + l2 + l3) : 0;
+      fi->Q() = static_cast<CMeshO::ScalarType>(q);
+      qsum += q;
+      minEdge = std::min(minEdge, std::sqrt(std::min(l1, std::min(l2, l3))));
+    }
+    // Face and vertex normals of the mesh itself (angle-weighted), so that it shades as it comes
+    // out; the box normals stay the growth's.
+    // (With the topology check, which only reads the faces' vertices, on a second thread.)
+    MeshTopology topo;
+    parallelFor(2, parallelParts(2, params.threads, 1), [&](size_t t0, size_t t1, int) {
+      for (size_t t = t0; t < t1; ++t) {
+        if (t == 0) updateNormals(out);
+        else topo = measureTopology(out);
+      }
+    });
+    st.qualityAvg = qsum / double(faces.size());
+    st.smallestEdge = minEdge;
+    st.nonManifoldVertices = topo.nonManifoldVertices;
+    st.nonManifoldEdges = topo.nonManifoldEdges;
+    st.boundaryLoops = topo.boundaryLoops;
+  }
+  st.vertices = used.size();
+  st.faces = faces.size();
+}
+
+// The report: warnings on what the cloud made the method do (unoriented normals, d too large for
+// sec. 4.1's normal filter, faces removed, points unreached), and the errors of a non-manifold or
+// empty result.
+void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
+            bool noFaces, Stat& st) {
+  const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
+                              ? oppositeNeighbourShare(in.points, in.normals, scale.spacing)
+                              : 0.0;
+  if (opposite >= kOppositeNeighbourShare)
+    st.warnings.push_back("The normals look unoriented: for " + fmt(100 * opposite) + " % of the points the "
+                          "nearest point's normal points to the other side, and in " +
+                          std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) + " boxes the "
+                          "normals within d disagree, so the mesh has holes there. Orient them consistently "
+                          "(Filters > Normals, Curvatures and Orientation > Compute normals for point sets "
+                          "propagates one orientation) and run the filter again.");
+  else if (st.boxesDTooLarge > 0)
+    st.warnings.push_back("In " + std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) +
+                          " boxes the point normals within d disagree (the box sees two sides of the surface): "
+                          "d = " + fmt(d) + " is too large there for the paper's manifold guarantee (section 4.1): "
+                          "thin parts, folds, or normals not consistently oriented. Try a smaller d, or "
+                          "re-orient the normals.");
+  if (st.facesRemoved > 0)
+    st.warnings.push_back("The packing was not manifold at " + std::to_string(st.nonManifoldVerticesRemoved) +
+                          " vertices and had " + std::to_string(st.selfIntersectionFacesRemoved) +
+                          " faces through others; " + std::to_string(st.facesRemoved) + " faces were removed "
+                          "there (the fewest that make it manifold and free of intersections), leaving holes. "
+                          "Usual causes: noise beyond d/2 (paper, section 5.3: use a larger d), thin parts (a "
+                          "smaller d), misregistered scans.");
+  if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: makeManifold
+    throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
+  if (st.unreachedPoints * 100 > in.points.size())
+    st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
+                          " % of the points have no vertex within d: parts too small or too sparse to hold a "
+                          "triangle of side d (a growth was started on every part that could), or the growth "
+                          "was stopped by a defect there.");
+  if (noFaces)
+    throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
+                " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
+                "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
+}
+
+} // namespace detail
+} // namespace spherepack
+} // namespace growth

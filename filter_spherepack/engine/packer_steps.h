@@ -1,0 +1,137 @@
+#pragma once
+// The sphere packer's method steps, one file per section of the paper, which build()
+// (sphere_packer.cpp) runs in the paper's order; the parts they use (box_grid.h, splats.h, ...) are
+// listed in sphere_packer.h. Internal to the engine (namespace growth::spherepack::detail); the
+// public API is sphere_packer.h. Each step is described at its definition.
+#include "sphere_packer.h"
+
+#include "borders.h"
+#include "box_grid.h"
+#include <growth/input_cloud.h>
+#include <growth/progress.h>
+#include "region_triangulation.h"
+#include "splats.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace growth {
+namespace spherepack {
+namespace detail {
+
+// First neighbourhood of the local splat radii (splats.h): twice a typical Voronoi radius.
+constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
+// Splats with a radius above this many d are referred to by the boxes their disk comes near
+// (BoxGrid::build's extraReach); smaller ones by the boxes their centre is within d of, as in the
+// paper (a location on the surface is nearly always covered by a nearby point's splat as well).
+constexpr double kLargeSplatPerD = 1.0;
+// A start after the first (sec. 3.3 again) keeps this many d from every vertex: two spacings or
+// so more than the d that any vertex keeps, so that no start lands on a second layer of a surface
+// already meshed (the flaps on the bunny's misregistered scans lie 0.4-2 d off the mesh, median 0.84 d).
+constexpr double kStartClearancePerD = 2.0;
+constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
+
+// A number for the log and the messages, 4 significant digits (sphere_packer.cpp).
+std::string fmt(double v);
+
+// The points renumbered in a spatial order, for memory locality on large clouds: by the Morton
+// code of their boxes of side d, equal codes in input order. Everything the method does in an
+// order of the points keeps the input order through these maps (box lists, ties of neighbours
+// and of the starting vertex), so the mesh is the same as without renumbering. Small clouds fit
+// in the caches and are not renumbered (orig/rank stay empty: identity): Params::spatialOrderMinPoints,
+// 20,000 by default (torus, 2 threads: 10k and 20k the same time either way, 30k -4 %, 100k -7 %,
+// 1M -12 %).
+struct Renumbering {
+  std::vector<std::uint32_t> orig; // new index -> input index (until the starting vertices)
+  std::vector<std::uint32_t> rank; // input index -> new index (for the box grid)
+  std::uint32_t origOf(std::uint32_t i) const { return orig.empty() ? i : orig[i]; }
+  std::uint32_t rankOf(std::uint32_t k) const { return rank.empty() ? k : rank[k]; }
+};
+
+// A starting pair (sec. 3.3): two positions on splats, between d and 2d apart.
+struct StartPair {
+  vcg::Point3d s1, s2;
+  std::uint32_t splat1 = 0, splat2 = 0;
+};
+
+// The sizes the method runs at.
+struct Sizes {
+  CloudScale scale;    // the cloud's sampling and noise
+  double d = 0;        // sphere diameter: the edge length
+  double s = 0;        // splat size (sec. 4.3)
+  double expected = 0; // vertices expected: the surface area over the area per vertex of a d-lattice
+};
+
+// packer_sizes.cpp, sec. 3.1, 4.3 and 5.3: the input checked, the sizes d and s, the spatial order.
+InputCloud readInput(const CMeshO& cloud, Stat& st);
+Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st);
+Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints);
+
+// packer_prepare.cpp, sec. 4.3 and 4.1: the splat radii and the box grid.
+std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params& params, const Renumbering& order,
+                              Stat& st, Progress& progress);
+void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>& radius, double d,
+                  const Params& params, const Renumbering& order, Stat& st, Progress& progress);
+
+// packer_start.cpp, sec. 3.3: the starting pairs.
+bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
+                             const BoxGrid& grid, const Renumbering& order, bool searchAll, vcg::Point3d& proj,
+                             std::uint32_t& splat);
+StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
+                         const Renumbering& order, double d, double s, const Params& params);
+
+// Sec. 3.3 at input point i: s1 = p_i on its own splat, s2 the projection onto the closest splat
+// of a point 1.5·d away in p_i's tangent plane (12 directions tried in turn), between d and 2d
+// from s1. Both must pass `free` (no vertex closer than d). False when p_i is isolated (fewer
+// than 3 other points within d: no part that can hold a triangle) or no direction works.
+template <class Free>
+bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
+                 const Renumbering& order, double d, Free&& free, StartPair& out) {
+  const vcg::Point3d& p = in.points[i];
+  const int box = grid.boxOf(p);
+  if (box < 0) return false;
+  int around = 0;
+  for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box) && around < 4; ++it)
+    around += (in.points[*it] - p).SquaredNorm() <= d * d ? 1 : 0;
+  if (around < 4 || !free(p)) return false;
+  vcg::Point3d e1, e2;
+  tangentFrame(in.normals[i], e1, e2);
+  for (int k = 0; k < 12; ++k) {
+    const double phi = 2 * 3.14159265358979323846 * k / 12;
+    const vcg::Point3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+    vcg::Point3d q;
+    std::uint32_t sq = 0;
+    if (!projectOntoClosestSplat(target, in, radius, grid, order, false, q, sq)) continue;
+    const double dist = (q - p).Norm();
+    if (dist >= d && dist <= 2 * d && free(q)) {
+      out = StartPair{p, q, i, sq};
+      return true;
+    }
+  }
+  return false;
+}
+
+// packer_growth.h, sec. 3.4-3.6: the disk growing; packer_growth.cpp: on every part of the cloud.
+class Growth;
+void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in, const std::vector<float>& radius,
+                   const BoxGrid& grid, const Renumbering& order, double d, Stat& st);
+size_t unreachedPoints(const Growth& growth, size_t points);
+
+// packer_regions.cpp, sec. 3.7: the regions triangulated; the clean-up (manifold, no intersecting
+// faces, no small pieces).
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st);
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
+void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
+
+// packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, and the report.
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+               Stat& st);
+void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
+            bool noFaces, Stat& st);
+
+} // namespace detail
+} // namespace spherepack
+} // namespace growth

@@ -1,0 +1,150 @@
+// The public API of sphere_packer.h: the defaults derived from a cloud, and build(), which runs the
+// method's steps (packer_steps.h) in the paper's order.
+#include "sphere_packer.h"
+
+#include "packer_growth.h"
+#include "packer_steps.h"
+
+#include <growth/cloud_scale.h>
+#include <growth/stopwatch.h>
+
+#include <common/ml_mesh_type.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace growth {
+namespace spherepack {
+
+namespace detail {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(4);
+  s << v;
+  return s.str();
+}
+
+} // namespace detail
+
+using namespace detail;
+
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
+  CloudScale sc;
+  // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
+  // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
+  SamplingOptions options;
+  options.maxSamples = 8000;
+  options.maxNoiseSamples = 3000;
+  const SamplingEstimate e = estimateSampling(points, options, threads);
+  if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
+  sc.spacing = e.spacing;
+  sc.meanSpacing = e.meanSpacing;
+  sc.areaSpacing = std::sqrt(e.areaPerPoint);
+  sc.area = e.areaPerPoint * double(points.size());
+  sc.noise = std::isfinite(e.noise) ? e.noise : 0.0;
+  return sc;
+}
+
+double defaultDiameter(const CloudScale& scale) {
+  return std::max(kDefaultDiameterPerAreaSpacing * scale.areaSpacing, kDefaultDiameterPerNoise * scale.noise);
+}
+
+std::string defaultDiameterReason(const CloudScale& scale) {
+  if (kDefaultDiameterPerNoise * scale.noise > kDefaultDiameterPerAreaSpacing * scale.areaSpacing)
+    return "from the noise: 3 x the estimated noise bound (at least 2x, sec. 5.3; larger than the sampling's " +
+           fmt(kDefaultDiameterPerAreaSpacing * scale.areaSpacing) + ")";
+  return "from the sampling: 1.8 x sqrt(area per point) (the noise asks for at least " +
+         fmt(kDefaultDiameterPerNoise * scale.noise) + ")";
+}
+
+double defaultSplatSize(const CloudScale& scale, double d) {
+  const double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
+  return s > 0 ? s : d;
+}
+
+Params suggestParams(const CMeshO& cloud) {
+  Params p;
+  try {
+    CloudCheck check;
+    check.needNormals = false;
+    check.allowFaces = true;
+    InputCloud in = readCloud(cloud, check);
+    const CloudScale sc = cloudScale(in.points);
+    if (sc.areaSpacing > 0 && std::isfinite(sc.areaSpacing)) {
+      p.sphereDiameter = defaultDiameter(sc);
+      p.splatSize = defaultSplatSize(sc, p.sphereDiameter);
+    }
+  } catch (const std::exception&) {
+    // An unusable cloud: keep the static defaults; build() will explain what is wrong.
+  }
+  return p;
+}
+
+// The method's phases in the paper's order; each phase's time goes to its Stat::seconds* field.
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+  Stopwatch watch;
+  out.Clear();
+  st = Stat();
+  Progress progress(cb);
+
+  // Input and sizes; the points renumbered in a spatial order (the same mesh, faster).
+  progress.phase("Sphere packing: reading the cloud", 0, 2);
+  InputCloud in = readInput(cloud, st);
+  const Sizes sizes = chooseSizes(in, params, st);
+  const CloudScale& scale = sizes.scale;
+  const double d = sizes.d, s = sizes.s, expected = sizes.expected;
+  std::vector<int>().swap(in.vertexIndex); // not needed here
+  Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
+
+  // Sec. 4.3: splat radii.
+  progress.phase("Sphere packing: splat sizes", 2, 10);
+  st.secondsInput = watch.lap();
+  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
+  st.secondsSplats = watch.lap();
+
+  // Sec. 4.1: box grid.
+  progress.phase("Sphere packing: box grid", 10, 20);
+  BoxGrid grid;
+  buildBoxGrid(grid, in, radius, d, params, order, st, progress);
+  st.secondsBoxGrid = watch.lap();
+
+  // Sec. 3.3: start.
+  progress.phase("Sphere packing: starting vertices", 20, 21);
+  const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
+
+  // Sec. 3.4-3.6: growth of the front, on every part of the cloud; meanwhile the deferred box
+  // normals (sec. 4.1) on another thread, those near the start first (the growth spreads from there).
+  grid.startNormals(params.threads, first.s1);
+  progress.phase("Sphere packing: growing", 21, 92);
+  Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+  growEveryPart(growth, first, in, radius, grid, order, d, st);
+  std::vector<std::uint32_t>().swap(order.orig);
+  std::vector<std::uint32_t>().swap(order.rank);
+  const BorderGraph& g = growth.graph();
+  grid.finishNormals();
+  st.boxesDTooLarge = grid.dTooLargeCount();
+  st.secondsGrowth = watch.lap();
+
+  // Sec. 3.7: region triangulation.
+  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+  std::vector<Triangle> faces = triangulate(g, params, st);
+  st.secondsTriangulation = watch.lap();
+
+  // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
+  makeManifold(faces, g, params, st);
+  dropSmallPieces(faces, g, params, st);
+  st.secondsCleanup = watch.lap();
+
+  // Output and report.
+  progress.phase("Sphere packing: writing the mesh", 97, 100);
+  st.unreachedPoints = unreachedPoints(growth, in.points.size());
+  writeMesh(faces, g, params, out, st);
+  report(in, scale, d, s, g, faces.empty(), st);
+  st.secondsOutput = watch.lap();
+  st.seconds = watch.total();
+}
+
+} // namespace spherepack
+} // namespace growth
