@@ -114,6 +114,8 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   const std::vector<P3>& pos = grid_.points();
   std::vector<char> near(n, 0), sub(faces, 0);
   std::vector<std::uint32_t> marked, region, removedVertices;
+  std::vector<Triangle> local;
+  std::vector<char> localAlive;
   // The triangles that closed a loop, each against the faces at the points near it: the faces
   // meeting one are added to the first round's faces, with it.
   std::vector<std::uint32_t> extra;
@@ -177,7 +179,14 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
         }
     for (std::uint32_t i : marked) near[i] = 0;
     marked.clear();
-    const size_t removed = growth::removeSelfIntersections(pos, tri_, sub, 1);
+    // The region's faces alone, in index order (the same pairs and the same greedy choices as
+    // on the whole array with the others dead, without a pass over every face each round).
+    std::sort(region.begin(), region.end());
+    local.clear();
+    for (std::uint32_t f : region) local.push_back(tri_[f]);
+    localAlive.assign(region.size(), 1);
+    const size_t removed = growth::removeSelfIntersections(pos, local, localAlive, 1);
+    for (size_t k = 0; k < region.size(); ++k) sub[region[k]] = localAlive[k];
     seeds.clear();
     for (std::uint32_t f : region) {
       if (!sub[f]) {
@@ -321,26 +330,52 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
     return d > 0 ? (x * y) / d : -1.0;
   };
   std::vector<Triangle> pending;
+  std::vector<std::uint32_t> seen;
   // The faces that a triangle on the points of `loop` can meet (any such triangle lies in the ball
   // around the loop's points; a face with no edge longer than `longest` that meets it has a point
   // within `longest` of that ball), gathered once per loop.
+  // Only the faces whose box meets the loop's box are kept: every triangle on the loop's points
+  // lies in that box, and meetsNothing rejects a face whose box misses the triangle's box, so the
+  // others could never count (the same decisions, on far fewer faces).
   std::vector<std::uint32_t> near;
+  std::vector<char> inNear(tri_.size(), 0);
   std::vector<std::uint32_t> loop, opp, face;
   auto gatherNearLoop = [&]() {
     near.clear();
     P3 c(0, 0, 0);
     for (std::uint32_t v : loop) c += pts_[v];
     c /= double(loop.size());
-    double r2 = 0;
-    for (std::uint32_t v : loop) r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
+    double r2 = 0, lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop[0]][d];
+    for (std::uint32_t v : loop) {
+      r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], pts_[v][d]);
+        hi[d] = std::max(hi[d], pts_[v][d]);
+      }
+    }
+    // Each face once (inNear marks the faces seen, cleared after).
+    seen.clear();
+    auto consider = [&](std::uint32_t g) {
+      if (g >= inNear.size()) inNear.resize(tri_.size(), 0);
+      if (inNear[g]) return;
+      inNear[g] = 1;
+      seen.push_back(g);
+      const Triangle& u = tri_[g];
+      for (int d = 0; d < 3; ++d)
+        if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
+            std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
+          return;
+      near.push_back(g);
+    };
     grid_.forEachInBall(c, (std::sqrt(r2) + longest) * (1 + 1e-9), [&](std::uint32_t i, double) {
-      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) near.push_back(at[k]);
+      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) consider(at[k]);
       if (!hasAdded[i]) return;
       const auto it = added.find(i);
-      if (it != added.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+      if (it != added.end())
+        for (std::uint32_t g : it->second) consider(g);
     });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
+    for (std::uint32_t g : seen) inNear[g] = 0;
   };
   // Triangle t meets no live face, no face added before and none of `pending` (exactly).
   auto meetsNothing = [&](const Triangle& t) {
