@@ -395,14 +395,16 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   };
   // Triangle t meets no live face, no face added before and none of `pending` (exactly).
   auto meetsNothing = [&](const Triangle& t) {
+    const PlaneOf tPlane(pos, t);
     for (const Triangle& p : pending)
-      if (facesIntersect(pos, t, p)) return false;
+      if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+          facesIntersect(pos, t, p))
+        return false;
     double lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
       hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
     }
-    const PlaneOf tPlane(pos, t);
     // Face u meets t (its box first: most faces near t are beside it).
     auto meetsBeside = [&](const Triangle& u) {
       return !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) && !apartInShadow(pos, tPlane, t, u) &&
