@@ -37,7 +37,6 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace growth {
 namespace g2s {
@@ -244,12 +243,7 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   const P3 origin = grid_.box().min;
   constexpr long kMaxCells = 64;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells;
-  std::vector<std::uint32_t> hugeFaces, longFaces;
-  // Only the cells that the loops' boxes cover get their lists (neededCells), unless a loop's box
-  // covers more than kMaxCells cells (allCells): on noisy clouds a third of the faces can have an
-  // edge longer than `longest`, and few of them are near a small loop.
-  std::unordered_set<std::uint64_t> neededCells;
-  bool allCells = false;
+  std::vector<std::uint32_t> hugeFaces;
   // The cells of the box [boxLo, boxHi] (their number, at most kMaxCells + 1 along each axis).
   auto boxCells = [&](const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) {
     long cells = 1;
@@ -289,29 +283,12 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
       hugeFaces.push_back(f);
       return;
     }
-    longFaces.push_back(f);
     for (long x = lo[0]; x <= hi[0]; ++x)
       for (long y = lo[1]; y <= hi[1]; ++y)
-        for (long z = lo[2]; z <= hi[2]; ++z) {
-          const std::uint64_t key = cellKey(x, y, z);
-          if (allCells || neededCells.count(key) != 0) longCells[key].push_back(f);
-        }
+        for (long z = lo[2]; z <= hi[2]; ++z) longCells[cellKey(x, y, z)].push_back(f);
   };
-  // A cell's list made when a loop needs a cell that was not foreseen (not expected to happen: the
-  // needed cells cover every loop this pass can try).
-  auto ensureCell = [&](long x, long y, long z) {
-    const std::uint64_t key = cellKey(x, y, z);
-    if (allCells || !neededCells.insert(key).second) return;
-    for (std::uint32_t f : longFaces) {
-      long lo[3], hi[3];
-      cellRange(tri_[f], lo, hi);
-      bool covered = false; // (by key, as addIfLong files it)
-      for (long a = lo[0]; a <= hi[0] && !covered; ++a)
-        for (long b = lo[1]; b <= hi[1] && !covered; ++b)
-          for (long c = lo[2]; c <= hi[2] && !covered; ++c) covered = cellKey(a, b, c) == key;
-      if (covered) longCells[key].push_back(f);
-    }
-  };
+  for (size_t f = 0; f < tri_.size(); ++f)
+    if (alive_[f]) addIfLong(static_cast<std::uint32_t>(f));
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added; // faces added here, by point
   std::vector<char> hasAdded(grid_.size(), 0);
   const std::vector<P3>& pos = grid_.points();
@@ -336,33 +313,6 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
     const Triangle& t = tri_[f];
     return t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
   };
-  // The cells each loop can need: its points' box, with the third points of the faces on its
-  // edges (a loop tried again with one of those faces taken out runs through its third point).
-  for (const std::vector<std::uint32_t>& l : loops) {
-    double lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[l[0]][d];
-    auto include = [&](std::uint32_t v) {
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], pts_[v][d]);
-        hi[d] = std::max(hi[d], pts_[v][d]);
-      }
-    };
-    for (size_t i = 0; i < l.size(); ++i) {
-      include(l[i]);
-      const std::int64_t f = faceOn(l[i], l[(i + 1) % l.size()]);
-      if (f >= 0) include(thirdPoint(static_cast<std::uint32_t>(f), l[i], l[(i + 1) % l.size()]));
-    }
-    long clo[3], chi[3];
-    if (boxCells(lo, hi, clo, chi) > kMaxCells) {
-      allCells = true;
-      break;
-    }
-    for (long x = clo[0]; x <= chi[0]; ++x)
-      for (long y = clo[1]; y <= chi[1]; ++y)
-        for (long z = clo[2]; z <= chi[2]; ++z) neededCells.insert(cellKey(x, y, z));
-  }
-  for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f]) addIfLong(static_cast<std::uint32_t>(f));
   auto normal = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     return (pts_[b] - pts_[a]) ^ (pts_[c] - pts_[a]);
   };
@@ -436,7 +386,6 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
       for (long x = clo[0]; x <= chi[0]; ++x)
         for (long y = clo[1]; y <= chi[1]; ++y)
           for (long z = clo[2]; z <= chi[2]; ++z) {
-            ensureCell(x, y, z);
             const auto it = longCells.find(cellKey(x, y, z));
             if (it != longCells.end())
               for (std::uint32_t g : it->second) consider(g);
@@ -480,7 +429,6 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
       for (long x = clo[0]; x <= chi[0]; ++x)
         for (long y = clo[1]; y <= chi[1]; ++y)
           for (long z = clo[2]; z <= chi[2]; ++z) {
-            ensureCell(x, y, z);
             const auto it = longCells.find(cellKey(x, y, z));
             if (it != longCells.end() && meetsLong(it->second)) return false;
           }
