@@ -369,6 +369,13 @@ bool facesIntersect(const std::vector<vcg::Point3d>& pos, const Triangle& a, con
   for (const Triangle* t : {&a, &b})
     for (std::uint32_t v : *t)
       if (v >= pos.size()) throw Error("facesIntersect: vertex index " + std::to_string(v) + " out of range");
+  // Boxes apart on an axis: no common point (and no shared vertex), decided by comparisons alone
+  // before the planes and projection axes are made (most pairs the callers test are such).
+  for (int k = 0; k < 3; ++k) {
+    const double aLo = std::min({pos[a[0]][k], pos[a[1]][k], pos[a[2]][k]}), aHi = std::max({pos[a[0]][k], pos[a[1]][k], pos[a[2]][k]});
+    const double bLo = std::min({pos[b[0]][k], pos[b[1]][k], pos[b[2]][k]}), bHi = std::max({pos[b[0]][k], pos[b[1]][k], pos[b[2]][k]});
+    if (aHi < bLo || bHi < aLo) return false;
+  }
   const Plane aPlane = planeOf(pos[a[0]], pos[a[1]], pos[a[2]]), bPlane = planeOf(pos[b[0]], pos[b[1]], pos[b[2]]);
   return pairIntersects(pos, a, projectionAxis(pos[a[0]], pos[a[1]], pos[a[2]]), aPlane, b,
                         projectionAxis(pos[b[0]], pos[b[1]], pos[b[2]]), bPlane);

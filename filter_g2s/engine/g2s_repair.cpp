@@ -30,6 +30,8 @@
 // were loops of three whose triangle met a face nearby.
 #include "g2s_mesher.h"
 
+#include "g2s_apart.h"
+
 #include <growth/self_intersections.h>
 
 #include <algorithm>
@@ -48,27 +50,6 @@ constexpr double kSuspectReach = 1.0;
 constexpr double kLongEdgeSpacings = 3.0;
 // A hole triangle may fold over a neighbouring face by at most this angle.
 constexpr double kMaxFoldDegrees = 135.0;
-// A cheap sufficient test that faces t and u do not intersect (growth/self_intersections.h): the
-// points of u that are not points of t lie strictly on one side of t's plane, by far more than
-// the rounding error of the side test. u then meets that plane only in the points the two share,
-// so the two meet at their shared point or edge only (without a fold-over). Applied both ways
-// round; the exact test decides the pairs that pass neither.
-bool apartByPlane(const std::vector<P3>& pos, const Triangle& t, const Triangle& u) {
-  const P3 &a = pos[t[0]], &b = pos[t[1]], &c = pos[t[2]];
-  const P3 n = (b - a) ^ (c - a);
-  const double scale = n.Norm() * ((b - a).Norm() + (c - a).Norm());
-  int above = 0, below = 0;
-  for (std::uint32_t v : u) {
-    if (v == t[0] || v == t[1] || v == t[2]) continue;
-    const P3 d = pos[v] - a;
-    const double side = n * d, margin = 1e-9 * (scale + n.Norm() * d.Norm());
-    above += side > margin;
-    below += side < -margin;
-    if (!(side > margin || side < -margin)) return false;
-  }
-  return (above == 0) != (below == 0);
-}
-
 } // namespace
 
 void Mesher::boundarySuspects(std::vector<std::uint32_t>& out) const {
@@ -114,6 +95,8 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   const std::vector<P3>& pos = grid_.points();
   std::vector<char> near(n, 0), sub(faces, 0);
   std::vector<std::uint32_t> marked, region, removedVertices;
+  std::vector<Triangle> local;
+  std::vector<char> localAlive;
   // The triangles that closed a loop, each against the faces at the points near it: the faces
   // meeting one are added to the first round's faces, with it.
   std::vector<std::uint32_t> extra;
@@ -127,6 +110,7 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
         if (tri_[at[k]] == loopFace) f = at[k];
       if (f == ~0u || !alive_[f]) continue;
       const Triangle& t = tri_[f];
+      const PlaneOf tPlane(pos, t);
       double lo[3], hi[3];
       for (int k = 0; k < 3; ++k) {
         lo[k] = std::min({pts_[t[0]][k], pts_[t[1]][k], pts_[t[2]][k]});
@@ -144,7 +128,8 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
           for (int d = 0; d < 3 && !apart; ++d)
             apart = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
                     std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d];
-          if (!apart && !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u)) {
+          if (!apart && !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) &&
+              !apartInShadow(pos, tPlane, t, u) && facesIntersect(pos, t, u)) {
             extra.push_back(f);
             extra.push_back(g);
           }
@@ -177,7 +162,14 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
         }
     for (std::uint32_t i : marked) near[i] = 0;
     marked.clear();
-    const size_t removed = growth::removeSelfIntersections(pos, tri_, sub, 1);
+    // The region's faces alone, in index order (the same pairs and the same greedy choices as
+    // on the whole array with the others dead, without a pass over every face each round).
+    std::sort(region.begin(), region.end());
+    local.clear();
+    for (std::uint32_t f : region) local.push_back(tri_[f]);
+    localAlive.assign(region.size(), 1);
+    const size_t removed = growth::removeSelfIntersections(pos, local, localAlive, 1);
+    for (size_t k = 0; k < region.size(); ++k) sub[region[k]] = localAlive[k];
     seeds.clear();
     for (std::uint32_t f : region) {
       if (!sub[f]) {
@@ -263,11 +255,12 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   constexpr long kMaxCells = 64;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells;
   std::vector<std::uint32_t> hugeFaces;
-  auto cellRange = [&](const Triangle& t, long lo[3], long hi[3]) {
+  // The cells of the box [boxLo, boxHi] (their number, at most kMaxCells + 1 along each axis).
+  auto boxCells = [&](const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) {
     long cells = 1;
     for (int d = 0; d < 3; ++d) {
-      const double a = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
-      const double b = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]}) - origin[d];
+      const double a = boxLo[d] - origin[d];
+      const double b = boxHi[d] - origin[d];
       // Clamped to ±2^40 cells (a far point or a tiny cell would overflow a long): points beyond
       // share the last cell, which only lists more faces for the exact test.
       auto clampCell = [](double c) {
@@ -280,15 +273,22 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
     }
     return cells;
   };
+  auto cellRange = [&](const Triangle& t, long lo[3], long hi[3]) {
+    double boxLo[3], boxHi[3];
+    for (int d = 0; d < 3; ++d) {
+      boxLo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+      boxHi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    }
+    return boxCells(boxLo, boxHi, lo, hi);
+  };
   auto cellKey = [](long x, long y, long z) {
     return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
   };
   auto addIfLong = [&](std::uint32_t f) {
     const Triangle& t = tri_[f];
-    bool isLong = false;
-    for (int k = 0; k < 3; ++k)
-      isLong = isLong || (pts_[t[k]] - pts_[t[(k + 1) % 3]]).SquaredNorm() > longest * longest;
-    if (!isLong) return;
+    const double limit = longest * longest;
+    const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
+    if (!((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit)) return;
     long lo[3], hi[3];
     if (cellRange(t, lo, hi) > kMaxCells) {
       hugeFaces.push_back(f);
@@ -332,60 +332,123 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
     return d > 0 ? (x * y) / d : -1.0;
   };
   std::vector<Triangle> pending;
-  // The faces that a triangle on the points of `loop` can meet (any such triangle lies in the ball
-  // around the loop's points; a face with no edge longer than `longest` that meets it has a point
-  // within `longest` of that ball), gathered once per loop.
-  std::vector<std::uint32_t> near;
+  std::vector<std::uint32_t> seen;
+  // The faces that a triangle on the points of `loop` can meet, gathered once per loop (alive_
+  // does not change between the gathering and the loop's closure): any such triangle lies in the
+  // ball around the loop's points and in their box. A face with no edge longer than `longest`
+  // that meets it has a point within longest/√3 of it (every point of a triangle with edges of at
+  // most L is within L/√3 of a corner), hence in the ball grown by that much; the longer ones are
+  // found in longCells. Only the faces whose box meets the loop's box are kept (meetsNothing
+  // rejects a face whose box misses the triangle's, so the others could never count), with their
+  // boxes.
+  struct NearFace {
+    double lo[3], hi[3];
+    std::uint32_t g;
+  };
+  std::vector<NearFace> near;
+  // The long faces whose box meets the loop's box are in `near` too (from the cells that box
+  // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
+  bool nearHasLong = false;
+  std::vector<char> inNear(tri_.size(), 0);
   std::vector<std::uint32_t> loop, opp, face;
   auto gatherNearLoop = [&]() {
     near.clear();
     P3 c(0, 0, 0);
     for (std::uint32_t v : loop) c += pts_[v];
     c /= double(loop.size());
-    double r2 = 0;
-    for (std::uint32_t v : loop) r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
-    grid_.forEachInBall(c, (std::sqrt(r2) + longest) * (1 + 1e-9), [&](std::uint32_t i, double) {
-      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) near.push_back(at[k]);
+    double r2 = 0, lo[3], hi[3];
+    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop[0]][d];
+    for (std::uint32_t v : loop) {
+      r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
+      for (int d = 0; d < 3; ++d) {
+        lo[d] = std::min(lo[d], pts_[v][d]);
+        hi[d] = std::max(hi[d], pts_[v][d]);
+      }
+    }
+    // Each face once (inNear marks the faces seen, cleared after).
+    seen.clear();
+    auto consider = [&](std::uint32_t g) {
+      if (g >= inNear.size()) inNear.resize(tri_.size(), 0);
+      if (inNear[g]) return;
+      inNear[g] = 1;
+      seen.push_back(g);
+      if (!alive_[g]) return;
+      const Triangle& u = tri_[g];
+      NearFace e;
+      for (int d = 0; d < 3; ++d) {
+        e.lo[d] = std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
+        e.hi[d] = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
+        if (e.hi[d] < lo[d] || e.lo[d] > hi[d]) return;
+      }
+      e.g = g;
+      near.push_back(e);
+    };
+    grid_.forEachInBall(c, (std::sqrt(r2) + 0.58 * longest) * (1 + 1e-9), [&](std::uint32_t i, double) {
+      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) consider(at[k]);
       if (!hasAdded[i]) return;
       const auto it = added.find(i);
-      if (it != added.end()) near.insert(near.end(), it->second.begin(), it->second.end());
+      if (it != added.end())
+        for (std::uint32_t g : it->second) consider(g);
     });
-    std::sort(near.begin(), near.end());
-    near.erase(std::unique(near.begin(), near.end()), near.end());
+    long clo[3], chi[3];
+    nearHasLong = boxCells(lo, hi, clo, chi) <= kMaxCells;
+    if (nearHasLong) {
+      for (std::uint32_t g : hugeFaces) consider(g);
+      for (long x = clo[0]; x <= chi[0]; ++x)
+        for (long y = clo[1]; y <= chi[1]; ++y)
+          for (long z = clo[2]; z <= chi[2]; ++z) {
+            const auto it = longCells.find(cellKey(x, y, z));
+            if (it != longCells.end())
+              for (std::uint32_t g : it->second) consider(g);
+          }
+    }
+    for (std::uint32_t g : seen) inNear[g] = 0;
   };
   // Triangle t meets no live face, no face added before and none of `pending` (exactly).
   auto meetsNothing = [&](const Triangle& t) {
+    const PlaneOf tPlane(pos, t);
     for (const Triangle& p : pending)
-      if (facesIntersect(pos, t, p)) return false;
+      if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+          facesIntersect(pos, t, p))
+        return false;
     double lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
       hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
     }
     // Face u meets t (its box first: most faces near t are beside it).
+    auto meetsBeside = [&](const Triangle& u) {
+      return !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) && !apartInShadow(pos, tPlane, t, u) &&
+             facesIntersect(pos, t, u);
+    };
     auto meets = [&](const Triangle& u) {
       for (int d = 0; d < 3; ++d)
         if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
             std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
           return false;
-      return !apartByPlane(pos, t, u) && !apartByPlane(pos, u, t) && facesIntersect(pos, t, u);
+      return meetsBeside(u);
     };
     auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
       for (std::uint32_t g : list)
         if (alive_[g] && meets(tri_[g])) return true;
       return false;
     };
-    if (meetsLong(hugeFaces)) return false;
-    long clo[3], chi[3];
-    cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
-    for (long x = clo[0]; x <= chi[0]; ++x)
-      for (long y = clo[1]; y <= chi[1]; ++y)
-        for (long z = clo[2]; z <= chi[2]; ++z) {
-          const auto it = longCells.find(cellKey(x, y, z));
-          if (it != longCells.end() && meetsLong(it->second)) return false;
-        }
-    for (std::uint32_t g : near)
-      if (alive_[g] && meets(tri_[g])) return false;
+    if (!nearHasLong) {
+      if (meetsLong(hugeFaces)) return false;
+      long clo[3], chi[3];
+      cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
+      for (long x = clo[0]; x <= chi[0]; ++x)
+        for (long y = clo[1]; y <= chi[1]; ++y)
+          for (long z = clo[2]; z <= chi[2]; ++z) {
+            const auto it = longCells.find(cellKey(x, y, z));
+            if (it != longCells.end() && meetsLong(it->second)) return false;
+          }
+    }
+    for (const NearFace& e : near)
+      if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
+            e.lo[2] > hi[2]) &&
+          meetsBeside(tri_[e.g]))
+        return false;
     return true;
   };
 
