@@ -22,7 +22,10 @@
 // ear and four-edge closures close theirs, by its triangulation of least area, after taking off
 // what blocks it: sec. 4.2's extra fans first, then flaps, stray triangles and up to kMaxUnfolds
 // folded triangles; each closure triangle checked like a loop's (no unused point inside, no
-// existing edge twice, room at its points) and not folding back on the mesh.
+// existing edge twice, room at its points) and not folding back on the mesh. Where the least-area
+// closure crosses the mesh, the least-area one that crosses nothing; an unused point (or a lone
+// seed triangle's) inside the closure is joined to the loop first (docs/g2s-robustness.md, "The
+// samplings that stayed open or inside out").
 #include "g2s_mesher.h"
 
 #include <growth/self_intersections.h>
@@ -516,6 +519,11 @@ void Mesher::closeRimLoops() {
         return false;
       };
       bool closed = closeLoop(loop);
+      // Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b lies folded over the
+      // hole, facing with the loop's Newell normal (cosine above -kClosureFoldCos; the mesh around
+      // a hole faces against it, a hole's boundary running clockwise seen from outside), no
+      // closure can join it. Up to kMaxUnfolds such triangles, the one facing most with it first,
+      // are taken off when the loop then runs a -> x -> b and closes.
       if (!closed) {
         std::vector<std::uint32_t> unfolded(loop);
         std::vector<std::array<std::uint32_t, 3>> off;
