@@ -282,7 +282,10 @@ void Mesher::closeRimLoops() {
         return std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
                std::find(lonePoints.begin(), lonePoints.end(), v) != lonePoints.end();
       };
-      // The triangle on loop half-edge from -> to (a mesh triangle or a join): its third point.
+      // The triangle on loop half-edge from -> to (a join, or a mesh triangle not being taken
+      // off): its third point. (While triangles are being taken off, by findTriangle: around a
+      // triangle taken off, the half-edges of its neighbours make its reverse, which thirdPoint
+      // would take.)
       auto thirdOnLoopEdge = [&](std::uint32_t from, std::uint32_t to, std::uint32_t& x) {
         for (const auto& t : joins)
           for (int e = 0; e < 3; ++e)
@@ -290,7 +293,17 @@ void Mesher::closeRimLoops() {
               x = t[(e + 2) % 3];
               return true;
             }
-        return thirdPoint(from, to, x);
+        if (skipIds.empty()) return thirdPoint(from, to, x);
+        bool found = false;
+        pem_.forEachEdge(to, [&](std::uint32_t w, bool out, bool) {
+          if (found || !out || w == from) return;
+          const size_t f = findTriangle(from, to, w);
+          if (f < tri_.size() && std::find(skipIds.begin(), skipIds.end(), idOf[f]) == skipIds.end()) {
+            x = w;
+            found = true;
+          }
+        });
+        return found;
       };
       // The mesh triangles that a triangle of the closure could cross: those with a vertex within
       // reach of the loop (its radius about its centroid, its longest edge and two spacings), and
@@ -414,9 +427,15 @@ void Mesher::closeRimLoops() {
       // A free point: unused, or a point of a lone triangle (a triangle whose points have no other
       // edge: a seed that grew nothing, see above).
       auto lonePartners = [&](std::uint32_t v, std::uint32_t& x, std::uint32_t& y) {
-        int count = 0;
-        pem_.forEachEdge(v, [&](std::uint32_t w, bool, bool) { (count++ == 0 ? x : y) = w; });
-        return count == 2 && !hasOtherEdge(x, v, y) && !hasOtherEdge(y, v, x) && findTriangle(v, x, y) < tri_.size();
+        // (x, y: the triangle is (v, x, y), v -> x its half-edge leaving v.)
+        int count = 0, outs = 0;
+        pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
+          ++count;
+          outs += out;
+          (out ? x : y) = w;
+        });
+        return count == 2 && outs == 1 && !hasOtherEdge(x, v, y) && !hasOtherEdge(y, v, x) &&
+               findTriangle(v, x, y) < tri_.size();
       };
       auto freePoint = [&](std::uint32_t i) {
         std::uint32_t x, y;
