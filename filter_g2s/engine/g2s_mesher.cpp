@@ -52,6 +52,14 @@ constexpr double kSheetGap = 1.5;
 constexpr double kFoldGap = 2.0;
 const double kFoldCos = std::cos(40.0 * 3.14159265358979323846 / 180.0);
 const double kFlatAheadCos = std::cos(10.0 * 3.14159265358979323846 / 180.0);
+// - fold across a gap: a candidate folding by beta >= 30 degrees (kGapFoldCos), single point of
+//   its search region or not, kFoldGap spacings or more behind the front triangle, whose point lies
+//   on a sheet parallel to the front's (kGapSheetPoints points near it in that plane), is refused
+//   when the front's sheet goes on flat beyond it (a wider ball than the search sphere: in a gap of
+//   the sheet, the search sphere can hold the other sheet's point alone).
+const double kGapFoldCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+constexpr int kGapSheetPoints = 5;
+constexpr double kGapSheetReach = 3.0;
 const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
@@ -457,8 +465,13 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     // Sec. 3.2 step 4.2: a single point in the search region is taken directly (when the
     // topological tests allow it).
     if (found == 1) {
-      if (topologyAllows(a, b, c, scored_[0].id)) return accept(scored_[0].id, true);
-      continue;
+      if (!topologyAllows(a, b, c, scored_[0].id)) continue;
+      const Candidate cand = accept(scored_[0].id, true);
+      if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) && foldsAcrossAGap(a, b, scored_[0].id, dir, frontNormal, frontNorm)) {
+        ++foldsRefused_;
+        continue;
+      }
+      return cand;
     }
     // Several points: the reference point is the one whose smallest sphere through it and the
     // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
@@ -494,7 +507,9 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
             emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
         continue;
       const Candidate cand = accept(id, false);
-      if (__builtin_expect(cand.cosBeta < kFoldCos, 0) && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) {
+      if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
+          ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
+           foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) {
         ++foldsRefused_;
         continue;
       }
@@ -555,6 +570,35 @@ bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t 
     if (len > 0 && (frontNormal * n) > kFlatAheadCos * frontNorm * len) return true;
   }
   return false;
+}
+
+bool Mesher::foldsAcrossAGap(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& dir, const P3& frontNormal,
+                             double frontNorm) const {
+  const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
+  // Behind the front triangle, kFoldGap spacings or more: into the material.
+  if (!((Q - A) * frontNormal <= -kFoldGap * spacing_ * frontNorm)) return false;
+  // On a sheet parallel to the front's: kGapSheetPoints other points within kGapSheetReach spacings
+  // of p lie within half a spacing of the plane through p parallel to the front triangle's (not an
+  // outlier, nor a point of noise off its own sheet).
+  const P3 unit = frontNormal / frontNorm;
+  int sheet = 0;
+  grid_.anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
+    sheet += i != p && std::abs((pts_[i] - Q) * unit) <= 0.5 * spacing_;
+    return sheet >= kGapSheetPoints;
+  });
+  if (sheet < kGapSheetPoints) return false;
+  // The front's own sheet goes on beyond p: a point farther ahead than p within 10 degrees of the
+  // front's plane (seen from the edge), in the ball about the edge's midpoint through twice p's
+  // distance. (At a rim nothing lies ahead in the front's plane: the rim is the surface.)
+  const P3 mid = (A + B) * 0.5;
+  const double ahead = (Q - mid) * dir;
+  return grid_.anyInBall(mid, 2.0 * (Q - mid).Norm(), [&](std::uint32_t i, double) {
+    const P3& X = pts_[i];
+    if ((X - mid) * dir <= ahead) return false;
+    const P3 n = (A - B) ^ (X - B);
+    const double len = n.Norm();
+    return len > 0 && (frontNormal * n) > kFlatAheadCos * frontNorm * len;
+  });
 }
 
 void Mesher::addTriangle(std::uint32_t u, std::uint32_t v, std::uint32_t w) {

@@ -259,6 +259,11 @@ private:
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
+  // Candidate (b, a, p) folds across a gap of the front's sheet to another sheet parallel to it
+  // (p at least kFoldGap behind the front triangle, on such a sheet, and the front's sheet going on
+  // flat beyond p).
+  GROWTH_G2S_COLD bool foldsAcrossAGap(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& dir,
+                                       const P3& frontNormal, double frontNorm) const;
   // After the growth, when a thin-part rule acted: closes the boundary loops of 3 to 16 edges
   // that lie at a thin part (another sheet facing the other way 2-5 spacings off a triangle at
   // the loop) by their triangulation of least area, crossing no triangle, after taking off what

@@ -22,7 +22,10 @@
 // ear and four-edge closures close theirs, by its triangulation of least area, after taking off
 // what blocks it: sec. 4.2's extra fans first, then flaps, stray triangles and up to kMaxUnfolds
 // folded triangles; each closure triangle checked like a loop's (no unused point inside, no
-// existing edge twice, room at its points) and not folding back on the mesh.
+// existing edge twice, room at its points) and not folding back on the mesh. Where the least-area
+// closure crosses the mesh, the least-area one that crosses nothing; an unused point (or a lone
+// seed triangle's) inside the closure is joined to the loop first (docs/g2s-robustness.md, "The
+// samplings that stayed open or inside out").
 #include "g2s_mesher.h"
 
 #include <growth/self_intersections.h>
@@ -56,6 +59,8 @@ constexpr double kClosureFoldCos = -0.85;
 constexpr int kRounds = 3;
 // At most this many folded triangles are taken off a loop to close it.
 constexpr int kMaxUnfolds = 2;
+// At most this many free points (unused, or of a lone triangle) are joined to a loop to close it.
+constexpr size_t kMaxJoins = 6;
 } // namespace
 
 void Mesher::closeRimLoops() {
@@ -264,10 +269,92 @@ void Mesher::closeRimLoops() {
       // The closure's triangles use the loop's half-edges the other way: polygon q = the loop
       // reversed, triangles (q_i, q_m, q_j) for i < m < j. Least total area (dynamic programming over
       // the polygon's sub-chains), no diagonal between points that have or had an edge, and no
-      // triangle folding back onto the mesh triangle across its loop edge.
+      // triangle folding back onto the mesh triangle across its loop edge; with `avoid`, no
+      // triangle crossing a mesh triangle near the loop either (see crossesMesh).
       const double inf = std::numeric_limits<double>::infinity();
       std::vector<std::array<std::uint32_t, 3>> closure;
-      auto triangulate = [&](const std::vector<std::uint32_t>& loop) {
+      // Free points taken into the loop (below): each is joined to a loop edge a -> b by the
+      // triangle (b, a, p), after which the loop runs a -> p -> b. Lone triangles whose points are
+      // taken are taken off when the closure is made (their edges do not count as edges).
+      std::vector<std::array<std::uint32_t, 3>> joins;
+      std::vector<std::uint32_t> lonePoints, skipIds;
+      auto isLoneEdge = [&](std::uint32_t u, std::uint32_t v) {
+        return std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
+               std::find(lonePoints.begin(), lonePoints.end(), v) != lonePoints.end();
+      };
+      // The triangle on loop half-edge from -> to (a join, or a mesh triangle not being taken
+      // off): its third point. (While triangles are being taken off, by findTriangle: around a
+      // triangle taken off, the half-edges of its neighbours make its reverse, which thirdPoint
+      // would take.)
+      auto thirdOnLoopEdge = [&](std::uint32_t from, std::uint32_t to, std::uint32_t& x) {
+        for (const auto& t : joins)
+          for (int e = 0; e < 3; ++e)
+            if (t[e] == from && t[(e + 1) % 3] == to) {
+              x = t[(e + 2) % 3];
+              return true;
+            }
+        if (skipIds.empty()) return thirdPoint(from, to, x);
+        bool found = false;
+        pem_.forEachEdge(to, [&](std::uint32_t w, bool out, bool) {
+          if (found || !out || w == from) return;
+          const size_t f = findTriangle(from, to, w);
+          if (f < tri_.size() && std::find(skipIds.begin(), skipIds.end(), idOf[f]) == skipIds.end()) {
+            x = w;
+            found = true;
+          }
+        });
+        return found;
+      };
+      // The mesh triangles that a triangle of the closure could cross: those with a vertex within
+      // reach of the loop (its radius about its centroid, its longest edge and two spacings), and
+      // those added this round; gathered once per loop (`near`, with their ids).
+      std::vector<Triangle> nearTri;
+      std::vector<std::uint32_t> nearId;
+      P3 lo, hi;
+      auto gatherNear = [&](const std::vector<std::uint32_t>& l) {
+        nearTri.clear();
+        nearId.clear();
+        P3 centroid(0, 0, 0);
+        for (std::uint32_t v : l) centroid += pts_[v];
+        centroid /= double(l.size());
+        double radius = 0, longest = 0;
+        for (size_t i = 0; i < l.size(); ++i) {
+          radius = std::max(radius, (pts_[l[i]] - centroid).Norm());
+          longest = std::max(longest, (pts_[l[(i + 1) % l.size()]] - pts_[l[i]]).Norm());
+        }
+        lo = hi = pts_[l[0]];
+        for (std::uint32_t v : l)
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], pts_[v][a]);
+            hi[a] = std::max(hi[a], pts_[v][a]);
+          }
+        for (size_t k = 0; k < added.size(); ++k) {
+          nearTri.push_back(added[k]);
+          nearId.push_back(addedId[k]);
+        }
+        grid_.forEachInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
+          for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f) {
+            nearTri.push_back(trianglesAt[f]);
+            nearId.push_back(idAt[f]);
+          }
+        });
+      };
+      // Triangle c crosses one of `near` (triangles taken off, and lone triangles being taken, do
+      // not count; only those whose box meets the loop's).
+      auto crossesNear = [&](const Triangle& c) {
+        for (size_t k = 0; k < nearTri.size(); ++k) {
+          const Triangle& t = nearTri[k];
+          if (curOf[nearId[k]] == kGone || std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()) continue;
+          if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+          bool apartBox = false;
+          for (int a = 0; a < 3 && !apartBox; ++a)
+            apartBox = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
+                       std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a];
+          if (!apartBox && facesIntersect(grid_.points(), c, t)) return true;
+        }
+        return false;
+      };
+      auto triangulate = [&](const std::vector<std::uint32_t>& loop, bool avoid) {
         const size_t k = loop.size();
         const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
         auto cost = [&](size_t i, size_t m, size_t j) {
@@ -282,16 +369,17 @@ void Mesher::closeRimLoops() {
             const std::uint32_t u = q[e.first], v = q[e.second];
             const bool loopEdge = (e.second == e.first + 1) || (e.first == k - 1 && e.second == 0);
             if (!loopEdge) {
-              if (pem_.hasEntry(u, v)) return inf;
+              if (pem_.hasEntry(u, v) && !isLoneEdge(u, v)) return inf;
               continue;
             }
             std::uint32_t x;
-            if (thirdPoint(v, u, x)) {
+            if (thirdOnLoopEdge(v, u, x)) {
               const P3 meshNormal = (pts_[u] - pts_[v]) ^ (pts_[x] - pts_[v]);
               const double ml = meshNormal.Norm();
               if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
             }
           }
+          if (avoid && crossesNear(Triangle{q[i], q[m], q[j]})) return inf;
           return 0.5 * len;
         };
         std::vector<double> best(k * k, 0.0);
@@ -301,6 +389,7 @@ void Mesher::closeRimLoops() {
             const size_t j = i + span;
             double b = inf;
             for (size_t m = i + 1; m < j; ++m) {
+              if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
               const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
               if (c < b) {
                 b = c;
@@ -321,54 +410,139 @@ void Mesher::closeRimLoops() {
           stack.emplace_back(i, m);
           stack.emplace_back(m, j);
         }
+        closure.insert(closure.end(), joins.begin(), joins.end());
         return true;
       };
-      // Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b faces against the loop
-      // (its normal and the loop's, by Newell's formula, more than 120 degrees apart: it lies
-      // folded over the hole), no closure can join it. Up to kMaxUnfolds such triangles, the one
-      // facing most against first, are taken off when the loop then runs a -> x -> b and closes.
-      // A triangle of `closure` crosses a mesh triangle with a vertex within reach of the loop (its
-      // radius about its centroid, its longest edge and two spacings), or one added this round.
+      // A triangle of `closure` crosses another of them, or a triangle of `near`.
       auto crossesMesh = [&]() {
-        P3 centroid(0, 0, 0);
-        for (std::uint32_t v : loop) centroid += pts_[v];
-        centroid /= double(loop.size());
-        double radius = 0, longest = 0;
-        for (size_t i = 0; i < loop.size(); ++i) {
-          radius = std::max(radius, (pts_[loop[i]] - centroid).Norm());
-          longest = std::max(longest, (pts_[loop[(i + 1) % loop.size()]] - pts_[loop[i]]).Norm());
-        }
-        P3 lo = pts_[loop[0]], hi = pts_[loop[0]];
-        for (std::uint32_t v : loop)
-          for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], pts_[v][a]);
-            hi[a] = std::max(hi[a], pts_[v][a]);
-          }
-        // (Triangles taken off do not count.)
-        auto crosses = [&](const Triangle& t, std::uint32_t id) {
-          if (curOf[id] == kGone) return false;
-          for (int a = 0; a < 3; ++a)
-            if (std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
-                std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a])
-              return false;
-          for (const auto& c : closure)
-            if (facesIntersect(grid_.points(), Triangle{c[0], c[1], c[2]}, t)) return true;
-          return false;
-        };
         for (size_t i = 0; i < closure.size(); ++i)
           for (size_t j = i + 1; j < closure.size(); ++j)
             if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
                                Triangle{closure[j][0], closure[j][1], closure[j][2]}))
               return true;
-        for (size_t k = 0; k < added.size(); ++k)
-          if (crosses(added[k], addedId[k])) return true;
-        return grid_.anyInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
-          for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f)
-            if (crosses(trianglesAt[f], idAt[f])) return true;
+        for (const auto& c : closure)
+          if (crossesNear(Triangle{c[0], c[1], c[2]})) return true;
+        return false;
+      };
+      // A free point: unused, or a point of a lone triangle (a triangle whose points have no other
+      // edge: a seed that grew nothing, see above).
+      auto lonePartners = [&](std::uint32_t v, std::uint32_t& x, std::uint32_t& y) {
+        // (x, y: the triangle is (v, x, y), v -> x its half-edge leaving v.)
+        int count = 0, outs = 0;
+        pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
+          ++count;
+          outs += out;
+          (out ? x : y) = w;
+        });
+        return count == 2 && outs == 1 && !hasOtherEdge(x, v, y) && !hasOtherEdge(y, v, x) &&
+               findTriangle(v, x, y) < tri_.size();
+      };
+      auto freePoint = [&](std::uint32_t i) {
+        std::uint32_t x, y;
+        for (const auto& t : joins)
+          if (t[2] == i) return false;
+        return isolated(i) || lonePartners(i, x, y);
+      };
+      // A free point inside triangle (a, b, c) (as in unusedPointInside: projecting inside it, at
+      // most the radius of its smallest enclosing ball from its plane), or ~0u.
+      auto freeInside = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
+        const P3 n = (B - A) ^ (C - A);
+        const double n2 = n.SquaredNorm();
+        std::uint32_t found = ~0u;
+        if (!(n2 > 0)) return found;
+        const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
+        P3 centre;
+        double r2;
+        if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
+        else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
+        else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
+        else {
+          Ball ball;
+          if (!circumBall(A, B, C, ball)) return found;
+          centre = ball.centre;
+          r2 = ball.radius2;
+        }
+        grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
+          if (i == a || i == b || i == c || !freePoint(i)) return false;
+          const P3& X = pts_[i];
+          const double h = (X - A) * n;
+          if (h * h > r2 * n2) return false;
+          if (((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0) {
+            found = i;
+            return true;
+          }
           return false;
         });
+        return found;
       };
-      bool closed = triangulate(loop);
+      // Joins free point p to the loop edge a -> b whose triangle (b, a, p) has the smallest
+      // circumradius among those that do not fold back onto the triangle on a -> b.
+      auto join = [&](std::vector<std::uint32_t>& l, std::uint32_t p) {
+        size_t at = l.size();
+        double bestR2 = inf;
+        for (size_t i = 0; i < l.size(); ++i) {
+          const std::uint32_t a = l[i], b = l[(i + 1) % l.size()];
+          std::uint32_t x;
+          const P3 nt = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
+          const double len = nt.Norm();
+          if (!(len > 0)) continue;
+          if (thirdOnLoopEdge(a, b, x)) {
+            const P3 meshNormal = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
+            const double ml = meshNormal.Norm();
+            if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) continue;
+          }
+          Ball ball;
+          if (!circumBall(pts_[b], pts_[a], pts_[p], ball) || !(ball.radius2 < bestR2)) continue;
+          bestR2 = ball.radius2;
+          at = i;
+        }
+        if (at == l.size()) return false;
+        joins.push_back({l[(at + 1) % l.size()], l[at], p});
+        l.insert(l.begin() + std::ptrdiff_t(at + 1), p);
+        return true;
+      };
+      // Closes loop l: its least-area triangulation, then (when that crosses the mesh or itself)
+      // the least-area one among those whose triangles cross no mesh triangle; a free point inside
+      // a triangle of the closure is joined to the loop first (at most kMaxJoins, with the other
+      // points of its lone triangle), as the growth grows an edge to an unused point inside a loop.
+      auto closeLoop = [&](std::vector<std::uint32_t>& l) {
+        const std::vector<std::uint32_t> original(l);
+        for (bool avoid : {false, true}) {
+          l = original;
+          joins.clear();
+          lonePoints.clear();
+          gatherNear(l);
+          for (;;) {
+            if (!triangulate(l, avoid)) break;
+            std::uint32_t p = ~0u;
+            for (size_t t = 0; t < closure.size() && p == ~0u; ++t) p = freeInside(closure[t][0], closure[t][1], closure[t][2]);
+            if (p == ~0u) {
+              if (!crossesMesh()) return true;
+              break;
+            }
+            if (joins.size() >= kMaxJoins) break;
+            std::uint32_t x, y;
+            if (!isolated(p) && lonePartners(p, x, y)) {
+              if (joins.size() + 3 > kMaxJoins) break;
+              lonePoints.insert(lonePoints.end(), {p, x, y});
+              if (!join(l, p) || !join(l, x) || !join(l, y)) break;
+            } else if (!join(l, p)) {
+              break;
+            }
+          }
+        }
+        l = original;
+        joins.clear();
+        lonePoints.clear();
+        return false;
+      };
+      bool closed = closeLoop(loop);
+      // Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b lies folded over the
+      // hole, facing with the loop's Newell normal (cosine above -kClosureFoldCos; the mesh around
+      // a hole faces against it, a hole's boundary running clockwise seen from outside), no
+      // closure can join it. Up to kMaxUnfolds such triangles, the one facing most with it first,
+      // are taken off when the loop then runs a -> x -> b and closes.
       if (!closed) {
         std::vector<std::uint32_t> unfolded(loop);
         std::vector<std::array<std::uint32_t, 3>> off;
@@ -378,7 +552,7 @@ void Mesher::closeRimLoops() {
           for (size_t i = 0; i < kk; ++i) newell += pts_[unfolded[i]] ^ pts_[unfolded[(i + 1) % kk]];
           const double newellNorm = newell.Norm();
           if (!(newellNorm > 0)) break;
-          double worst = kClosureFoldCos;
+          double worst = -kClosureFoldCos;
           size_t at = kk;
           std::uint32_t third = 0;
           for (size_t i = 0; i < kk; ++i) {
@@ -390,7 +564,7 @@ void Mesher::closeRimLoops() {
             const double len = nt.Norm();
             if (!(len > 0)) continue;
             const double c = (nt * newell) / (len * newellNorm);
-            if (c < worst) {
+            if (c > worst) {
               worst = c;
               at = i;
               third = x;
@@ -399,8 +573,14 @@ void Mesher::closeRimLoops() {
           if (at == kk) break;
           off.push_back({unfolded[at], unfolded[(at + 1) % kk], third});
           unfolded.insert(unfolded.begin() + std::ptrdiff_t(at + 1), third);
-          closed = triangulate(unfolded);
+          // (The triangles taken off do not count in the crossing test.)
+          {
+            const size_t f = findTriangle(off.back()[0], off.back()[1], off.back()[2]);
+            if (f < tri_.size()) skipIds.push_back(idOf[f]);
+          }
+          closed = closeLoop(unfolded);
         }
+        skipIds.clear();
         if (closed) {
           for (const auto& t : off) {
             const size_t f = findTriangle(t[0], t[1], t[2]);
@@ -410,14 +590,18 @@ void Mesher::closeRimLoops() {
           changed = true;
         }
       }
-      const size_t k = loop.size();
       if (!closed) continue;
-      // An unused point inside a triangle of the closure would be skipped for good: then the loop
-      // stays open. Every point needs room for the closure's new edges.
+      // Every point needs room for the closure's new edges.
       bool clear = true;
-      for (const auto& t : closure) clear = clear && !unusedPointInside(t[0], t[1], t[2]);
+      const size_t k = loop.size();
       for (std::uint32_t v : loop) clear = clear && pem_.entries(v) + k <= pem_.capacity();
-      if (!clear || crossesMesh()) continue;
+      if (!clear) continue;
+      for (std::uint32_t v : lonePoints) {
+        std::uint32_t x, y;
+        if (!lonePartners(v, x, y)) continue;
+        const size_t f = findTriangle(v, x, y);
+        if (f < tri_.size()) takeOff(f);
+      }
       for (const auto& t : closure) {
         addTriangle(t[0], t[1], t[2]);
         added.push_back(Triangle{t[0], t[1], t[2]});
