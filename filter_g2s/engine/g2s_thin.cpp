@@ -357,6 +357,47 @@ void Mesher::closeRimLoops() {
       auto triangulate = [&](const std::vector<std::uint32_t>& loop, bool avoid) {
         const size_t k = loop.size();
         const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
+        // Nothing changes while the programme runs, so what its cost asks of the mesh is looked up
+        // once: the third point of the triangle on each loop edge q_a -> q_(a+1) (a = k - 1: to
+        // q_0), and the near triangles crossesNear would test, with their boxes.
+        std::vector<std::uint32_t> third(k, 0);
+        std::vector<char> hasThird(k, 0);
+        for (size_t a = 0; a < k; ++a)
+          hasThird[a] = thirdOnLoopEdge(q[(a + 1) % k], q[a], third[a]) ? 1 : 0;
+        std::vector<Triangle> active;
+        std::vector<std::array<double, 6>> activeBox;
+        if (avoid)
+          for (size_t n = 0; n < nearTri.size(); ++n) {
+            const Triangle& t = nearTri[n];
+            if (curOf[nearId[n]] == kGone || std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()) continue;
+            if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+            std::array<double, 6> b;
+            bool apartBox = false;
+            for (int a = 0; a < 3; ++a) {
+              b[a] = std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+              b[3 + a] = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+              apartBox = apartBox || b[3 + a] < lo[a] || b[a] > hi[a];
+            }
+            if (apartBox) continue;
+            active.push_back(t);
+            activeBox.push_back(b);
+          }
+        // crossesNear(c) on the triangles kept above; a triangle whose box is apart from c's cannot
+        // meet it (the same answer as facesIntersect's, without the call).
+        auto crossesActive = [&](const Triangle& c) {
+          double clo[3], chi[3];
+          for (int a = 0; a < 3; ++a) {
+            clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+            chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+          }
+          for (size_t n = 0; n < active.size(); ++n) {
+            const std::array<double, 6>& b = activeBox[n];
+            if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
+              continue;
+            if (facesIntersect(grid_.points(), c, active[n])) return true;
+          }
+          return false;
+        };
         auto cost = [&](size_t i, size_t m, size_t j) {
           const P3 &A = pts_[q[i]], &B = pts_[q[m]], &C = pts_[q[j]];
           const P3 nt = (B - A) ^ (C - A);
@@ -372,14 +413,14 @@ void Mesher::closeRimLoops() {
               if (pem_.hasEntry(u, v) && !isLoneEdge(u, v)) return inf;
               continue;
             }
-            std::uint32_t x;
-            if (thirdOnLoopEdge(v, u, x)) {
+            if (hasThird[e.first]) {
+              const std::uint32_t x = third[e.first];
               const P3 meshNormal = (pts_[u] - pts_[v]) ^ (pts_[x] - pts_[v]);
               const double ml = meshNormal.Norm();
               if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
             }
           }
-          if (avoid && crossesNear(Triangle{q[i], q[m], q[j]})) return inf;
+          if (avoid && crossesActive(Triangle{q[i], q[m], q[j]})) return inf;
           return 0.5 * len;
         };
         std::vector<double> best(k * k, 0.0);
