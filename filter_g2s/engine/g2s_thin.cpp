@@ -505,11 +505,14 @@ void Mesher::closeRimLoops() {
           r2 = ball.radius2;
         }
         grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
-          if (i == a || i == b || i == c || !freePoint(i)) return false;
+          // (The geometric tests first: most points of the ball are used, and freePoint asks the
+          // point-edge map; the same point is found.)
+          if (i == a || i == b || i == c) return false;
           const P3& X = pts_[i];
           const double h = (X - A) * n;
           if (h * h > r2 * n2) return false;
-          if (((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0) {
+          if (((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0 &&
+              freePoint(i)) {
             found = i;
             return true;
           }
@@ -549,11 +552,11 @@ void Mesher::closeRimLoops() {
       // points of its lone triangle), as the growth grows an edge to an unused point inside a loop.
       auto closeLoop = [&](std::vector<std::uint32_t>& l) {
         const std::vector<std::uint32_t> original(l);
+        gatherNear(original); // (the same for both tries: nothing in the mesh changes between them)
         for (bool avoid : {false, true}) {
           l = original;
           joins.clear();
           lonePoints.clear();
-          gatherNear(l);
           for (;;) {
             if (!triangulate(l, avoid)) break;
             std::uint32_t p = ~0u;
