@@ -26,6 +26,7 @@
 // closure crosses the mesh, the least-area one that crosses nothing; an unused point (or a lone
 // seed triangle's) inside the closure is joined to the loop first (docs/g2s-robustness.md, "The
 // samplings that stayed open or inside out").
+#include "g2s_apart.h"
 #include "g2s_mesher.h"
 
 #include <growth/self_intersections.h>
@@ -35,6 +36,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace growth {
@@ -279,7 +281,7 @@ void Mesher::closeRimLoops() {
       std::vector<std::array<std::uint32_t, 3>> joins;
       std::vector<std::uint32_t> lonePoints, skipIds;
       auto isLoneEdge = [&](std::uint32_t u, std::uint32_t v) {
-        return std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
+        return !lonePoints.empty() && std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
                std::find(lonePoints.begin(), lonePoints.end(), v) != lonePoints.end();
       };
       // The triangle on loop half-edge from -> to (a join, or a mesh triangle not being taken
@@ -344,7 +346,9 @@ void Mesher::closeRimLoops() {
       auto crossesNear = [&](const Triangle& c) {
         for (size_t k = 0; k < nearTri.size(); ++k) {
           const Triangle& t = nearTri[k];
-          if (curOf[nearId[k]] == kGone || std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()) continue;
+          if (curOf[nearId[k]] == kGone ||
+              (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()))
+            continue;
           if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
           bool apartBox = false;
           for (int a = 0; a < 3 && !apartBox; ++a)
@@ -369,7 +373,9 @@ void Mesher::closeRimLoops() {
         if (avoid)
           for (size_t n = 0; n < nearTri.size(); ++n) {
             const Triangle& t = nearTri[n];
-            if (curOf[nearId[n]] == kGone || std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()) continue;
+            if (curOf[nearId[n]] == kGone ||
+                (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
+              continue;
             if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
             std::array<double, 6> b;
             bool apartBox = false;
@@ -390,11 +396,18 @@ void Mesher::closeRimLoops() {
             clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
             chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
           }
+          const std::vector<P3>& pos = grid_.points();
+          std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
           for (size_t n = 0; n < active.size(); ++n) {
             const std::array<double, 6>& b = activeBox[n];
             if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
               continue;
-            if (facesIntersect(grid_.points(), c, active[n])) return true;
+            if (!plane) plane.reset(new PlaneOf(pos, c));
+            const Triangle& t = active[n];
+            // The cheap sufficient tests of g2s_apart.h first (they change no decision).
+            if (!apartByPlane(pos, *plane, c, t) && !apartByPlane(pos, t, c) && !apartInShadow(pos, *plane, c, t) &&
+                facesIntersect(pos, c, t))
+              return true;
           }
           return false;
         };
