@@ -349,7 +349,7 @@ void Mesher::closeRimLoops() {
           if (curOf[nearId[k]] == kGone ||
               (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()))
             continue;
-          if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+          if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
           bool apartBox = false;
           for (int a = 0; a < 3 && !apartBox; ++a)
             apartBox = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
@@ -376,7 +376,7 @@ void Mesher::closeRimLoops() {
             if (curOf[nearId[n]] == kGone ||
                 (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
               continue;
-            if (isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+            if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
             std::array<double, 6> b;
             bool apartBox = false;
             for (int a = 0; a < 3; ++a) {
