@@ -243,6 +243,10 @@ private:
   void boundarySuspects(std::vector<std::uint32_t>& out) const;
   // The live faces at each point: at[first[v]..first[v+1]) (g2s_repair.cpp).
   void faceIndex(std::vector<std::uint32_t>& first, std::vector<std::uint32_t>& at) const;
+  // closeHoles: the boundary loops of 3 to maxEdges edges through the seeds (g2s_repair.cpp).
+  void boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges,
+                     std::vector<std::vector<std::uint32_t>>& loops);
+  class HolePass; // closeHoles' state and steps (g2s_repair.cpp)
   // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).
   void mergeClumps();
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.

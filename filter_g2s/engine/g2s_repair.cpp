@@ -208,6 +208,408 @@ size_t Mesher::dropSmallComponents(size_t minFaces, size_t& facesDropped) {
   return dropped;
 }
 
+void Mesher::boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges,
+                           std::vector<std::vector<std::uint32_t>>& loops) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> walked;
+  std::vector<std::uint32_t> loop;
+  for (std::uint32_t v : seeds) {
+    std::uint32_t w = 0;
+    while (nextBoundaryHalfEdge(v, w)) {
+      loop.clear();
+      std::uint32_t cur = v;
+      do {
+        pem_.setMark(cur, w, true);
+        walked.emplace_back(cur, w);
+        loop.push_back(cur);
+        cur = w;
+      } while (nextBoundaryHalfEdge(cur, w));
+      // A walk ends where it started on a manifold mesh; anything else is left alone.
+      if (cur == v && loop.size() >= 3 && loop.size() <= size_t(maxEdges)) loops.push_back(loop);
+    }
+  }
+  for (const auto& e : walked) pem_.setMark(e.first, e.second, false);
+}
+
+// The hole pass's state over the loops of one closeHoles call: the live faces at each point, the
+// long faces by cells, the faces added so far, and the loop being closed with the faces near it.
+class Mesher::HolePass {
+public:
+  explicit HolePass(Mesher& m);
+  // Closes loop `original` whole, if need be with one of its faces taken out (counted in st).
+  void closeLoop(const std::vector<std::uint32_t>& original, HoleStat& st);
+
+private:
+  struct NearFace {
+    double lo[3], hi[3];
+    std::uint32_t g;
+  };
+  struct Ear {
+    double score;
+    std::uint32_t index;
+  };
+  static constexpr long kMaxCells = 64;
+
+  // The cells of the box [boxLo, boxHi] (their number, at most kMaxCells + 1 along each axis).
+  long boxCells(const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) const;
+  // The cells of triangle t's box.
+  long cellRange(const Triangle& t, long lo[3], long hi[3]) const;
+  static std::uint64_t cellKey(long x, long y, long z) {
+    return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
+  }
+  // Face f into the long-face cells when an edge of it is longer than `longest_`.
+  void addIfLong(std::uint32_t f);
+  // The live face on half-edge v→w (-1: none), and its third point.
+  std::int64_t faceOn(std::uint32_t v, std::uint32_t w) const;
+  std::uint32_t thirdPoint(std::uint32_t f, std::uint32_t v, std::uint32_t w) const {
+    const Triangle& t = m_.tri_[f];
+    return t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
+  }
+  P3 normal(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    return (pts_[b] - pts_[a]) ^ (pts_[c] - pts_[a]);
+  }
+  static double cosBetween(const P3& x, const P3& y) {
+    const double d = std::sqrt(x.SquaredNorm() * y.SquaredNorm());
+    return d > 0 ? (x * y) / d : -1.0;
+  }
+  // The faces that a triangle on the points of loop_ can meet, into near_.
+  void gatherNearLoop();
+  // Triangle t meets no live face, no face added before and none of pending_ (exactly).
+  bool meetsNothing(const Triangle& t) const;
+  // Closes loop_ by ears; true with the new triangles in pending_ and the point–edge map.
+  bool close();
+  // The loop's triangles into the mesh.
+  void commit(HoleStat& st);
+
+  Mesher& m_;
+  const P3* pts_;
+  const std::vector<P3>& pos_;
+  std::vector<std::uint32_t> first_, at_; // live faces at each point (faceIndex)
+  // Faces with an edge longer than longest_ (few) are found by their boxes, the others at the
+  // points within a new triangle's enclosing radius plus longest_.
+  const double longest_;
+  // The long faces in a hash of cells 4·longest wide (each in the cells its box meets; the few
+  // meeting more than kMaxCells cells in a list of their own).
+  const double cell_;
+  const P3 origin_;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells_;
+  std::vector<std::uint32_t> hugeFaces_;
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_; // faces added here, by point
+  std::vector<char> hasAdded_;
+  const double minCos_;
+  std::vector<Triangle> pending_;
+  std::vector<std::uint32_t> seen_;
+  std::vector<NearFace> near_;
+  // The long faces whose box meets the loop's box are in near_ too (from the cells that box
+  // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
+  bool nearHasLong_ = false;
+  std::vector<char> inNear_;
+  // The loop being closed, opp_[i]: the third point of the face on loop half-edge
+  // loop_[i]→loop_[i+1]; face_[i]: that face in the loop as found.
+  std::vector<std::uint32_t> loop_, opp_, face_;
+  std::vector<Ear> ears_;
+};
+
+Mesher::HolePass::HolePass(Mesher& m)
+    : m_(m), pts_(m.pts_), pos_(m.grid_.points()), longest_(kLongEdgeSpacings * m.spacing_), cell_(4 * longest_),
+      origin_(m.grid_.box().min), hasAdded_(m.grid_.size(), 0),
+      minCos_(std::cos(kMaxFoldDegrees * 3.14159265358979323846 / 180.0)) {
+  m_.faceIndex(first_, at_);
+  for (size_t f = 0; f < m_.tri_.size(); ++f)
+    if (m_.alive_[f]) addIfLong(static_cast<std::uint32_t>(f));
+  inNear_.assign(m_.tri_.size(), 0);
+}
+
+long Mesher::HolePass::boxCells(const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) const {
+  long cells = 1;
+  for (int d = 0; d < 3; ++d) {
+    const double a = boxLo[d] - origin_[d];
+    const double b = boxHi[d] - origin_[d];
+    // Clamped to ±2^40 cells (a far point or a tiny cell would overflow a long): points beyond
+    // share the last cell, which only lists more faces for the exact test.
+    auto clampCell = [](double c) {
+      constexpr double kFar = 1099511627776.0; // 2^40
+      return static_cast<long>(c >= kFar ? kFar : (c >= -kFar ? c : -kFar)); // NaN: -2^40
+    };
+    lo[d] = clampCell(std::floor(a / cell_));
+    hi[d] = clampCell(std::floor(b / cell_));
+    cells *= std::min(hi[d] - lo[d] + 1, kMaxCells + 1);
+  }
+  return cells;
+}
+
+long Mesher::HolePass::cellRange(const Triangle& t, long lo[3], long hi[3]) const {
+  double boxLo[3], boxHi[3];
+  for (int d = 0; d < 3; ++d) {
+    boxLo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    boxHi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+  }
+  return boxCells(boxLo, boxHi, lo, hi);
+}
+
+void Mesher::HolePass::addIfLong(std::uint32_t f) {
+  const Triangle& t = m_.tri_[f];
+  const double limit = longest_ * longest_;
+  const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
+  if (!((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit)) return;
+  long lo[3], hi[3];
+  if (cellRange(t, lo, hi) > kMaxCells) {
+    hugeFaces_.push_back(f);
+    return;
+  }
+  for (long x = lo[0]; x <= hi[0]; ++x)
+    for (long y = lo[1]; y <= hi[1]; ++y)
+      for (long z = lo[2]; z <= hi[2]; ++z) longCells_[cellKey(x, y, z)].push_back(f);
+}
+
+std::int64_t Mesher::HolePass::faceOn(std::uint32_t v, std::uint32_t w) const {
+  const std::vector<Triangle>& tri = m_.tri_;
+  for (std::uint32_t i = first_[v]; i < first_[v + 1]; ++i) {
+    const Triangle& t = tri[at_[i]];
+    if (!m_.alive_[at_[i]]) continue;
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == v && t[(k + 1) % 3] == w) return at_[i];
+  }
+  const auto it = added_.find(v);
+  if (it != added_.end())
+    for (std::uint32_t f : it->second)
+      for (int k = 0; k < 3; ++k)
+        if (tri[f][k] == v && tri[f][(k + 1) % 3] == w) return f;
+  return -1;
+}
+
+// Any triangle on the loop's points lies in the ball around them and in their box. A face with
+// no edge longer than longest_ that meets it has a point within longest/√3 of it (every point of a
+// triangle with edges of at most L is within L/√3 of a corner), hence in the ball grown by that
+// much; the longer ones are found in longCells_. Only the faces whose box meets the loop's box are
+// kept (meetsNothing rejects a face whose box misses the triangle's, so the others could never
+// count), with their boxes. Gathered once per loop: alive_ does not change between the gathering
+// and the loop's closure.
+void Mesher::HolePass::gatherNearLoop() {
+  near_.clear();
+  P3 c(0, 0, 0);
+  for (std::uint32_t v : loop_) c += pts_[v];
+  c /= double(loop_.size());
+  double r2 = 0, lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop_[0]][d];
+  for (std::uint32_t v : loop_) {
+    r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], pts_[v][d]);
+      hi[d] = std::max(hi[d], pts_[v][d]);
+    }
+  }
+  // Each face once (inNear_ marks the faces seen, cleared after).
+  seen_.clear();
+  auto consider = [&](std::uint32_t g) {
+    if (g >= inNear_.size()) inNear_.resize(m_.tri_.size(), 0);
+    if (inNear_[g]) return;
+    inNear_[g] = 1;
+    seen_.push_back(g);
+    if (!m_.alive_[g]) return;
+    const Triangle& u = m_.tri_[g];
+    NearFace e;
+    for (int d = 0; d < 3; ++d) {
+      e.lo[d] = std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
+      e.hi[d] = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
+      if (e.hi[d] < lo[d] || e.lo[d] > hi[d]) return;
+    }
+    e.g = g;
+    near_.push_back(e);
+  };
+  m_.grid_.forEachInBall(c, (std::sqrt(r2) + 0.58 * longest_) * (1 + 1e-9), [&](std::uint32_t i, double) {
+    for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k) consider(at_[k]);
+    if (!hasAdded_[i]) return;
+    const auto it = added_.find(i);
+    if (it != added_.end())
+      for (std::uint32_t g : it->second) consider(g);
+  });
+  long clo[3], chi[3];
+  nearHasLong_ = boxCells(lo, hi, clo, chi) <= kMaxCells;
+  if (nearHasLong_) {
+    for (std::uint32_t g : hugeFaces_) consider(g);
+    for (long x = clo[0]; x <= chi[0]; ++x)
+      for (long y = clo[1]; y <= chi[1]; ++y)
+        for (long z = clo[2]; z <= chi[2]; ++z) {
+          const auto it = longCells_.find(cellKey(x, y, z));
+          if (it != longCells_.end())
+            for (std::uint32_t g : it->second) consider(g);
+        }
+  }
+  for (std::uint32_t g : seen_) inNear_[g] = 0;
+}
+
+bool Mesher::HolePass::meetsNothing(const Triangle& t) const {
+  const std::vector<P3>& pos = pos_;
+  const PlaneOf tPlane(pos, t);
+  for (const Triangle& p : pending_)
+    if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+        facesIntersect(pos, t, p))
+      return false;
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+  }
+  // Face u meets t (its box first: most faces near t are beside it).
+  auto meetsBeside = [&](const Triangle& u) {
+    return !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) && !apartInShadow(pos, tPlane, t, u) &&
+           facesIntersect(pos, t, u);
+  };
+  auto meets = [&](const Triangle& u) {
+    for (int d = 0; d < 3; ++d)
+      if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
+          std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
+        return false;
+    return meetsBeside(u);
+  };
+  auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
+    for (std::uint32_t g : list)
+      if (m_.alive_[g] && meets(m_.tri_[g])) return true;
+    return false;
+  };
+  if (!nearHasLong_) {
+    if (meetsLong(hugeFaces_)) return false;
+    long clo[3], chi[3];
+    cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
+    for (long x = clo[0]; x <= chi[0]; ++x)
+      for (long y = clo[1]; y <= chi[1]; ++y)
+        for (long z = clo[2]; z <= chi[2]; ++z) {
+          const auto it = longCells_.find(cellKey(x, y, z));
+          if (it != longCells_.end() && meetsLong(it->second)) return false;
+        }
+  }
+  for (const NearFace& e : near_)
+    if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
+          e.lo[2] > hi[2]) &&
+        meetsBeside(m_.tri_[e.g]))
+      return false;
+  return true;
+}
+
+// False with pending_ and the point–edge map as before.
+bool Mesher::HolePass::close() {
+  PointEdgeMap& pem = m_.pem_;
+  pending_.clear();
+  bool ok = true;
+  while (ok && loop_.size() >= 3) {
+    const size_t m = loop_.size();
+    if (m == 3) {
+      // The last triangle uses the reverse of the three loop edges.
+      const Triangle t{loop_[1], loop_[0], loop_[2]};
+      ok = !isZero(normal(t[0], t[1], t[2])) && pem.canAddTriangle(t[0], t[1], t[2]);
+      for (size_t i = 0; i < 3 && ok; ++i)
+        ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop_[i], loop_[(i + 1) % 3], opp_[i])) >= minCos_;
+      ok = ok && meetsNothing(t);
+      if (ok) {
+        pem.addTriangle(t[0], t[1], t[2]);
+        pending_.push_back(t);
+      }
+      break;
+    }
+    // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours'.
+    ears_.clear();
+    for (size_t i = 0; i < m; ++i) {
+      const size_t p = (i + m - 1) % m, q = (i + 1) % m;
+      const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
+      const P3 nt = normal(v1, v0, v2);
+      if (isZero(nt)) continue;
+      const double c1 = cosBetween(nt, normal(v0, v1, opp_[p]));
+      const double c2 = cosBetween(nt, normal(v1, v2, opp_[i]));
+      const double score = std::min(c1, c2);
+      if (score >= minCos_) ears_.push_back(Ear{score, static_cast<std::uint32_t>(i)});
+    }
+    std::sort(ears_.begin(), ears_.end(), [](const Ear& x, const Ear& y) {
+      return x.score != y.score ? x.score > y.score : x.index < y.index;
+    });
+    bool cut = false;
+    for (const Ear& e : ears_) {
+      const size_t i = e.index, p = (i + m - 1) % m, q = (i + 1) % m;
+      const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
+      // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
+      if (pem.triangles(v0, v2) != 0) continue;
+      const Triangle t{v1, v0, v2};
+      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
+      // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
+      pem.addTriangle(t[0], t[1], t[2]);
+      pending_.push_back(t);
+      // v1 leaves the loop; the new loop edge v0→v2 has v1 opposite.
+      opp_[p] = v1;
+      loop_.erase(loop_.begin() + std::ptrdiff_t(i));
+      opp_.erase(opp_.begin() + std::ptrdiff_t(i));
+      cut = true;
+      break;
+    }
+    ok = cut;
+  }
+  if (!ok)
+    for (const Triangle& t : pending_) pem.removeTriangle(t[0], t[1], t[2]);
+  return ok;
+}
+
+void Mesher::HolePass::commit(HoleStat& st) {
+  for (const Triangle& t : pending_) {
+    const auto f = static_cast<std::uint32_t>(m_.tri_.size());
+    m_.tri_.push_back(t);
+    m_.alive_.push_back(1);
+    for (std::uint32_t v : t) {
+      added_[v].push_back(f);
+      hasAdded_[v] = 1;
+    }
+    addIfLong(f);
+  }
+  ++st.closed;
+  st.facesAdded += pending_.size();
+}
+
+void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, HoleStat& st) {
+  std::vector<char>& alive = m_.alive_;
+  const std::vector<Triangle>& tri = m_.tri_;
+  PointEdgeMap& pem = m_.pem_;
+  // The faces on the loop's half-edges (a loop without one is left alone).
+  const size_t m = original.size();
+  face_.resize(m);
+  for (size_t i = 0; i < m; ++i) {
+    const std::int64_t f = faceOn(original[i], original[(i + 1) % m]);
+    if (f < 0) return;
+    face_[i] = static_cast<std::uint32_t>(f);
+  }
+  auto setUp = [&]() {
+    loop_ = original;
+    opp_.resize(m);
+    for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
+  };
+  // The loop closed as it is.
+  setUp();
+  gatherNearLoop();
+  bool closed = close();
+  // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
+  // first that lets it close): the face's third point must be inside the mesh (its fan closed),
+  // so that it joins the loop and leaves with a closed fan again.
+  for (size_t i = 0; i < m && !closed; ++i) {
+    const std::uint32_t f = face_[i], v = original[i], w = original[(i + 1) % m];
+    const std::uint32_t o = thirdPoint(f, v, w);
+    if (!alive[f] || !pem.closed(o)) continue;
+    alive[f] = 0;
+    pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    setUp();
+    const std::int64_t f1 = faceOn(v, o), f2 = faceOn(o, w);
+    if (f1 >= 0 && f2 >= 0) {
+      loop_.insert(loop_.begin() + std::ptrdiff_t(i + 1), o);
+      opp_[i] = thirdPoint(static_cast<std::uint32_t>(f1), v, o);
+      opp_.insert(opp_.begin() + std::ptrdiff_t(i + 1), thirdPoint(static_cast<std::uint32_t>(f2), o, w));
+      gatherNearLoop();
+      closed = close();
+    }
+    if (closed) {
+      ++st.facesReplaced;
+    } else {
+      alive[f] = 1;
+      pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    }
+  }
+  if (closed) commit(st);
+}
+
 Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   HoleStat st;
   if (maxEdges < 3) return st;
@@ -215,364 +617,15 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   std::vector<std::uint32_t> seeds;
   boundarySuspects(seeds);
   if (seeds.empty()) return st;
-
-  // The boundary loops of at most maxEdges edges (v0→v1→…: half-edges used by one face each).
+  // 1. The boundary loops of at most maxEdges edges (v0→v1→…: half-edges used by one face each).
   std::vector<std::vector<std::uint32_t>> loops;
-  {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> walked;
-    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
-    std::vector<std::uint32_t> loop;
-    for (std::uint32_t v : seeds) {
-      std::uint32_t w = 0;
-      while (nextFrom(v, w)) {
-        loop.clear();
-        std::uint32_t cur = v;
-        do {
-          pem_.setMark(cur, w, true);
-          walked.emplace_back(cur, w);
-          loop.push_back(cur);
-          cur = w;
-        } while (nextFrom(cur, w));
-        // A walk ends where it started on a manifold mesh; anything else is left alone.
-        if (cur == v && loop.size() >= 3 && loop.size() <= size_t(maxEdges)) loops.push_back(loop);
-      }
-    }
-    for (const auto& e : walked) pem_.setMark(e.first, e.second, false);
-  }
+  boundaryLoops(seeds, maxEdges, loops);
   st.loops = loops.size();
   if (loops.empty()) return st;
-
-  // Faces at each point (live ones).
-  std::vector<std::uint32_t> first, at;
-  faceIndex(first, at);
-  // Faces with an edge longer than `longest` (few) are found by their boxes, the others at the
-  // points within a new triangle's enclosing radius plus `longest`.
-  const double longest = kLongEdgeSpacings * spacing_;
-  // The long faces in a hash of cells 4·longest wide (each in the cells its box meets; the few
-  // meeting more than kMaxCells cells in a list of their own).
-  const double cell = 4 * longest;
-  const P3 origin = grid_.box().min;
-  constexpr long kMaxCells = 64;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells;
-  std::vector<std::uint32_t> hugeFaces;
-  // The cells of the box [boxLo, boxHi] (their number, at most kMaxCells + 1 along each axis).
-  auto boxCells = [&](const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) {
-    long cells = 1;
-    for (int d = 0; d < 3; ++d) {
-      const double a = boxLo[d] - origin[d];
-      const double b = boxHi[d] - origin[d];
-      // Clamped to ±2^40 cells (a far point or a tiny cell would overflow a long): points beyond
-      // share the last cell, which only lists more faces for the exact test.
-      auto clampCell = [](double c) {
-        constexpr double kFar = 1099511627776.0; // 2^40
-        return static_cast<long>(c >= kFar ? kFar : (c >= -kFar ? c : -kFar)); // NaN: -2^40
-      };
-      lo[d] = clampCell(std::floor(a / cell));
-      hi[d] = clampCell(std::floor(b / cell));
-      cells *= std::min(hi[d] - lo[d] + 1, kMaxCells + 1);
-    }
-    return cells;
-  };
-  auto cellRange = [&](const Triangle& t, long lo[3], long hi[3]) {
-    double boxLo[3], boxHi[3];
-    for (int d = 0; d < 3; ++d) {
-      boxLo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
-      boxHi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
-    }
-    return boxCells(boxLo, boxHi, lo, hi);
-  };
-  auto cellKey = [](long x, long y, long z) {
-    return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
-  };
-  auto addIfLong = [&](std::uint32_t f) {
-    const Triangle& t = tri_[f];
-    const double limit = longest * longest;
-    const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
-    if (!((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit)) return;
-    long lo[3], hi[3];
-    if (cellRange(t, lo, hi) > kMaxCells) {
-      hugeFaces.push_back(f);
-      return;
-    }
-    for (long x = lo[0]; x <= hi[0]; ++x)
-      for (long y = lo[1]; y <= hi[1]; ++y)
-        for (long z = lo[2]; z <= hi[2]; ++z) longCells[cellKey(x, y, z)].push_back(f);
-  };
-  for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f]) addIfLong(static_cast<std::uint32_t>(f));
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added; // faces added here, by point
-  std::vector<char> hasAdded(grid_.size(), 0);
-  const std::vector<P3>& pos = grid_.points();
-  const double minCos = std::cos(kMaxFoldDegrees * 3.14159265358979323846 / 180.0);
-
-  // The live face on half-edge v→w (-1: none), and its third point.
-  auto faceOn = [&](std::uint32_t v, std::uint32_t w) -> std::int64_t {
-    for (std::uint32_t i = first[v]; i < first[v + 1]; ++i) {
-      const Triangle& t = tri_[at[i]];
-      if (!alive_[at[i]]) continue;
-      for (int k = 0; k < 3; ++k)
-        if (t[k] == v && t[(k + 1) % 3] == w) return at[i];
-    }
-    const auto it = added.find(v);
-    if (it != added.end())
-      for (std::uint32_t f : it->second)
-        for (int k = 0; k < 3; ++k)
-          if (tri_[f][k] == v && tri_[f][(k + 1) % 3] == w) return f;
-    return -1;
-  };
-  auto thirdPoint = [&](std::uint32_t f, std::uint32_t v, std::uint32_t w) {
-    const Triangle& t = tri_[f];
-    return t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
-  };
-  auto normal = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    return (pts_[b] - pts_[a]) ^ (pts_[c] - pts_[a]);
-  };
-  auto cosBetween = [](const P3& x, const P3& y) {
-    const double d = std::sqrt(x.SquaredNorm() * y.SquaredNorm());
-    return d > 0 ? (x * y) / d : -1.0;
-  };
-  std::vector<Triangle> pending;
-  std::vector<std::uint32_t> seen;
-  // The faces that a triangle on the points of `loop` can meet, gathered once per loop (alive_
-  // does not change between the gathering and the loop's closure): any such triangle lies in the
-  // ball around the loop's points and in their box. A face with no edge longer than `longest`
-  // that meets it has a point within longest/√3 of it (every point of a triangle with edges of at
-  // most L is within L/√3 of a corner), hence in the ball grown by that much; the longer ones are
-  // found in longCells. Only the faces whose box meets the loop's box are kept (meetsNothing
-  // rejects a face whose box misses the triangle's, so the others could never count), with their
-  // boxes.
-  struct NearFace {
-    double lo[3], hi[3];
-    std::uint32_t g;
-  };
-  std::vector<NearFace> near;
-  // The long faces whose box meets the loop's box are in `near` too (from the cells that box
-  // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
-  bool nearHasLong = false;
-  std::vector<char> inNear(tri_.size(), 0);
-  std::vector<std::uint32_t> loop, opp, face;
-  auto gatherNearLoop = [&]() {
-    near.clear();
-    P3 c(0, 0, 0);
-    for (std::uint32_t v : loop) c += pts_[v];
-    c /= double(loop.size());
-    double r2 = 0, lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop[0]][d];
-    for (std::uint32_t v : loop) {
-      r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
-      for (int d = 0; d < 3; ++d) {
-        lo[d] = std::min(lo[d], pts_[v][d]);
-        hi[d] = std::max(hi[d], pts_[v][d]);
-      }
-    }
-    // Each face once (inNear marks the faces seen, cleared after).
-    seen.clear();
-    auto consider = [&](std::uint32_t g) {
-      if (g >= inNear.size()) inNear.resize(tri_.size(), 0);
-      if (inNear[g]) return;
-      inNear[g] = 1;
-      seen.push_back(g);
-      if (!alive_[g]) return;
-      const Triangle& u = tri_[g];
-      NearFace e;
-      for (int d = 0; d < 3; ++d) {
-        e.lo[d] = std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
-        e.hi[d] = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]});
-        if (e.hi[d] < lo[d] || e.lo[d] > hi[d]) return;
-      }
-      e.g = g;
-      near.push_back(e);
-    };
-    grid_.forEachInBall(c, (std::sqrt(r2) + 0.58 * longest) * (1 + 1e-9), [&](std::uint32_t i, double) {
-      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) consider(at[k]);
-      if (!hasAdded[i]) return;
-      const auto it = added.find(i);
-      if (it != added.end())
-        for (std::uint32_t g : it->second) consider(g);
-    });
-    long clo[3], chi[3];
-    nearHasLong = boxCells(lo, hi, clo, chi) <= kMaxCells;
-    if (nearHasLong) {
-      for (std::uint32_t g : hugeFaces) consider(g);
-      for (long x = clo[0]; x <= chi[0]; ++x)
-        for (long y = clo[1]; y <= chi[1]; ++y)
-          for (long z = clo[2]; z <= chi[2]; ++z) {
-            const auto it = longCells.find(cellKey(x, y, z));
-            if (it != longCells.end())
-              for (std::uint32_t g : it->second) consider(g);
-          }
-    }
-    for (std::uint32_t g : seen) inNear[g] = 0;
-  };
-  // Triangle t meets no live face, no face added before and none of `pending` (exactly).
-  auto meetsNothing = [&](const Triangle& t) {
-    const PlaneOf tPlane(pos, t);
-    for (const Triangle& p : pending)
-      if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
-          facesIntersect(pos, t, p))
-        return false;
-    double lo[3], hi[3];
-    for (int d = 0; d < 3; ++d) {
-      lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
-      hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
-    }
-    // Face u meets t (its box first: most faces near t are beside it).
-    auto meetsBeside = [&](const Triangle& u) {
-      return !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) && !apartInShadow(pos, tPlane, t, u) &&
-             facesIntersect(pos, t, u);
-    };
-    auto meets = [&](const Triangle& u) {
-      for (int d = 0; d < 3; ++d)
-        if (std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
-            std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d])
-          return false;
-      return meetsBeside(u);
-    };
-    auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
-      for (std::uint32_t g : list)
-        if (alive_[g] && meets(tri_[g])) return true;
-      return false;
-    };
-    if (!nearHasLong) {
-      if (meetsLong(hugeFaces)) return false;
-      long clo[3], chi[3];
-      cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
-      for (long x = clo[0]; x <= chi[0]; ++x)
-        for (long y = clo[1]; y <= chi[1]; ++y)
-          for (long z = clo[2]; z <= chi[2]; ++z) {
-            const auto it = longCells.find(cellKey(x, y, z));
-            if (it != longCells.end() && meetsLong(it->second)) return false;
-          }
-    }
-    for (const NearFace& e : near)
-      if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
-            e.lo[2] > hi[2]) &&
-          meetsBeside(tri_[e.g]))
-        return false;
-    return true;
-  };
-
-  struct Ear {
-    double score;
-    std::uint32_t index;
-  };
-  std::vector<Ear> ears;
-  // Closes `loop` (opp[i]: the third point of the face on loop half-edge loop[i]→loop[i+1]):
-  // true with the new triangles in `pending` and the point–edge map; false with both as before.
-  auto close = [&]() {
-    pending.clear();
-    bool ok = true;
-    while (ok && loop.size() >= 3) {
-      const size_t m = loop.size();
-      if (m == 3) {
-        // The last triangle uses the reverse of the three loop edges.
-        const Triangle t{loop[1], loop[0], loop[2]};
-        ok = !isZero(normal(t[0], t[1], t[2])) && pem_.canAddTriangle(t[0], t[1], t[2]);
-        for (size_t i = 0; i < 3 && ok; ++i)
-          ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop[i], loop[(i + 1) % 3], opp[i])) >= minCos;
-        ok = ok && meetsNothing(t);
-        if (ok) {
-          pem_.addTriangle(t[0], t[1], t[2]);
-          pending.push_back(t);
-        }
-        break;
-      }
-      // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours'.
-      ears.clear();
-      for (size_t i = 0; i < m; ++i) {
-        const size_t p = (i + m - 1) % m, q = (i + 1) % m;
-        const std::uint32_t v0 = loop[p], v1 = loop[i], v2 = loop[q];
-        const P3 nt = normal(v1, v0, v2);
-        if (isZero(nt)) continue;
-        const double c1 = cosBetween(nt, normal(v0, v1, opp[p]));
-        const double c2 = cosBetween(nt, normal(v1, v2, opp[i]));
-        const double score = std::min(c1, c2);
-        if (score >= minCos) ears.push_back(Ear{score, static_cast<std::uint32_t>(i)});
-      }
-      std::sort(ears.begin(), ears.end(), [](const Ear& x, const Ear& y) {
-        return x.score != y.score ? x.score > y.score : x.index < y.index;
-      });
-      bool cut = false;
-      for (const Ear& e : ears) {
-        const size_t i = e.index, p = (i + m - 1) % m, q = (i + 1) % m;
-        const std::uint32_t v0 = loop[p], v1 = loop[i], v2 = loop[q];
-        // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
-        if (pem_.triangles(v0, v2) != 0) continue;
-        const Triangle t{v1, v0, v2};
-        if (!pem_.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
-        // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
-        pem_.addTriangle(t[0], t[1], t[2]);
-        pending.push_back(t);
-        // v1 leaves the loop; the new loop edge v0→v2 has v1 opposite.
-        opp[p] = v1;
-        loop.erase(loop.begin() + std::ptrdiff_t(i));
-        opp.erase(opp.begin() + std::ptrdiff_t(i));
-        cut = true;
-        break;
-      }
-      ok = cut;
-    }
-    if (!ok)
-      for (const Triangle& t : pending) pem_.removeTriangle(t[0], t[1], t[2]);
-    return ok;
-  };
-  for (const std::vector<std::uint32_t>& original : loops) {
-    const size_t m = original.size();
-    face.resize(m);
-    bool ok = true;
-    for (size_t i = 0; i < m && ok; ++i) {
-      const std::int64_t f = faceOn(original[i], original[(i + 1) % m]);
-      ok = f >= 0;
-      face[i] = static_cast<std::uint32_t>(f);
-    }
-    if (!ok) continue;
-    auto setUp = [&]() {
-      loop = original;
-      opp.resize(m);
-      for (size_t i = 0; i < m; ++i) opp[i] = thirdPoint(face[i], original[i], original[(i + 1) % m]);
-    };
-    setUp();
-    gatherNearLoop();
-    bool closed = close();
-    // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
-    // first that lets it close): the face's third point must be inside the mesh (its fan closed),
-    // so that it joins the loop and leaves with a closed fan again.
-    for (size_t i = 0; i < m && !closed; ++i) {
-      const std::uint32_t f = face[i], v = original[i], w = original[(i + 1) % m];
-      const std::uint32_t o = thirdPoint(f, v, w);
-      if (!alive_[f] || !pem_.closed(o)) continue;
-      alive_[f] = 0;
-      pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
-      setUp();
-      const std::int64_t f1 = faceOn(v, o), f2 = faceOn(o, w);
-      if (f1 >= 0 && f2 >= 0) {
-        loop.insert(loop.begin() + std::ptrdiff_t(i + 1), o);
-        opp[i] = thirdPoint(static_cast<std::uint32_t>(f1), v, o);
-        opp.insert(opp.begin() + std::ptrdiff_t(i + 1), thirdPoint(static_cast<std::uint32_t>(f2), o, w));
-        gatherNearLoop();
-        closed = close();
-      }
-      if (closed) {
-        ++st.facesReplaced;
-      } else {
-        alive_[f] = 1;
-        pem_.addTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
-      }
-    }
-    if (!closed) continue;
-    for (const Triangle& t : pending) {
-      const auto f = static_cast<std::uint32_t>(tri_.size());
-      tri_.push_back(t);
-      alive_.push_back(1);
-      for (std::uint32_t v : t) {
-        added[v].push_back(f);
-        hasAdded[v] = 1;
-      }
-      addIfLong(f);
-    }
-    ++st.closed;
-    st.facesAdded += pending.size();
-  }
+  // 2. The faces at each point and the long faces by cells, for the exact tests.
+  HolePass pass(*this);
+  // 3. Each loop closed by ears, whole or not at all.
+  for (const std::vector<std::uint32_t>& original : loops) pass.closeLoop(original, st);
   return st;
 }
 
