@@ -247,6 +247,7 @@ private:
   void boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges,
                      std::vector<std::vector<std::uint32_t>>& loops);
   class HolePass; // closeHoles' state and steps (g2s_repair.cpp)
+  class CrossingPass; // removeSelfIntersections' state and steps (g2s_repair.cpp)
   // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).
   void mergeClumps();
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.

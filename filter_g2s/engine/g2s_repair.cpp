@@ -85,107 +85,145 @@ void Mesher::faceIndex(std::vector<std::uint32_t>& first, std::vector<std::uint3
       for (std::uint32_t v : tri_[f]) at[next[v]++] = static_cast<std::uint32_t>(f);
 }
 
+// The removal's state over its rounds: the live faces at each point, and per round the faces
+// near the seeds (the vertices of the faces removed by the round before).
+class Mesher::CrossingPass {
+public:
+  explicit CrossingPass(Mesher& m)
+      : m_(m), pos_(m.grid_.points()), near_(m.grid_.size(), 0), sub_(m.tri_.size(), 0) {
+    m_.faceIndex(first_, at_);
+  }
+  // The triangles that closed a loop, each against the faces at its points: the pairs that meet
+  // into extra (checked in the first round, with its faces).
+  void loopFaceCrossings(std::vector<std::uint32_t>& extra) const;
+  // The round's region: the faces of extra and the live faces with a vertex within kSuspectReach
+  // local spacings of a seed, in index order (extra cleared).
+  void gatherRegion(const std::vector<std::uint32_t>& seeds, std::vector<std::uint32_t>& extra);
+  // The exact test on the region's faces alone, faces removed greedily until no pair intersects;
+  // their vertices into seeds (sorted, unique). Gives the number removed.
+  size_t removeInRegion(std::vector<std::uint32_t>& seeds);
+
+private:
+  Mesher& m_;
+  const std::vector<P3>& pos_;
+  std::vector<std::uint32_t> first_, at_; // live faces at each point (faceIndex)
+  std::vector<char> near_, sub_;          // per point: near a seed; per face: in the region
+  std::vector<std::uint32_t> marked_, region_;
+  std::vector<Triangle> local_;
+  std::vector<char> localAlive_;
+};
+
+void Mesher::CrossingPass::loopFaceCrossings(std::vector<std::uint32_t>& extra) const {
+  const std::vector<Triangle>& tri = m_.tri_;
+  const P3* pts = m_.pts_;
+  const std::vector<P3>& pos = pos_;
+  for (const Triangle& loopFace : m_.loopFaces_) {
+    // Its index now (none when it was taken off since).
+    std::uint32_t f = ~0u;
+    for (std::uint32_t k = first_[loopFace[0]]; k < first_[loopFace[0] + 1] && f == ~0u; ++k)
+      if (tri[at_[k]] == loopFace) f = at_[k];
+    if (f == ~0u || !m_.alive_[f]) continue;
+    const Triangle& t = tri[f];
+    const PlaneOf tPlane(pos, t);
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min({pts[t[0]][k], pts[t[1]][k], pts[t[2]][k]});
+      hi[k] = std::max({pts[t[0]][k], pts[t[1]][k], pts[t[2]][k]});
+    }
+    // The faces at its points (a face meeting it away from its points is found in the next
+    // round, around the faces removed here, when it meets them too).
+    for (std::uint32_t i : t)
+      for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k) {
+        const std::uint32_t g = at_[k];
+        if (g == f) continue;
+        const Triangle& u = tri[g];
+        // (A face at two ring points is tested twice: harmless.)
+        bool apart = false;
+        for (int d = 0; d < 3 && !apart; ++d)
+          apart = std::max({pts[u[0]][d], pts[u[1]][d], pts[u[2]][d]}) < lo[d] ||
+                  std::min({pts[u[0]][d], pts[u[1]][d], pts[u[2]][d]}) > hi[d];
+        if (!apart && !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) &&
+            !apartInShadow(pos, tPlane, t, u) && facesIntersect(pos, t, u)) {
+          extra.push_back(f);
+          extra.push_back(g);
+        }
+      }
+  }
+}
+
+void Mesher::CrossingPass::gatherRegion(const std::vector<std::uint32_t>& seeds, std::vector<std::uint32_t>& extra) {
+  const std::vector<char>& alive = m_.alive_;
+  // The points near the seeds, then the live faces with a vertex among them.
+  for (std::uint32_t v : seeds) {
+    const double reach = kSuspectReach * std::max(m_.localSpacing(v), m_.spacing_);
+    m_.grid_.forEachInBall(m_.pts_[v], reach, [&](std::uint32_t i, double) {
+      if (!near_[i]) {
+        near_[i] = 1;
+        marked_.push_back(i);
+      }
+    });
+  }
+  region_.clear();
+  for (std::uint32_t f : extra)
+    if (alive[f] && !sub_[f]) {
+      sub_[f] = 1;
+      region_.push_back(f);
+    }
+  extra.clear();
+  for (std::uint32_t i : marked_)
+    for (std::uint32_t k = first_[i]; k < first_[i + 1]; ++k)
+      if (alive[at_[k]] && !sub_[at_[k]]) {
+        sub_[at_[k]] = 1;
+        region_.push_back(at_[k]);
+      }
+  for (std::uint32_t i : marked_) near_[i] = 0;
+  marked_.clear();
+  std::sort(region_.begin(), region_.end());
+}
+
+size_t Mesher::CrossingPass::removeInRegion(std::vector<std::uint32_t>& seeds) {
+  // The region's faces alone, in index order (the same pairs and the same greedy choices as
+  // on the whole array with the others dead, without a pass over every face each round).
+  local_.clear();
+  for (std::uint32_t f : region_) local_.push_back(m_.tri_[f]);
+  localAlive_.assign(region_.size(), 1);
+  const size_t removed = growth::removeSelfIntersections(pos_, local_, localAlive_, 1);
+  for (size_t k = 0; k < region_.size(); ++k) sub_[region_[k]] = localAlive_[k];
+  seeds.clear();
+  for (std::uint32_t f : region_) {
+    if (!sub_[f]) {
+      m_.alive_[f] = 0;
+      m_.pem_.removeTriangle(m_.tri_[f][0], m_.tri_[f][1], m_.tri_[f][2]);
+      for (std::uint32_t v : m_.tri_[f]) seeds.push_back(v);
+    }
+    sub_[f] = 0;
+  }
+  std::sort(seeds.begin(), seeds.end());
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  return removed;
+}
+
 Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   SelfIntersectionStat st;
   if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  // The vertices that can lie on a boundary: none on a closed mesh.
   std::vector<std::uint32_t> seeds;
   boundarySuspects(seeds);
   if (seeds.empty()) return st;
   const size_t n = grid_.size(), faces = tri_.size();
-  const std::vector<P3>& pos = grid_.points();
-  std::vector<char> near(n, 0), sub(faces, 0);
-  std::vector<std::uint32_t> marked, region, removedVertices;
-  std::vector<Triangle> local;
-  std::vector<char> localAlive;
-  // The triangles that closed a loop, each against the faces at the points near it: the faces
-  // meeting one are added to the first round's faces, with it.
-  std::vector<std::uint32_t> extra;
-  std::vector<std::uint32_t> first, at;
-  faceIndex(first, at);
-  {
-    for (const Triangle& loopFace : loopFaces_) {
-      // Its index now (none when it was taken off since).
-      std::uint32_t f = ~0u;
-      for (std::uint32_t k = first[loopFace[0]]; k < first[loopFace[0] + 1] && f == ~0u; ++k)
-        if (tri_[at[k]] == loopFace) f = at[k];
-      if (f == ~0u || !alive_[f]) continue;
-      const Triangle& t = tri_[f];
-      const PlaneOf tPlane(pos, t);
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min({pts_[t[0]][k], pts_[t[1]][k], pts_[t[2]][k]});
-        hi[k] = std::max({pts_[t[0]][k], pts_[t[1]][k], pts_[t[2]][k]});
-      }
-      // The faces at its points (a face meeting it away from its points is found in the next
-      // round, around the faces removed here, when it meets them too).
-      for (std::uint32_t i : t)
-        for (std::uint32_t k = first[i]; k < first[i + 1]; ++k) {
-          const std::uint32_t g = at[k];
-          if (g == f) continue;
-          const Triangle& u = tri_[g];
-          // (A face at two ring points is tested twice: harmless.)
-          bool apart = false;
-          for (int d = 0; d < 3 && !apart; ++d)
-            apart = std::max({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) < lo[d] ||
-                    std::min({pts_[u[0]][d], pts_[u[1]][d], pts_[u[2]][d]}) > hi[d];
-          if (!apart && !apartByPlane(pos, tPlane, t, u) && !apartByPlane(pos, u, t) &&
-              !apartInShadow(pos, tPlane, t, u) && facesIntersect(pos, t, u)) {
-            extra.push_back(f);
-            extra.push_back(g);
-          }
-        }
-    }
-  }
+  CrossingPass pass(*this);
+  // 1. The loop-closing triangles that meet a face at their points.
+  std::vector<std::uint32_t> extra, removedVertices;
+  pass.loopFaceCrossings(extra);
+  // 2. Rounds: the faces near the seeds (and those of step 1) cleared of intersecting pairs; the
+  //    vertices of the faces removed are the next round's seeds, until a round removes nothing.
   while (!seeds.empty() || !extra.empty()) {
-    // The points near the seeds, then the live faces with a vertex among them.
-    for (std::uint32_t v : seeds) {
-      const double reach = kSuspectReach * std::max(localSpacing(v), spacing_);
-      grid_.forEachInBall(pts_[v], reach, [&](std::uint32_t i, double) {
-        if (!near[i]) {
-          near[i] = 1;
-          marked.push_back(i);
-        }
-      });
-    }
-    region.clear();
-    for (std::uint32_t f : extra)
-      if (alive_[f] && !sub[f]) {
-        sub[f] = 1;
-        region.push_back(f);
-      }
-    extra.clear();
-    for (std::uint32_t i : marked)
-      for (std::uint32_t k = first[i]; k < first[i + 1]; ++k)
-        if (alive_[at[k]] && !sub[at[k]]) {
-          sub[at[k]] = 1;
-          region.push_back(at[k]);
-        }
-    for (std::uint32_t i : marked) near[i] = 0;
-    marked.clear();
-    // The region's faces alone, in index order (the same pairs and the same greedy choices as
-    // on the whole array with the others dead, without a pass over every face each round).
-    std::sort(region.begin(), region.end());
-    local.clear();
-    for (std::uint32_t f : region) local.push_back(tri_[f]);
-    localAlive.assign(region.size(), 1);
-    const size_t removed = growth::removeSelfIntersections(pos, local, localAlive, 1);
-    for (size_t k = 0; k < region.size(); ++k) sub[region[k]] = localAlive[k];
-    seeds.clear();
-    for (std::uint32_t f : region) {
-      if (!sub[f]) {
-        alive_[f] = 0;
-        pem_.removeTriangle(tri_[f][0], tri_[f][1], tri_[f][2]);
-        for (std::uint32_t v : tri_[f]) seeds.push_back(v);
-      }
-      sub[f] = 0;
-    }
-    st.facesRemoved += removed;
-    std::sort(seeds.begin(), seeds.end());
-    seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+    pass.gatherRegion(seeds, extra);
+    st.facesRemoved += pass.removeInRegion(seeds);
     removedVertices.insert(removedVertices.end(), seeds.begin(), seeds.end());
   }
   if (st.facesRemoved == 0) return st;
-  // The removal can leave a vertex with two fans: sec. 4.2 again, at the removed faces' vertices.
+  // 3. The removal can leave a vertex with two fans: sec. 4.2 again, at the removed faces' vertices.
   std::sort(removedVertices.begin(), removedVertices.end());
   removedVertices.erase(std::unique(removedVertices.begin(), removedVertices.end()), removedVertices.end());
   const std::vector<char> before = alive_;
