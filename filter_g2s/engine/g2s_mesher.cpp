@@ -845,14 +845,21 @@ ManifoldCleanupStat Mesher::removeNonManifoldVertices() {
   return st;
 }
 
-void Mesher::orientComponents() {
+namespace {
+// orientComponents: the component number of a vertex after unionComponents (its root holds
+// kRootFlag | the number; every other vertex of a live triangle points at its root).
+constexpr std::uint32_t kRootFlag = 1u << 31;
+struct ComponentOf {
+  const std::vector<std::uint32_t>& parent;
+  std::uint32_t operator()(std::uint32_t v) const {
+    const std::uint32_t p = parent[v];
+    return (p & kRootFlag) != 0 ? p & ~kRootFlag : parent[p] & ~kRootFlag;
+  }
+};
+} // namespace
+
+void Mesher::unionComponents(std::vector<std::uint32_t>& parent) const {
   const size_t n = grid_.size();
-  if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
-  // Union–find over the vertices of the live triangles, in the per-point scratch array. After
-  // full compression every vertex points at its root, and each root holds kRootFlag | its
-  // component's number.
-  constexpr std::uint32_t kRootFlag = 1u << 31;
-  std::vector<std::uint32_t>& parent = scratch_;
   assignHuge(parent, n, 0u);
   for (size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
   auto root = [&](std::uint32_t i) {
@@ -872,15 +879,14 @@ void Mesher::orientComponents() {
   // Roots are the smallest index of their set, so in increasing order a root is final before the
   // vertices that point at it are compressed.
   for (size_t i = 0; i < n; ++i) parent[i] = root(static_cast<std::uint32_t>(i));
-  auto component = [&](std::uint32_t v) {
-    const std::uint32_t p = parent[v];
-    return (p & kRootFlag) != 0 ? p & ~kRootFlag : parent[p] & ~kRootFlag;
-  };
-  // Centroid of each component's face corners, then its signed volume about that centroid. The
-  // components are numbered in the order of their first face, in the same pass that sums the
+}
+
+size_t Mesher::componentVolumes(std::vector<std::uint32_t>& parent, std::vector<double>& volume) const {
+  const ComponentOf component{parent};
+  // The components are numbered in the order of their first face, in the same pass that sums the
   // corners (each component's sum in face order, as in a separate pass).
   std::vector<P3> centre;
-  std::vector<double> volume, corners;
+  std::vector<double> corners;
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
     const std::uint32_t v = tri_[f][0];
@@ -906,9 +912,24 @@ void Mesher::orientComponents() {
     const P3 a = pts_[tri_[f][0]] - centre[k], b = pts_[tri_[f][1]] - centre[k], c = pts_[tri_[f][2]] - centre[k];
     volume[k] += a * (b ^ c);
   }
-  // Each component faces outwards of its own volume (positive signed volume) unless it is a
-  // closed shell nested inside an odd number of other closed shells: then it bounds a cavity of
-  // the material (the inner wall of a hollow ball) and faces into the cavity (negative volume).
+  return components;
+}
+
+void Mesher::orientComponents() {
+  const size_t n = grid_.size();
+  if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
+  // 1. Union–find over the vertices of the live triangles, in the per-point scratch array. After
+  //    full compression every vertex points at its root.
+  std::vector<std::uint32_t>& parent = scratch_;
+  unionComponents(parent);
+  // 2. Each component's signed volume about the centroid of its face corners (its roots then
+  //    hold kRootFlag | its component's number).
+  std::vector<double> volume;
+  const size_t components = componentVolumes(parent, volume);
+  const ComponentOf component{parent};
+  // 3. Each component faces outwards of its own volume (positive signed volume) unless it is a
+  //    closed shell nested inside an odd number of other closed shells: then it bounds a cavity
+  //    of the material (the inner wall of a hollow ball) and faces into the cavity (negative volume).
   std::vector<signed char> wanted(components, 1);
   nestedShellSigns(component, components, wanted);
   std::vector<char> flip(components, 0);
@@ -918,10 +939,10 @@ void Mesher::orientComponents() {
     any = any || flip[k];
   }
   if (!any) return;
-  // The flipped components' triangles, then their half-edges in the point–edge map: every edge at
-  // a vertex of a flipped component is one of that component's (its triangles are all flipped),
-  // so reversing each such vertex's entries records the flip. A vertex with an edge carrying a
-  // triangle lies on a live triangle, so it has a component.
+  // 4. The flipped components' triangles, then their half-edges in the point–edge map: every edge
+  //    at a vertex of a flipped component is one of that component's (its triangles are all
+  //    flipped), so reversing each such vertex's entries records the flip. A vertex with an edge
+  //    carrying a triangle lies on a live triangle, so it has a component.
   for (size_t f = 0; f < tri_.size(); ++f)
     if (alive_[f] && flip[component(tri_[f][0])]) std::swap(tri_[f][1], tri_[f][2]);
   for (std::uint32_t v = 0; v < n; ++v)

@@ -291,6 +291,12 @@ private:
   int flatnessLevelOfCos(double cosBeta) const;
   void orientSeed(std::array<std::uint32_t, 3>& tri) const;
   bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
+  // orientComponents, step 1: parent[v], v's root (the smallest vertex of its component over the
+  // live triangles; v itself for a vertex on none).
+  void unionComponents(std::vector<std::uint32_t>& parent) const;
+  // orientComponents, step 2: numbers the components (into their roots' entries of parent) and
+  // gives their number, with each one's signed volume about its corners' centroid.
+  size_t componentVolumes(std::vector<std::uint32_t>& parent, std::vector<double>& volume) const;
   // orientComponents: sets wanted[k] to -1 for each closed component nested inside an odd number
   // of other closed components (component(v): v's component number, of `components`).
   template <class ComponentOf>
