@@ -347,13 +347,125 @@ bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c
   });
 }
 
-// Inlined into its one caller, findCandidate, as it was before the ear and loop handling were
-// split off (a separate function cost 2.5 % of the growth's instructions on a clean sphere).
+// search and its steps are inlined into their one caller, findCandidate, as they were before the
+// ear and loop handling were split off (a separate function cost 2.5 % of the growth's
+// instructions on a clean sphere).
 #if defined(__GNUC__)
-__attribute__((always_inline))
+#define GROWTH_G2S_INLINE __attribute__((always_inline)) inline
+#else
+#define GROWTH_G2S_INLINE inline
 #endif
-inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
-                         double frontNorm) {
+
+GROWTH_G2S_INLINE size_t Mesher::spherePoints(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& A, const P3& B,
+                                              double edge2, const P3& centre, double radius, double r2,
+                                              const P3& previousCentre, double previousR2, size_t& found,
+                                              std::int64_t& seenBefore) {
+  found = 0;
+  seenBefore = -1; // a found point skipped as a candidate of the previous level
+  float cf[3];
+  grid_.toFloat(centre, cf);
+  const double slack = 2.0 * grid_.floatSlack(cf, radius);
+  const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
+  const std::uint32_t front[3] = {a, b, c};
+  const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());
+  // Each hit point q (within the float error of the sphere, or inside) is decided exactly, and
+  // taken without branches on the outcome.
+  // scored_ is a buffer here: its first `count` entries are this level's candidates.
+  if (scored_.size() < hits + 1) scored_.resize(hits + 1);
+  size_t count = 0;
+  const P3 AB = A - B;
+  const double collinear = 1e-20 * edge2;
+  for (size_t h = 0; h < hits; ++h) {
+    const std::uint32_t id = near_.hit[h];
+    const P3& q = pts_[id];
+    // In the search sphere.
+    const bool in = !((q - centre).SquaredNorm() > r2);
+    found += in;
+    // An interior point counts as found and for G2S balls, never as a candidate.
+    const bool candidate = in & !interior(id);
+    // A point of the previous level's sphere was a candidate there and was rejected by the
+    // topological or the G2S test; both depend on the point, the edge and the mesh only, which
+    // have not changed since, so the G2S ranking below would reject it again. Only the points
+    // new at this level are ranked: among them the order is that of the whole list, so the
+    // choice is the same. (The same exact test as at that level decides membership.) It still
+    // counts as found, and when it is the only point found it is taken directly below, as the
+    // single point of the region (the spheres are nested on the growing side only, so a level
+    // can hold fewer points than the one before).
+    const bool previous = (previousR2 >= 0) & ((q - previousCentre).SquaredNorm() <= previousR2);
+    const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
+    seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+    // Not collinear with the edge, so a triangle; R² its squared circumradius.
+    const double n2 = (AB ^ (q - B)).SquaredNorm();
+    const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
+    scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
+    count += candidate & !previous & (n2 > collinear * aq2);
+  }
+  return count;
+}
+
+GROWTH_G2S_INLINE Candidate Mesher::accepted(const P3& A, const P3& B, std::uint32_t id, int level, const P3& frontNormal,
+                                             double frontNorm, bool single) const {
+  const P3 newNormal = (A - B) ^ (pts_[id] - B);
+  Candidate cand;
+  cand.point = id;
+  cand.sizeLevel = level;
+  cand.cosBeta = (frontNormal * newNormal) / (frontNorm * newNormal.Norm());
+  cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
+  cand.single = single;
+  return cand;
+}
+
+GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& A, const P3& B,
+                                             size_t count, int level, const P3& dir, const P3& frontNormal,
+                                             double frontNorm, double radius, double local, double gatherRadius,
+                                             const P3& gatherCentre) {
+  // Several points: the reference point is the one whose smallest sphere through it and the
+  // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
+  // plane), the one with the smallest such sphere: the point a sphere growing from the edge
+  // meets first, as in the planar Delaunay case. (Measured against "flattest class first" on
+  // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
+  // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
+  // tested in that order, skipping the points the topological tests reject.
+  // Short lists are ordered lazily, by selecting the next smallest (R², id) among the untested
+  // candidates (the first one or two are usually taken, so most of a sort would be wasted),
+  // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
+  // list: (R², id) is a strict order, the ids being distinct.
+  // (Evaluated without short-circuit branches: the selection is a chain of conditional moves.)
+  auto before = [](const Scored& x, const Scored& y) {
+    return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
+  };
+  const bool sorted = count > 8;
+  if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
+  for (size_t done = 0; done < count; ++done) {
+    if (!sorted) {
+      size_t best = done;
+      for (size_t j = done + 1; j < count; ++j) best = before(scored_[j], scored_[best]) ? j : best;
+      std::swap(scored_[done], scored_[best]);
+    }
+    const std::uint32_t id = scored_[done].id;
+    if (!topologyAllows(a, b, c, id)) continue;
+    Ball ball;
+    if (!circumBall(B, A, pts_[id], ball)) continue;
+    if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id) &&
+        // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
+        // local edge length.)
+        !(__builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
+          emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
+      continue;
+    const Candidate cand = accepted(A, B, id, level, frontNormal, frontNorm, false);
+    if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
+        ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
+         foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) {
+      ++foldsRefused_;
+      continue;
+    }
+    return cand;
+  }
+  return Candidate();
+}
+
+GROWTH_G2S_INLINE Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir,
+                                           const P3& frontNormal, double frontNorm) {
   Candidate none;
   const P3 &A = pts_[a], &B = pts_[b];
   const double edge2 = (B - A).SquaredNorm(), edge = std::sqrt(edge2);
@@ -387,6 +499,7 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
     const double radius = searchRadius(level, n, edge, maxRadius);
     if (radius <= previous) continue;
     previous = radius;
+    // The level's gathered ball (first level, then the last one's for all others).
     if (!gatheredFirst) {
       gatherBall(radius, gatherCentre, gatherRadius);
       gather(gatherCentre, gatherRadius);
@@ -396,50 +509,12 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
       gather(gatherCentre, gatherRadius);
       gatheredLast = true;
     }
+    // Sec. 3.2 step 4.1: the points of the level's search sphere, ranked by circumradius.
     const P3 centre = searchCentre(A, B, dir, radius);
     const double r2 = radius * radius * (1.0 + 1e-12);
-    // The points of the search sphere (other than the front triangle's), each with the
-    // circumradius of its triangle (b, a, q): R² = |ab|²·|aq|²·|bq|² / (4·|n|²), n = (a−b)×(q−b).
-    size_t found = 0;
-    std::int64_t seenBefore = -1; // a found point skipped as a candidate of the previous level
-    float cf[3];
-    grid_.toFloat(centre, cf);
-    const double slack = 2.0 * grid_.floatSlack(cf, radius);
-    const float outer = float((radius + slack) * (radius + slack) * (1.0 + 1e-6));
-    const std::uint32_t front[3] = {a, b, c};
-    const size_t hits = near_.collectWithin(cf, outer, front, near_.hit.data());
-    // Each hit point q (within the float error of the sphere, or inside) is decided exactly, and
-    // taken without branches on the outcome.
-    // scored_ is a buffer here: its first `count` entries are this level's candidates.
-    if (scored_.size() < hits + 1) scored_.resize(hits + 1);
-    size_t count = 0;
-    const P3 AB = A - B;
-    const double collinear = 1e-20 * edge2;
-    for (size_t h = 0; h < hits; ++h) {
-      const std::uint32_t id = near_.hit[h];
-      const P3& q = pts_[id];
-      // In the search sphere.
-      const bool in = !((q - centre).SquaredNorm() > r2);
-      found += in;
-      // An interior point counts as found and for G2S balls, never as a candidate.
-      const bool candidate = in & !interior(id);
-      // A point of the previous level's sphere was a candidate there and was rejected by the
-      // topological or the G2S test; both depend on the point, the edge and the mesh only, which
-      // have not changed since, so the G2S ranking below would reject it again. Only the points
-      // new at this level are ranked: among them the order is that of the whole list, so the
-      // choice is the same. (The same exact test as at that level decides membership.) It still
-      // counts as found, and when it is the only point found it is taken directly below, as the
-      // single point of the region (the spheres are nested on the growing side only, so a level
-      // can hold fewer points than the one before).
-      const bool previous = (previousR2 >= 0) & ((q - previousCentre).SquaredNorm() <= previousR2);
-      const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
-      seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
-      // Not collinear with the edge, so a triangle; R² its squared circumradius.
-      const double n2 = (AB ^ (q - B)).SquaredNorm();
-      const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
-      scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
-      count += candidate & !previous & (n2 > collinear * aq2);
-    }
+    size_t found;
+    std::int64_t seenBefore;
+    size_t count = spherePoints(a, b, c, A, B, edge2, centre, radius, r2, previousCentre, previousR2, found, seenBefore);
     previousCentre = centre;
     previousR2 = r2;
     if (found == 1 && seenBefore >= 0) {
@@ -452,69 +527,21 @@ inline Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std::uint32_t 
       if (n2 > 1e-20 * edge2 * (q - A).SquaredNorm()) scored_[count++] = Scored{0, 0.0, id, 0};
     }
     if (count == 0) continue;
-    auto accept = [&](std::uint32_t id, bool single) {
-      const P3 newNormal = (A - B) ^ (pts_[id] - B);
-      Candidate cand;
-      cand.point = id;
-      cand.sizeLevel = level;
-      cand.cosBeta = (frontNormal * newNormal) / (frontNorm * newNormal.Norm());
-      cand.flatLevel = flatnessLevelOfCos(cand.cosBeta);
-      cand.single = single;
-      return cand;
-    };
     // Sec. 3.2 step 4.2: a single point in the search region is taken directly (when the
     // topological tests allow it).
     if (found == 1) {
       if (!topologyAllows(a, b, c, scored_[0].id)) continue;
-      const Candidate cand = accept(scored_[0].id, true);
+      const Candidate cand = accepted(A, B, scored_[0].id, level, frontNormal, frontNorm, true);
       if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) && foldsAcrossAGap(a, b, scored_[0].id, dir, frontNormal, frontNorm)) {
         ++foldsRefused_;
         continue;
       }
       return cand;
     }
-    // Several points: the reference point is the one whose smallest sphere through it and the
-    // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
-    // plane), the one with the smallest such sphere: the point a sphere growing from the edge
-    // meets first, as in the planar Delaunay case. (Measured against "flattest class first" on
-    // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
-    // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
-    // tested in that order, skipping the points the topological tests reject.
-    // Short lists are ordered lazily, by selecting the next smallest (R², id) among the untested
-    // candidates (the first one or two are usually taken, so most of a sort would be wasted),
-    // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
-    // list: (R², id) is a strict order, the ids being distinct.
-    // (Evaluated without short-circuit branches: the selection is a chain of conditional moves.)
-    auto before = [](const Scored& x, const Scored& y) {
-      return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
-    };
-    const bool sorted = count > 8;
-    if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
-    for (size_t done = 0; done < count; ++done) {
-      if (!sorted) {
-        size_t best = done;
-        for (size_t j = done + 1; j < count; ++j) best = before(scored_[j], scored_[best]) ? j : best;
-        std::swap(scored_[done], scored_[best]);
-      }
-      const std::uint32_t id = scored_[done].id;
-      if (!topologyAllows(a, b, c, id)) continue;
-      Ball ball;
-      if (!circumBall(B, A, pts_[id], ball)) continue;
-      if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id) &&
-          // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
-          // local edge length.)
-          !(__builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
-            emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
-        continue;
-      const Candidate cand = accept(id, false);
-      if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
-          ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
-           foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) {
-        ++foldsRefused_;
-        continue;
-      }
-      return cand;
-    }
+    // Several points: the G2S point among them, in order of circumradius.
+    const Candidate cand =
+        g2sPoint(a, b, c, A, B, count, level, dir, frontNormal, frontNorm, radius, local, gatherRadius, gatherCentre);
+    if (cand.valid()) return cand;
     // Points were found but none spans an empty sphere with the edge: the G2S point lies farther
     // out, so the radius grows on (the paper grows it when no point is found; a region holding
     // only non-G2S points has not reached the G2S point yet).

@@ -253,6 +253,21 @@ private:
   // findCandidate's search by growing spheres (sec. 3.2 steps 4.1–4.2), the ear aside.
   Candidate search(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& dir, const P3& frontNormal,
                    double frontNorm);
+  // search, sec. 3.2 step 4.1: the points of a level's search sphere (centre, radius; r2 its
+  // exact squared radius) other than the front triangle's, into scored_: gives their number
+  // `count` less those of the previous level's sphere, with `found` (all points in it, interior
+  // ones too) and seenBefore (a point of the previous sphere that was a candidate there; -1: none).
+  size_t spherePoints(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& A, const P3& B, double edge2,
+                      const P3& centre, double radius, double r2, const P3& previousCentre, double previousR2,
+                      size_t& found, std::int64_t& seenBefore);
+  // search, sec. 3.2 step 4.2: the reference point among the `count` candidates of scored_, the
+  // first by circumradius that the topological and G2S tests accept (invalid: none).
+  Candidate g2sPoint(std::uint32_t a, std::uint32_t b, std::uint32_t c, const P3& A, const P3& B, size_t count,
+                     int level, const P3& dir, const P3& frontNormal, double frontNorm, double radius, double local,
+                     double gatherRadius, const P3& gatherCentre);
+  // The candidate (b, a, id) found at `level` (its flatness class from the angle with the front).
+  Candidate accepted(const P3& A, const P3& B, std::uint32_t id, int level, const P3& frontNormal, double frontNorm,
+                     bool single) const;
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
   // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
   // point but points far off its plane, of another sheet (a flat candidate only).
