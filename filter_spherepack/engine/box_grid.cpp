@@ -354,6 +354,361 @@ void BoxGrid::finishNormals() {
   std::vector<vcg::Point3d>().swap(pendingCorner_);
 }
 
+// build()'s passes over the points and the boxes, with their working arrays.
+class BoxGrid::Builder {
+public:
+  Builder(BoxGrid& g, const std::vector<vcg::Point3d>& pts, double side, Progress* progress, int threads,
+          const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach)
+      : g_(g), pts_(pts), side_(side), d2_(side * side), n_(pts.size()), progress_(progress), threads_(threads),
+        listOrder_(listOrder), extraReach_(extraReach) {}
+  // The index's origin and box side, checked against the cloud's extent.
+  void placeIndex();
+  // The own box of every point, with its coordinates.
+  void ownBoxes();
+  // Pass 0: the boxes within reach of each point, as a mask of its own box's 27 neighbours.
+  void reachMasks();
+  // Pass 1: box ids in order of first appearance, references counted per part, CSR offsets.
+  void countReferences();
+  // Pass 2: the references filled in, points in list order inside each box.
+  void fillReferences();
+  // Sec. 4.1: the normal filter and the box normals, per box; then the lists compacted.
+  void filterAndNormals(const std::vector<vcg::Point3d>& normals, bool deferNormals);
+  // The boxes holding input points, their normals left for startNormals() / finishNormals().
+  void deferOwnBoxes();
+
+private:
+  static constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
+  // The reach of point i: side, or side + extraReach[i] (at most kMaxExtraReach·side more).
+  double reachOf(size_t i) const {
+    if (extraReach_ == nullptr || !((*extraReach_)[i] > 0)) return side_;
+    return side_ + std::min(double((*extraReach_)[i]), kMaxExtraReach * side_);
+  }
+  // Per axis the boxes within reach of p and the squared distance of p to each slab (the terms
+  // of squaredDistanceToBox, in the same order, so the test is the same to the last bit).
+  void slabs(const vcg::Point3d& p, double reach, std::int64_t lo[3], std::int64_t hi[3], double sq[3][kSpan]) const {
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = g_.index_.coord(p[a] - reach, a);
+      hi[a] = std::min(g_.index_.coord(p[a] + reach, a), lo[a] + kSpan - 1);
+      for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
+        const double l = g_.index_.origin()[a] + double(c) * side_;
+        const double v = p[a] < l ? l - p[a] : (p[a] > l + side_ ? p[a] - l - side_ : 0.0);
+        sq[a][c - lo[a]] = v * v;
+      }
+    }
+  }
+  // The boxes within distance reachOf(i) of point i: every box of the slabs' block whose
+  // distance is within reach, in the order x, y, z. Calls f(x, y, z) for each (at most 27 for
+  // reach = side).
+  template <class F>
+  void forBoxesWithin(size_t i, F&& f) const {
+    std::int64_t lo[3], hi[3];
+    double sq[3][kSpan];
+    const double reach = reachOf(i), r2 = reach == side_ ? d2_ : reach * reach;
+    slabs(pts_[i], reach, lo, hi, sq);
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+        const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
+        if (sxy > r2) continue;
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          if (!(sxy + sq[2][z - lo[2]] > r2)) f(x, y, z);
+      }
+  }
+  size_t listed(size_t t) const { return listOrder_ != nullptr ? size_t((*listOrder_)[t]) : t; }
+
+  BoxGrid& g_;
+  const std::vector<vcg::Point3d>& pts_;
+  const double side_, d2_;
+  const size_t n_;
+  Progress* const progress_;
+  const int threads_;
+  const std::vector<std::uint32_t>* const listOrder_;
+  const std::vector<float>* const extraReach_;
+  std::vector<std::uint32_t> ownOf_;  // own box of each point (by list position after pass 0)
+  std::vector<std::int64_t> ownCoord_; // 3 per own box
+  std::vector<std::int32_t> near_;     // box ids of the 27 neighbours of each own box, lazily
+  HugeVector<std::uint32_t> mask_;    // pass 0's masks, by list position
+  int fillParts_ = 1;
+  std::vector<std::vector<std::uint32_t>> count_; // [part][box]
+  size_t boxes_ = 0;
+  std::vector<std::uint8_t> eager_;  // boxes holding an input point: normals computed first
+  std::vector<std::int32_t> ownBox_; // box id of each own box
+};
+
+void BoxGrid::Builder::placeIndex() {
+  vcg::Point3d lo = pts_[0], hi = pts_[0];
+  for (const auto& p : pts_)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+  const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
+  if (extent / side_ + 2 * (kMaxExtraReach + 4) > double(BoxIndexer::kMax)) {
+    std::ostringstream s;
+    s << "The sphere diameter d = " << side_ << " is too small for a cloud of extent " << extent
+      << ": use a larger d.";
+    throw Error(s.str());
+  }
+  // A margin of whole boxes below the points: the farthest reach (side + kMaxExtraReach·side)
+  // stays at non-negative box coordinates.
+  const double margin = (kMaxExtraReach + 2) * side_;
+  g_.index_ = BoxIndexer(lo - vcg::Point3d(margin, margin, margin), side_);
+}
+
+void BoxGrid::Builder::ownBoxes() {
+  // The boxes near a point are its own box and its 26 neighbours: their ids are looked up once per
+  // own box (shared by the ~(d/spacing)² points in it), not once per point.
+  KeyHash own(pts_.size() / 16 + 16);
+  // The working arrays below are written whole soon after they are allocated: they are made
+  // resident in one call each (assignHuge, huge_pages.h), not page by page.
+  assignHuge(ownOf_, pts_.size(), 0u);
+  for (size_t i = 0; i < pts_.size(); ++i) {
+    const std::int64_t x = g_.index_.coord(pts_[i][0], 0), y = g_.index_.coord(pts_[i][1], 1),
+                       z = g_.index_.coord(pts_[i][2], 2);
+    const int id = own.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(ownCoord_.size() / 3));
+    if (size_t(id) * 3 == ownCoord_.size()) ownCoord_.insert(ownCoord_.end(), {x, y, z});
+    ownOf_[i] = static_cast<std::uint32_t>(id);
+  }
+  assignHuge(near_, ownCoord_.size() / 3 * 27, std::int32_t(-1));
+}
+
+// Per point, on threads taking chunks: bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1) of the mask for the
+// offsets -1..1 from the point's own box, so increasing bits are the order x, y, z; kBeyond when
+// the boxes in reach are not all in that block (rounding at a box face: such points take the
+// general path below). The same slabs and tests as forBoxesWithin. Both are stored at the point's
+// position in the list order (passes 1 and 2 read them in that order, sequentially).
+void BoxGrid::Builder::reachMasks() {
+  const size_t n = n_;
+  const std::vector<std::uint32_t>* listOrder = listOrder_;
+  mask_.resize(n);
+  HugeVector<std::uint32_t> listPos;
+  if (listOrder != nullptr) {
+    listPos.resize(n);
+    for (size_t t = 0; t < n; ++t) listPos[(*listOrder)[t]] = static_cast<std::uint32_t>(t);
+  }
+  std::vector<std::uint32_t> ownAt; // own box, by list position
+  assignHuge(ownAt, listOrder != nullptr ? n : 0, 0u);
+  parallelChunks(n, parallelParts(n, threads_, 8192), 1024, [&](size_t i0, size_t i1, int) {
+    for (size_t i = i0; i < i1; ++i) {
+      const size_t at = listOrder != nullptr ? listPos[i] : i;
+      if (listOrder != nullptr) ownAt[at] = ownOf_[i];
+      const std::int64_t* oc = &ownCoord_[size_t(ownOf_[i]) * 3];
+      if (reachOf(i) != side_) { // a large splat: the general path
+        mask_[at] = kBeyond;
+        continue;
+      }
+      std::int64_t lo[3], hi[3];
+      double sq[3][kSpan];
+      slabs(pts_[i], side_, lo, hi, sq);
+      bool inBlock = true;
+      for (int a = 0; a < 3; ++a) inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
+      if (!inBlock) {
+        mask_[at] = kBeyond;
+        continue;
+      }
+      std::uint32_t m = 0;
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
+          const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
+          if (sxy > d2_) continue;
+          const int base = int((x - oc[0] + 1) * 9 + (y - oc[1] + 1) * 3 - oc[2] + 1);
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+            if (!(sxy + sq[2][z - lo[2]] > d2_)) m |= std::uint32_t(1) << (base + int(z));
+        }
+      mask_[at] = m;
+    }
+  });
+  if (listOrder != nullptr) {
+    ownOf_.swap(ownAt);
+    std::vector<std::uint32_t>().swap(ownAt);
+    HugeVector<std::uint32_t>().swap(listPos);
+  }
+}
+
+// In list order: box ids in order of first appearance (deterministic), reference counts per part
+// of the points of pass 2. The ids of the 27 boxes around an own box are kept (near_), so the hash
+// is asked once per own box and offset, not once per point.
+void BoxGrid::Builder::countReferences() {
+  const size_t n = n_;
+  fillParts_ = parallelParts(n, threads_, 8192);
+  auto& count = count_;
+  count.resize(static_cast<size_t>(fillParts_));
+  for (size_t i = 0; i < n; ++i) g_.facePoints_ += (mask_[i] & kBeyond) ? 1 : 0;
+  auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const int id = g_.hash_.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(count[0].size()));
+    if (size_t(id) == count[0].size())
+      for (auto& c : count) c.push_back(0);
+    return id;
+  };
+  g_.hash_.reset(n / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
+  for (int part = 0; part < fillParts_; ++part) {
+    std::vector<std::uint32_t>& cnt = count[size_t(part)];
+    for (size_t t = partBegin(n, fillParts_, part), e = partBegin(n, fillParts_, part + 1); t < e; ++t) {
+      const std::uint32_t o = ownOf_[t];
+      const std::int64_t* oc = &ownCoord_[size_t(o) * 3];
+      std::int32_t* slots = &near_[size_t(o) * 27];
+      if (mask_[t] & kBeyond) {
+        forBoxesWithin(listed(t), [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+          std::int32_t* slot = nullptr;
+          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
+            slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
+          int id = slot != nullptr ? *slot : -1;
+          if (id < 0) {
+            id = newId(x, y, z);
+            if (slot != nullptr) *slot = id;
+          }
+          ++count[size_t(part)][size_t(id)];
+        });
+      } else {
+        for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) {
+          const int bit = __builtin_ctz(m);
+          int id = slots[bit];
+          if (id < 0) id = slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
+          ++cnt[size_t(id)];
+        }
+      }
+      if (progress_ != nullptr && (t & 16383) == 0) progress_->advanceTo(0.3 * double(t) / double(n));
+    }
+  }
+  boxes_ = count[0].size();
+  // CSR offsets; count[part][b] becomes where part `part` writes its first reference in box b.
+  assignHuge(g_.start_, boxes_ + 1, 0u);
+  for (size_t b = 0; b < boxes_; ++b) {
+    std::uint32_t at = g_.start_[b];
+    for (auto& c : count) {
+      const std::uint32_t k = c[b];
+      c[b] = at;
+      at += k;
+    }
+    g_.start_[b + 1] = at;
+  }
+}
+
+// Per part of the points, on threads (the parts are in list order and write to consecutive ranges
+// of each box).
+void BoxGrid::Builder::fillReferences() {
+  g_.points_.assign(g_.start_[boxes_], 0);
+  parallelFor(n_, fillParts_, [&](size_t t0, size_t t1, int part) {
+    std::vector<std::uint32_t>& at = count_[size_t(part)];
+    for (size_t t = t0; t < t1; ++t) {
+      const size_t i = listed(t);
+      const std::int32_t* slots = &near_[size_t(ownOf_[t]) * 27];
+      const std::uint32_t value = static_cast<std::uint32_t>(i);
+      if (mask_[t] & kBeyond) {
+        const std::int64_t* oc = &ownCoord_[size_t(ownOf_[t]) * 3];
+        forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+          const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
+                             ? slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)]
+                             : g_.hash_.find(BoxIndexer::pack(x, y, z));
+          g_.points_[at[size_t(id)]++] = value;
+        });
+      } else {
+        for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) g_.points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
+      }
+      if (part == 0 && progress_ != nullptr && ((t - t0) & 16383) == 0)
+        progress_->advanceTo(0.3 + 0.3 * double(t - t0) / double(t1 - t0));
+    }
+  });
+  std::vector<std::uint32_t>().swap(ownOf_);
+  HugeVector<std::uint32_t>().swap(mask_);
+  std::vector<std::vector<std::uint32_t>>().swap(count_);
+}
+
+// Independent per box: the boxes are cut into one contiguous part per thread, each box filtered in
+// place inside its own CSR range, its kept count, normal and minimum written to its own slots (so
+// the result does not depend on the threads). Then the CSR arrays are compacted in box order.
+// The box normal is computed here only for the boxes that contain an input point (the vertices
+// of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
+// of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
+// others are computed when first asked for (boxNormal()), with the same result.
+void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals, bool deferNormals) {
+  const size_t boxes = boxes_;
+  Progress* progress = progress_;
+  std::vector<std::uint32_t>& start = g_.start_;
+  HugeVector<std::uint32_t>& points = g_.points_;
+  assignHuge(g_.boxNormal_, boxes, vcg::Point3d(0, 0, 0));
+  assignHuge(g_.boxMinDot_, boxes, std::numeric_limits<double>::quiet_NaN());
+  g_.state_.reset(new std::atomic<std::uint8_t>[boxes]);
+  prefault(g_.state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
+  for (size_t b = 0; b < boxes; ++b) g_.state_[b].store(kNone, std::memory_order_relaxed);
+  assignHuge(g_.counted_, boxes, std::uint8_t(0));
+  assignHuge(g_.opposed_, boxes, std::uint8_t(0));
+  std::vector<std::uint8_t>& eager = eager_;
+  assignHuge(eager, boxes, std::uint8_t(0));
+  assignHuge(ownBox_, ownCoord_.size() / 3, 0); // box id of each own box: offset (0, 0, 0)
+  for (size_t o = 0; o < ownBox_.size(); ++o) eager[size_t(ownBox_[o] = near_[o * 27 + 13])] = 1;
+  std::vector<std::int32_t>().swap(near_);
+  std::vector<std::uint32_t> kept;
+  assignHuge(kept, boxes, 0u);
+  // A box costs a few microseconds: below a few hundred boxes one thread is faster.
+  const int workers = parallelParts(boxes, threads_, 256);
+  std::vector<size_t> workerDropped(size_t(workers), 0), workerTooLarge(size_t(workers), 0);
+  g_.sampling_ = boxNormalSampling(); // shares the tables
+  struct Worker {
+    SphereSampling sampling;
+    char pad[64]; // no cache line shared with the next thread's scratch
+  };
+  std::vector<Worker> samplings(size_t(workers), Worker{g_.sampling_, {}}); // own scratch each
+  parallelChunks(boxes, workers, 32, [&](size_t b0, size_t b1, int worker) {
+    const SphereSampling& sampling = samplings[size_t(worker)].sampling;
+    size_t dropped = 0, tooLarge = 0;
+    for (size_t b = b0; b < b1; ++b) {
+      const size_t begin = start[b], n = start[b + 1] - begin;
+      std::uint32_t* idx = &points[begin];
+      const size_t k = filterBoxNormals(normals, idx, n);
+      kept[b] = static_cast<std::uint32_t>(k);
+      dropped += n - k;
+      // Sec. 4.1's check is on every point registered in the box: a point the filter dropped has
+      // a normal against the box's summed normal, hence (the box normal is taken from the points
+      // kept) almost surely against the box normal too. When they are a real share of the box
+      // (kOpposedShare, at least four points), the box sees two sides of the surface: d is too
+      // large there (thin parts, folds, a region of flipped normals), counted once here. A lone
+      // flipped normal among many, which estimated normals of real scans show in most boxes
+      // somewhere, is what the filter is for and does not count.
+      if (n - k >= 4 && double(n - k) >= kOpposedShare * double(n)) {
+        g_.opposed_[b] = 1;
+        ++tooLarge;
+      }
+      // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
+      // maxMinDirection is at least that (up to rounding, hence the margin).
+      if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
+        g_.counted_[b] = 1;
+        if (eager[b] && deferNormals) continue; // computed later, on the compacted lists
+        g_.boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &g_.boxMinDot_[b]);
+        g_.state_[b].store(kDone, std::memory_order_relaxed);
+        if (g_.boxMinDot_[b] < 0 && !g_.opposed_[b]) ++tooLarge;
+      }
+    }
+    workerDropped[size_t(worker)] += dropped;
+    workerTooLarge[size_t(worker)] += tooLarge;
+    if (worker == 0 && progress != nullptr) progress->advanceTo(0.6 + 0.4 * double(b1) / double(boxes));
+  });
+  if (progress != nullptr) progress->advanceTo(1.0);
+  for (int k = 0; k < workers; ++k)
+    g_.dropped_ += workerDropped[size_t(k)], g_.dTooLargeCount_ += workerTooLarge[size_t(k)];
+  size_t w = 0;
+  for (size_t b = 0; b < boxes; ++b) {
+    const size_t begin = start[b];
+    start[b] = static_cast<std::uint32_t>(w);
+    if (w != begin) std::copy(points.begin() + std::ptrdiff_t(begin), points.begin() + std::ptrdiff_t(begin + kept[b]),
+                              points.begin() + std::ptrdiff_t(w)); // w <= begin: a forward copy is safe
+    w += kept[b];
+  }
+  start[boxes] = static_cast<std::uint32_t>(w);
+  points.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
+                     // references the filter dropped)
+}
+
+void BoxGrid::Builder::deferOwnBoxes() {
+  std::vector<std::int32_t> ownOfBox;
+  assignHuge(ownOfBox, boxes_, std::int32_t(-1));
+  for (size_t o = 0; o < ownCoord_.size() / 3; ++o) ownOfBox[size_t(ownBox_[o])] = static_cast<std::int32_t>(o);
+  for (size_t b = 0; b < boxes_; ++b)
+    if (eager_[b]) {
+      const std::int64_t* c = &ownCoord_[size_t(ownOfBox[b]) * 3];
+      g_.pending_.push_back(static_cast<std::uint32_t>(b));
+      g_.pendingCorner_.push_back(g_.index_.corner(c[0], c[1], c[2]));
+    }
+}
+
 void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
                     Progress* progress, int threads, bool deferNormals,
                     const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach) {
@@ -372,301 +727,21 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   dropped_ = facePoints_ = 0;
   hash_.reset(16);
   if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
-
-  vcg::Point3d lo = pts[0], hi = pts[0];
-  for (const auto& p : pts)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
-  const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
-  if (extent / side + 2 * (kMaxExtraReach + 4) > double(BoxIndexer::kMax)) {
-    std::ostringstream s;
-    s << "The sphere diameter d = " << side << " is too small for a cloud of extent " << extent
-      << ": use a larger d.";
-    throw Error(s.str());
-  }
-  // A margin of whole boxes below the points: the farthest reach (side + kMaxExtraReach·side)
-  // stays at non-negative box coordinates.
-  const double margin = (kMaxExtraReach + 2) * side;
-  index_ = BoxIndexer(lo - vcg::Point3d(margin, margin, margin), side);
-  const double d2 = side * side;
-
-  // The boxes near a point are its own box and its 26 neighbours: their ids are looked up once per
-  // own box (shared by the ~(d/spacing)² points in it), not once per point.
-  KeyHash own(pts.size() / 16 + 16);
-  // The working arrays below are written whole soon after they are allocated: they are made
-  // resident in one call each (assignHuge, huge_pages.h), not page by page.
-  std::vector<std::uint32_t> ownOf;
-  assignHuge(ownOf, pts.size(), 0u);
-  std::vector<std::int64_t> ownCoord; // 3 per own box
-  for (size_t i = 0; i < pts.size(); ++i) {
-    const std::int64_t x = index_.coord(pts[i][0], 0), y = index_.coord(pts[i][1], 1), z = index_.coord(pts[i][2], 2);
-    const int id = own.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(ownCoord.size() / 3));
-    if (size_t(id) * 3 == ownCoord.size()) ownCoord.insert(ownCoord.end(), {x, y, z});
-    ownOf[i] = static_cast<std::uint32_t>(id);
-  }
-  std::vector<std::int32_t> near; // box ids of the 27 neighbours, lazily
-  assignHuge(near, ownCoord.size() / 3 * 27, std::int32_t(-1));
-
-  // The boxes within distance `reach` (side, or side + extraReach[i]) of point i: per axis the
-  // boxes within reach and the squared distance of p to each slab (the terms of
-  // squaredDistanceToBox, in the same order, so the test is the same to the last bit), then every
-  // box of the block whose distance is within reach, in the order x, y, z. Calls f(x, y, z) for
-  // each (at most 27 for reach = side).
-  auto reachOf = [&](size_t i) {
-    if (extraReach == nullptr || !((*extraReach)[i] > 0)) return side;
-    return side + std::min(double((*extraReach)[i]), kMaxExtraReach * side);
-  };
-  auto slabs = [&](const vcg::Point3d& p, double reach, std::int64_t lo[3], std::int64_t hi[3], double sq[3][kSpan]) {
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = index_.coord(p[a] - reach, a);
-      hi[a] = std::min(index_.coord(p[a] + reach, a), lo[a] + kSpan - 1);
-      for (std::int64_t c = lo[a]; c <= hi[a]; ++c) {
-        const double l = index_.origin()[a] + double(c) * side;
-        const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
-        sq[a][c - lo[a]] = v * v;
-      }
-    }
-  };
-  auto forBoxesWithin = [&](size_t i, auto&& f) {
-    std::int64_t lo[3], hi[3];
-    double sq[3][kSpan];
-    const double reach = reachOf(i), r2 = reach == side ? d2 : reach * reach;
-    slabs(pts[i], reach, lo, hi, sq);
-    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-        const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
-        if (sxy > r2) continue;
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-          if (!(sxy + sq[2][z - lo[2]] > r2)) f(x, y, z);
-      }
-  };
-  const size_t n = pts.size();
-
-  // Pass 0 (per point, on threads taking chunks): the boxes within reach as a mask of the 27
-  // offsets -1..1 from the point's own box, bit (dx + 1)·9 + (dy + 1)·3 + (dz + 1), so increasing
-  // bits are the order x, y, z; kBeyond when the boxes in reach are not all in that block
-  // (rounding at a box face: such points take the general path below). The same slabs and tests
-  // as forBoxesWithin.
-  // Both are stored at the point's position in the list order (passes 1 and 2 read them in that
-  // order, sequentially).
-  constexpr std::uint32_t kBeyond = std::uint32_t(1) << 31;
-  HugeVector<std::uint32_t> mask(n), listPos;
-  if (listOrder != nullptr) {
-    listPos.resize(n);
-    for (size_t t = 0; t < n; ++t) listPos[(*listOrder)[t]] = static_cast<std::uint32_t>(t);
-  }
-  std::vector<std::uint32_t> ownAt; // own box, by list position
-  assignHuge(ownAt, listOrder != nullptr ? n : 0, 0u);
-  parallelChunks(n, parallelParts(n, threads, 8192), 1024, [&](size_t i0, size_t i1, int) {
-    for (size_t i = i0; i < i1; ++i) {
-      const size_t at = listOrder != nullptr ? listPos[i] : i;
-      if (listOrder != nullptr) ownAt[at] = ownOf[i];
-      const std::int64_t* oc = &ownCoord[size_t(ownOf[i]) * 3];
-      if (reachOf(i) != side) { // a large splat: the general path
-        mask[at] = kBeyond;
-        continue;
-      }
-      std::int64_t lo[3], hi[3];
-      double sq[3][kSpan];
-      slabs(pts[i], side, lo, hi, sq);
-      bool inBlock = true;
-      for (int a = 0; a < 3; ++a) inBlock = inBlock && lo[a] >= oc[a] - 1 && hi[a] <= oc[a] + 1;
-      if (!inBlock) {
-        mask[at] = kBeyond;
-        continue;
-      }
-      std::uint32_t m = 0;
-      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
-        for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-          const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
-          if (sxy > d2) continue;
-          const int base = int((x - oc[0] + 1) * 9 + (y - oc[1] + 1) * 3 - oc[2] + 1);
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-            if (!(sxy + sq[2][z - lo[2]] > d2)) m |= std::uint32_t(1) << (base + int(z));
-        }
-      mask[at] = m;
-    }
-  });
-  if (listOrder != nullptr) {
-    ownOf.swap(ownAt);
-    std::vector<std::uint32_t>().swap(ownAt);
-    HugeVector<std::uint32_t>().swap(listPos);
-  }
-
-  // Pass 1 (in list order): box ids in order of first appearance (deterministic), reference
-  // counts per part of the points of pass 2. The ids of the 27 boxes around an own box are kept
-  // (near), so the hash is asked once per own box and offset, not once per point.
-  auto listed = [&](size_t t) { return listOrder != nullptr ? size_t((*listOrder)[t]) : t; };
-  const int fillParts = parallelParts(n, threads, 8192);
-  std::vector<std::vector<std::uint32_t>> count(static_cast<size_t>(fillParts)); // [part][box]
-  for (size_t i = 0; i < n; ++i) facePoints_ += (mask[i] & kBeyond) ? 1 : 0;
-  auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const int id = hash_.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(count[0].size()));
-    if (size_t(id) == count[0].size())
-      for (auto& c : count) c.push_back(0);
-    return id;
-  };
-  hash_.reset(n / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
-  for (int part = 0; part < fillParts; ++part) {
-    std::vector<std::uint32_t>& cnt = count[size_t(part)];
-    for (size_t t = partBegin(n, fillParts, part), e = partBegin(n, fillParts, part + 1); t < e; ++t) {
-      const std::uint32_t o = ownOf[t];
-      const std::int64_t* oc = &ownCoord[size_t(o) * 3];
-      std::int32_t* slots = &near[size_t(o) * 27];
-      if (mask[t] & kBeyond) {
-        forBoxesWithin(listed(t), [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
-          std::int32_t* slot = nullptr;
-          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
-            slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
-          int id = slot != nullptr ? *slot : -1;
-          if (id < 0) {
-            id = newId(x, y, z);
-            if (slot != nullptr) *slot = id;
-          }
-          ++count[size_t(part)][size_t(id)];
-        });
-      } else {
-        for (std::uint32_t m = mask[t]; m != 0; m &= m - 1) {
-          const int bit = __builtin_ctz(m);
-          int id = slots[bit];
-          if (id < 0) id = slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
-          ++cnt[size_t(id)];
-        }
-      }
-      if (progress != nullptr && (t & 16383) == 0) progress->advanceTo(0.3 * double(t) / double(n));
-    }
-  }
-  const size_t boxes = count[0].size();
-  // CSR offsets; count[part][b] becomes where part `part` writes its first reference in box b.
-  assignHuge(start_, boxes + 1, 0u);
-  for (size_t b = 0; b < boxes; ++b) {
-    std::uint32_t at = start_[b];
-    for (auto& c : count) {
-      const std::uint32_t k = c[b];
-      c[b] = at;
-      at += k;
-    }
-    start_[b + 1] = at;
-  }
-  // Pass 2 (per part of the points, on threads): fill, points in list order inside each box (the
-  // parts are in list order and write to consecutive ranges of each box).
-  points_.assign(start_[boxes], 0);
-  parallelFor(n, fillParts, [&](size_t t0, size_t t1, int part) {
-    std::vector<std::uint32_t>& at = count[size_t(part)];
-    for (size_t t = t0; t < t1; ++t) {
-      const size_t i = listed(t);
-      const std::int32_t* slots = &near[size_t(ownOf[t]) * 27];
-      const std::uint32_t value = static_cast<std::uint32_t>(i);
-      if (mask[t] & kBeyond) {
-        const std::int64_t* oc = &ownCoord[size_t(ownOf[t]) * 3];
-        forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-          const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
-          const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
-                             ? slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)]
-                             : hash_.find(BoxIndexer::pack(x, y, z));
-          points_[at[size_t(id)]++] = value;
-        });
-      } else {
-        for (std::uint32_t m = mask[t]; m != 0; m &= m - 1) points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
-      }
-      if (part == 0 && progress != nullptr && ((t - t0) & 16383) == 0)
-        progress->advanceTo(0.3 + 0.3 * double(t - t0) / double(t1 - t0));
-    }
-  });
-  std::vector<std::uint32_t>().swap(ownOf);
-  HugeVector<std::uint32_t>().swap(mask);
-  std::vector<std::vector<std::uint32_t>>().swap(count);
-
-  // Normal filter and box normals, independent per box: the boxes are cut into one contiguous
-  // part per thread, each box filtered in place inside its own CSR range, its kept count, normal
-  // and minimum written to its own slots (so the result does not depend on the threads). Then the
-  // CSR arrays are compacted in box order.
-  // The box normal is computed here only for the boxes that contain an input point (the vertices
-  // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
-  // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
-  // others are computed when first asked for (boxNormal()), with the same result.
-  assignHuge(boxNormal_, boxes, vcg::Point3d(0, 0, 0));
-  assignHuge(boxMinDot_, boxes, std::numeric_limits<double>::quiet_NaN());
-  state_.reset(new std::atomic<std::uint8_t>[boxes]);
-  prefault(state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
-  for (size_t b = 0; b < boxes; ++b) state_[b].store(kNone, std::memory_order_relaxed);
-  assignHuge(counted_, boxes, std::uint8_t(0));
-  assignHuge(opposed_, boxes, std::uint8_t(0));
-  std::vector<std::uint8_t> eager;
-  assignHuge(eager, boxes, std::uint8_t(0));
-  std::vector<std::int32_t> ownBox; // box id of each own box: offset (0, 0, 0)
-  assignHuge(ownBox, ownCoord.size() / 3, 0);
-  for (size_t o = 0; o < ownBox.size(); ++o) eager[size_t(ownBox[o] = near[o * 27 + 13])] = 1;
-  std::vector<std::int32_t>().swap(near);
-  std::vector<std::uint32_t> kept;
-  assignHuge(kept, boxes, 0u);
-  // A box costs a few microseconds: below a few hundred boxes one thread is faster.
-  const int workers = parallelParts(boxes, threads, 256);
-  std::vector<size_t> workerDropped(size_t(workers), 0), workerTooLarge(size_t(workers), 0);
-  sampling_ = boxNormalSampling(); // shares the tables
-  struct Worker {
-    SphereSampling sampling;
-    char pad[64]; // no cache line shared with the next thread's scratch
-  };
-  std::vector<Worker> samplings(size_t(workers), Worker{sampling_, {}}); // own scratch each
-  parallelChunks(boxes, workers, 32, [&](size_t b0, size_t b1, int worker) {
-    const SphereSampling& sampling = samplings[size_t(worker)].sampling;
-    size_t dropped = 0, tooLarge = 0;
-    for (size_t b = b0; b < b1; ++b) {
-      const size_t begin = start_[b], n = start_[b + 1] - begin;
-      std::uint32_t* idx = &points_[begin];
-      const size_t k = filterBoxNormals(normals, idx, n);
-      kept[b] = static_cast<std::uint32_t>(k);
-      dropped += n - k;
-      // Sec. 4.1's check is on every point registered in the box: a point the filter dropped has
-      // a normal against the box's summed normal, hence (the box normal is taken from the points
-      // kept) almost surely against the box normal too. When they are a real share of the box
-      // (kOpposedShare, at least four points), the box sees two sides of the surface: d is too
-      // large there (thin parts, folds, a region of flipped normals), counted once here. A lone
-      // flipped normal among many, which estimated normals of real scans show in most boxes
-      // somewhere, is what the filter is for and does not count.
-      if (n - k >= 4 && double(n - k) >= kOpposedShare * double(n)) {
-        opposed_[b] = 1;
-        ++tooLarge;
-      }
-      // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
-      // maxMinDirection is at least that (up to rounding, hence the margin).
-      if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
-        counted_[b] = 1;
-        if (eager[b] && deferNormals) continue; // computed later, on the compacted lists
-        boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &boxMinDot_[b]);
-        state_[b].store(kDone, std::memory_order_relaxed);
-        if (boxMinDot_[b] < 0 && !opposed_[b]) ++tooLarge;
-      }
-    }
-    workerDropped[size_t(worker)] += dropped;
-    workerTooLarge[size_t(worker)] += tooLarge;
-    if (worker == 0 && progress != nullptr) progress->advanceTo(0.6 + 0.4 * double(b1) / double(boxes));
-  });
-  if (progress != nullptr) progress->advanceTo(1.0);
-  for (int k = 0; k < workers; ++k) dropped_ += workerDropped[size_t(k)], dTooLargeCount_ += workerTooLarge[size_t(k)];
-  size_t w = 0;
-  for (size_t b = 0; b < boxes; ++b) {
-    const size_t begin = start_[b];
-    start_[b] = static_cast<std::uint32_t>(w);
-    if (w != begin) std::copy(points_.begin() + std::ptrdiff_t(begin), points_.begin() + std::ptrdiff_t(begin + kept[b]),
-                              points_.begin() + std::ptrdiff_t(w)); // w <= begin: a forward copy is safe
-    w += kept[b];
-  }
-  start_[boxes] = static_cast<std::uint32_t>(w);
-  points_.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
-                     // references the filter dropped)
-  if (deferNormals) {
-    std::vector<std::int32_t> ownOfBox;
-    assignHuge(ownOfBox, boxes, std::int32_t(-1));
-    for (size_t o = 0; o < ownCoord.size() / 3; ++o) ownOfBox[size_t(ownBox[o])] = static_cast<std::int32_t>(o);
-    for (size_t b = 0; b < boxes; ++b)
-      if (eager[b]) {
-        const std::int64_t* c = &ownCoord[size_t(ownOfBox[b]) * 3];
-        pending_.push_back(static_cast<std::uint32_t>(b));
-        pendingCorner_.push_back(index_.corner(c[0], c[1], c[2]));
-      }
-  }
+  Builder b(*this, pts, side, progress, threads, listOrder, extraReach);
+  // The index's origin, below the points by the farthest reach.
+  b.placeIndex();
+  // The own box of each point.
+  b.ownBoxes();
+  // Pass 0: the boxes within reach of each point.
+  b.reachMasks();
+  // Pass 1: box ids and reference counts.
+  b.countReferences();
+  // Pass 2: the references.
+  b.fillReferences();
+  // Sec. 4.1: the normal filter and the box normals.
+  b.filterAndNormals(normals, deferNormals);
+  // The box normals left for startNormals() / finishNormals().
+  if (deferNormals) b.deferOwnBoxes();
 }
 
 } // namespace growth

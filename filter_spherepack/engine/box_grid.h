@@ -308,6 +308,7 @@ public:
 
 private:
   static constexpr int kSpan = 16; // boxes per axis within the largest reach (2·7 + 2)
+  class Builder; // build()'s passes and working arrays (box_grid.cpp)
   BoxIndexer index_;
   KeyHash hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
