@@ -63,17 +63,13 @@ void sortFan(Q* fan, int m, bool nanAngle) {
   }
 }
 
-double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
-                 std::vector<int>* keptOut, FanScratch& scratch) {
-  if (keptOut != nullptr) keptOut->clear();
-  if (scratch.fan.size() < neighbours.size()) scratch.fan.resize(neighbours.size() + 16);
-  Q* fan = scratch.fan.data();
-
+// Step 1: the neighbours rotated about p onto T_p, each inside the plane spanned by n and p_i - p:
+// the tangential part of p_i - p, rescaled to the full distance |p_i - p|. Gives their number.
+// (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
+inline int projectOntoTangentPlane(const vcg::Point3d& p, const vcg::Point3d& n,
+                                   const std::vector<vcg::Point3d>& neighbours, Q* fan) {
   vcg::Point3d e1, e2;
   tangentFrame(n, e1, e2);
-  // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
-  // p_i - p, rescaled to the full distance |p_i - p|.
-  // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
   int size = 0;
   for (size_t i = 0; i < neighbours.size(); ++i) {
     const vcg::Point3d v = neighbours[i] - p;
@@ -89,51 +85,52 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     q.dist2 = len2;
     q.index = static_cast<int>(i);
   }
-  bool nanAngle = false;
-  for (int i = 0; i < size; ++i) nanAngle |= fan[i].angle != fan[i].angle;
-  sortFan(fan, size, nanAngle);
-  // The same direction (up to rounding): only the nearer point can be a Delaunay neighbour.
-  {
-    int w = 0;
-    for (int i = 0; i < size; ++i) {
-      if (w > 0) {
-        const Q& a = fan[w - 1];
-        const double c = cross(a, fan[i]);
-        if (c * c <= 1e-24 * a.dist2 * fan[i].dist2 && a.x * fan[i].x + a.y * fan[i].y > 0) {
-          if (fan[i].dist2 < a.dist2) fan[w - 1] = fan[i];
-          continue;
-        }
+  return size;
+}
+
+// Step 2, on the fan sorted by angle: of the points in the same direction (up to rounding) only
+// the nearer can be a Delaunay neighbour. Gives the number left.
+inline int keepNearestPerDirection(Q* fan, int size) {
+  int w = 0;
+  for (int i = 0; i < size; ++i) {
+    if (w > 0) {
+      const Q& a = fan[w - 1];
+      const double c = cross(a, fan[i]);
+      if (c * c <= 1e-24 * a.dist2 * fan[i].dist2 && a.x * fan[i].x + a.y * fan[i].y > 0) {
+        if (fan[i].dist2 < a.dist2) fan[w - 1] = fan[i];
+        continue;
       }
-      fan[w++] = fan[i];
     }
-    size = w;
-    // The same check across the seam of the sort.
-    if (size > 1) {
-      const Q &a = fan[size - 1], &b = fan[0];
-      const double c = cross(a, b);
-      if (c * c <= 1e-24 * a.dist2 * b.dist2 && a.x * b.x + a.y * b.y > 0) {
-        if (a.dist2 < b.dist2) fan[0] = a;
-        --size;
-      }
+    fan[w++] = fan[i];
+  }
+  size = w;
+  // The same check across the seam of the sort.
+  if (size > 1) {
+    const Q &a = fan[size - 1], &b = fan[0];
+    const double c = cross(a, b);
+    if (c * c <= 1e-24 * a.dist2 * b.dist2 && a.x * b.x + a.y * b.y > 0) {
+      if (a.dist2 < b.dist2) fan[0] = a;
+      --size;
     }
   }
-  const int m = size;
-  if (m < 3) return -1;
+  return size;
+}
 
+// Step 3: the central edges p–q_i that are not locally Delaunay flipped; a flipped q_i leaves the
+// fan (alive[i] = 0); next: the fan's cyclic links.
+inline void flipToDelaunay(const Q* fan, int m, FanScratch& scratch, int*& next, char*& alive) {
   // The work stack holds at most m + 2 per flip (at most m flips) entries.
   if (scratch.links.size() < size_t(5 * m)) scratch.links.resize(size_t(5 * m) + 64);
   if (scratch.alive.size() < size_t(m)) scratch.alive.resize(size_t(m) + 16);
   int* prev = scratch.links.data();
-  int* next = prev + m;
+  next = prev + m;
   int* work = next + m; // 3m entries
-  char* alive = scratch.alive.data();
+  alive = scratch.alive.data();
   for (int i = 0; i < m; ++i) prev[i] = i - 1, next[i] = i + 1, alive[i] = 1, work[i] = m - 1 - i;
   prev[0] = m - 1;
   next[m - 1] = 0;
   int top = m; // popped from the back: index 0 first
   int count = m;
-
-  // Flip central edges p–q_i that are not locally Delaunay; a flipped q_i leaves the fan.
   while (top > 0 && count > 3) {
     const int i = work[--top];
     if (!alive[i]) continue;
@@ -153,8 +150,12 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     work[top++] = l;
     work[top++] = j;
   }
+}
 
-  // The fan must be closed (every angle below π) for p's Voronoi cell to be bounded.
+// Step 4: the largest distance from p to a vertex of its Voronoi cell, the circumradii of the fan
+// triangles (p, a, b); -1 when the fan is not closed (an angle of π or more: the cell is
+// unbounded). The kept neighbours into keptOut.
+inline double voronoiRadius(const Q* fan, const int* next, const char* alive, std::vector<int>* keptOut) {
   int start = 0;
   while (!alive[start]) ++start;
   double radius = 0;
@@ -171,6 +172,27 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
     i = l;
   } while (i != start);
   return radius;
+}
+
+double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+                 std::vector<int>* keptOut, FanScratch& scratch) {
+  if (keptOut != nullptr) keptOut->clear();
+  if (scratch.fan.size() < neighbours.size()) scratch.fan.resize(neighbours.size() + 16);
+  Q* fan = scratch.fan.data();
+  // 1. The neighbours in T_p, at their distances.
+  int size = projectOntoTangentPlane(p, n, neighbours, fan);
+  // 2. Sorted by angle, one per direction.
+  bool nanAngle = false;
+  for (int i = 0; i < size; ++i) nanAngle |= fan[i].angle != fan[i].angle;
+  sortFan(fan, size, nanAngle);
+  const int m = keepNearestPerDirection(fan, size);
+  if (m < 3) return -1;
+  // 3. The Delaunay fan of p by flips.
+  int* next;
+  char* alive;
+  flipToDelaunay(fan, m, scratch, next, alive);
+  // 4. The fan must be closed (every angle below π) for p's Voronoi cell to be bounded.
+  return voronoiRadius(fan, next, alive, keptOut);
 }
 
 } // namespace
