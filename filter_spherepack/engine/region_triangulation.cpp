@@ -53,92 +53,115 @@ std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vecto
   return loops;
 }
 
+namespace {
+using Loop = std::vector<std::uint32_t>;
+
+// The inner angle of the loop at its index i, in the tangent plane of the vertex.
+double angleAt(const Loop& loop, size_t i, const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm) {
+  const size_t n = loop.size();
+  return innerAngle(pos[loop[(i + n - 1) % n]], pos[loop[i]], pos[loop[(i + 1) % n]], nrm[loop[i]]);
+}
+
+// Spikes u→v→u enclose no area (a dangling edge, or what is left of a lobe of a region pinched
+// at u once that lobe is filled): drop v and the second u, without a face.
+void removeSpikes(Loop& loop) {
+  bool removed = true;
+  while (removed && loop.size() >= 3) {
+    removed = false;
+    const size_t n = loop.size();
+    for (size_t i = 0; i < n; ++i) {
+      if (loop[(i + n - 1) % n] != loop[(i + 1) % n]) continue;
+      const size_t j = (i + 1) % n; // the second u
+      loop.erase(loop.begin() + std::ptrdiff_t(std::max(i, j)));
+      loop.erase(loop.begin() + std::ptrdiff_t(std::min(i, j)));
+      removed = true;
+      break;
+    }
+  }
+}
+
+// Is a vertex of the loop (other than u, v, w themselves, wherever they repeat) inside or on
+// the ear (u, v, w) at index i, projected on v's plane?
+bool earContainsVertex(const Loop& loop, size_t i, const std::vector<vcg::Point3d>& pos,
+                       const std::vector<vcg::Point3d>& nrm) {
+  const size_t n = loop.size();
+  const std::uint32_t u = loop[(i + n - 1) % n], v = loop[i], w = loop[(i + 1) % n];
+  const Frame f(pos[v], nrm[v]);
+  double ux, uy, wx, wy;
+  f.project(pos[u], ux, uy);
+  f.project(pos[w], wx, wy);
+  for (size_t k = 0; k < n; ++k) {
+    const std::uint32_t x = loop[k];
+    if (x == u || x == v || x == w) continue;
+    double px, py;
+    f.project(pos[x], px, py);
+    // Counter-clockwise triangle (u, v = origin, w): inside or on it when all three >= 0.
+    if (orient2(ux, uy, 0, 0, px, py) >= 0 && orient2(0, 0, wx, wy, px, py) >= 0 &&
+        orient2(wx, wy, ux, uy, px, py) >= 0)
+      return true;
+  }
+  return false;
+}
+
+// The ear to cut: smallest angle first (below π); the strict ear rules first (no loop vertex
+// inside), then the relaxed ones. The new edge u–w must be new. loop.size() when there is none.
+size_t pickEar(const Loop& loop, const std::vector<double>& angle, std::vector<size_t>& order, const EdgeSet& edges,
+               const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm) {
+  const size_t n = loop.size();
+  order.resize(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return angle[a] != angle[b] ? angle[a] < angle[b] : a < b; });
+  size_t pick = n;
+  for (int strict = 1; strict >= 0 && pick == n; --strict)
+    for (size_t i : order) {
+      if (!(angle[i] < kPi)) break;
+      const std::uint32_t u = loop[(i + n - 1) % n], w = loop[(i + 1) % n];
+      if (u == w || edges.contains(u, w)) continue;
+      if (strict && earContainsVertex(loop, i, pos, nrm)) continue;
+      pick = i;
+      break;
+    }
+  return pick;
+}
+
+// The ear at `pick` cut off into faces and edges, then the spikes it leaves removed and the
+// angles updated (all of them after a spike, else the two at the new edge).
+void cutEar(Loop& loop, std::vector<double>& angle, size_t pick, const std::vector<vcg::Point3d>& pos,
+            const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
+  const size_t n = loop.size();
+  const std::uint32_t u = loop[(pick + n - 1) % n], v = loop[pick], w = loop[(pick + 1) % n];
+  faces.push_back(Triangle{u, v, w});
+  edges.insert(u, w);
+  loop.erase(loop.begin() + std::ptrdiff_t(pick));
+  const size_t before = loop.size();
+  removeSpikes(loop);
+  if (loop.size() != before) {
+    angle.resize(loop.size());
+    for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(loop, i, pos, nrm);
+  } else {
+    angle.erase(angle.begin() + std::ptrdiff_t(pick));
+    const size_t k = loop.size();
+    const size_t iu = (pick + k - 1) % k, iw = pick % k;
+    angle[iu] = angleAt(loop, iu, pos, nrm);
+    angle[iw] = angleAt(loop, iw, pos, nrm);
+  }
+}
+} // namespace
+
 bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector<vcg::Point3d>& pos,
                      const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
-  std::vector<std::uint32_t> loop = loopIn;
-  std::vector<double> angle;
-  auto angleAt = [&](size_t i) {
-    const size_t n = loop.size();
-    return innerAngle(pos[loop[(i + n - 1) % n]], pos[loop[i]], pos[loop[(i + 1) % n]], nrm[loop[i]]);
-  };
-  // Spikes u→v→u enclose no area (a dangling edge, or what is left of a lobe of a region pinched
-  // at u once that lobe is filled): drop v and the second u, without a face.
-  auto removeSpikes = [&]() {
-    bool removed = true;
-    while (removed && loop.size() >= 3) {
-      removed = false;
-      const size_t n = loop.size();
-      for (size_t i = 0; i < n; ++i) {
-        if (loop[(i + n - 1) % n] != loop[(i + 1) % n]) continue;
-        const size_t j = (i + 1) % n; // the second u
-        loop.erase(loop.begin() + std::ptrdiff_t(std::max(i, j)));
-        loop.erase(loop.begin() + std::ptrdiff_t(std::min(i, j)));
-        removed = true;
-        break;
-      }
-    }
-  };
-  removeSpikes();
-  angle.resize(loop.size());
-  for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(i);
-
-  // Is a vertex of the loop (other than u, v, w themselves, wherever they repeat) inside or on
-  // the ear (u, v, w) at index i, projected on v's plane?
-  auto earContainsVertex = [&](size_t i) {
-    const size_t n = loop.size();
-    const std::uint32_t u = loop[(i + n - 1) % n], v = loop[i], w = loop[(i + 1) % n];
-    const Frame f(pos[v], nrm[v]);
-    double ux, uy, wx, wy;
-    f.project(pos[u], ux, uy);
-    f.project(pos[w], wx, wy);
-    for (size_t k = 0; k < n; ++k) {
-      const std::uint32_t x = loop[k];
-      if (x == u || x == v || x == w) continue;
-      double px, py;
-      f.project(pos[x], px, py);
-      // Counter-clockwise triangle (u, v = origin, w): inside or on it when all three >= 0.
-      if (orient2(ux, uy, 0, 0, px, py) >= 0 && orient2(0, 0, wx, wy, px, py) >= 0 &&
-          orient2(wx, wy, ux, uy, px, py) >= 0)
-        return true;
-    }
-    return false;
-  };
-
+  Loop loop = loopIn;
+  // The loop without its spikes, with its inner angles.
+  removeSpikes(loop);
+  std::vector<double> angle(loop.size());
+  for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(loop, i, pos, nrm);
+  // Ears cut, smallest angle first, down to the last triangle.
   std::vector<size_t> order;
   while (loop.size() > 3) {
-    const size_t n = loop.size();
-    // Smallest angle first; the strict ear rules first, then the relaxed ones.
-    order.resize(n);
-    for (size_t i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](size_t a, size_t b) { return angle[a] != angle[b] ? angle[a] < angle[b] : a < b; });
-    size_t pick = n;
-    for (int strict = 1; strict >= 0 && pick == n; --strict)
-      for (size_t i : order) {
-        if (!(angle[i] < kPi)) break;
-        const std::uint32_t u = loop[(i + n - 1) % n], w = loop[(i + 1) % n];
-        if (u == w || edges.contains(u, w)) continue;
-        if (strict && earContainsVertex(i)) continue;
-        pick = i;
-        break;
-      }
-    if (pick == n) return false;
-    const std::uint32_t u = loop[(pick + n - 1) % n], v = loop[pick], w = loop[(pick + 1) % n];
-    faces.push_back(Triangle{u, v, w});
-    edges.insert(u, w);
-    loop.erase(loop.begin() + std::ptrdiff_t(pick));
-    const size_t before = loop.size();
-    removeSpikes();
-    if (loop.size() != before) {
-      angle.resize(loop.size());
-      for (size_t i = 0; i < loop.size(); ++i) angle[i] = angleAt(i);
-    } else {
-      angle.erase(angle.begin() + std::ptrdiff_t(pick));
-      const size_t k = loop.size();
-      const size_t iu = (pick + k - 1) % k, iw = pick % k;
-      angle[iu] = angleAt(iu);
-      angle[iw] = angleAt(iw);
-    }
+    const size_t pick = pickEar(loop, angle, order, edges, pos, nrm);
+    if (pick == loop.size()) return false;
+    cutEar(loop, angle, pick, pos, nrm, edges, faces);
   }
   if (loop.size() == 3 && loop[0] != loop[1] && loop[1] != loop[2] && loop[0] != loop[2])
     faces.push_back(Triangle{loop[0], loop[1], loop[2]});
