@@ -172,9 +172,9 @@ private:
 };
 
 bool Mesher::RimPass::round() {
-  removeNonManifoldFans();
-  findLoops();
-  makeTables();
+  removeNonManifoldFans(); // sec. 4.2's extra fans off
+  findLoops();             // the short boundary loops
+  makeTables();            // the triangles at each point, by id
   for (std::vector<std::uint32_t>& loop : loops) closeAtRim(loop);
   return changed;
 }
@@ -293,14 +293,14 @@ void Mesher::RimPass::closeAtRim(std::vector<std::uint32_t>& loop) {
   skipIds.clear();
   nearTri.clear();
   nearId.clear();
-  if (!isOpen(loop)) return;
-  if (!atThinPart(loop)) return;
-  takeOffFlaps(loop);
-  if (strayTriangle(loop)) return;
-  bool closed = closeLoop(loop);
-  if (!closed) closed = closeUnfolded(loop);
+  if (!isOpen(loop)) return;           // distinct points, still open
+  if (!atThinPart(loop)) return;       // the thin-part test
+  takeOffFlaps(loop);                  // flaps off
+  if (strayTriangle(loop)) return;     // a stray triangle off, or a lone triangle's loop
+  bool closed = closeLoop(loop);       // the least-area closure, free points joined
+  if (!closed) closed = closeUnfolded(loop); // or with folded triangles off
   if (!closed) return;
-  commit(loop);
+  commit(loop);                        // the closure into the mesh
 }
 
 bool Mesher::RimPass::isOpen(const std::vector<std::uint32_t>& loop) {
@@ -813,7 +813,7 @@ void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
 }
 
 void Mesher::closeRimLoops() {
-  // A few rounds: taking off a stray piece (see below) opens the loop of the mesh around it.
+  // A few rounds: taking off a stray piece (see strayTriangle) opens the loop of the mesh around it.
   for (int round = 0; round < kRounds; ++round) {
     RimPass pass(*this);
     if (!pass.round()) break;
