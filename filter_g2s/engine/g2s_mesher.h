@@ -291,6 +291,7 @@ private:
   GROWTH_G2S_COLD void closeRimLoops();
   // closeRimLoops: takes grown triangle f out of the mesh (the last triangle moves into its slot).
   GROWTH_G2S_COLD void removeGrownTriangle(size_t f);
+  class RimPass; // closeRimLoops' state over a round and its steps (g2s_thin.cpp)
   // G2S emptiness, using near_ then the grid; when not empty, lastInside_ is a point inside.
   bool emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a, std::uint32_t b,
                  std::uint32_t c) const;

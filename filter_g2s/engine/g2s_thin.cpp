@@ -65,611 +65,758 @@ constexpr int kMaxUnfolds = 2;
 constexpr size_t kMaxJoins = 6;
 } // namespace
 
-void Mesher::closeRimLoops() {
-  const size_t n = grid_.size();
-  // A few rounds: taking off a stray piece (see below) opens the loop of the mesh around it.
-  for (int round = 0; round < kRounds; ++round) {
-    bool changed = false;
-    // Sec. 4.2 first, here rather than after the growth: taking off the extra fans of a
-    // non-manifold vertex opens a loop, which is then closed below where it is at a thin part.
-    if (params_.removeNonManifoldVertices && !joinedAtVertex_.empty()) {
-      std::sort(joinedAtVertex_.begin(), joinedAtVertex_.end());
-      joinedAtVertex_.erase(std::unique(joinedAtVertex_.begin(), joinedAtVertex_.end()), joinedAtVertex_.end());
-      std::vector<char> alive(tri_.size(), 1);
-      const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, n, alive, &joinedAtVertex_);
-      // From the last: removeGrownTriangle moves the last triangle into the slot it frees.
-      for (size_t f = tri_.size(); f-- > 0;)
-        if (!alive[f]) removeGrownTriangle(f);
-      thinCleanup_.nonManifoldVertices += st.nonManifoldVertices;
-      thinCleanup_.facesRemoved += st.facesRemoved;
-      changed = st.facesRemoved > 0;
-    }
-    // The boundary loops: walks along boundary half-edges (used, twin unused), as in boundary(),
-    // each walk marking its half-edges; loops through a vertex more than once are left alone.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
-    std::vector<std::vector<std::uint32_t>> loops;
-    auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (freeEdges_[v] == 0) continue;
-      std::uint32_t w = 0;
-      while (nextFrom(v, w)) {
-        std::vector<std::uint32_t> loop;
-        std::uint32_t cur = v;
-        do {
-          pem_.setMark(cur, w, true);
-          marked.emplace_back(cur, w);
-          loop.push_back(cur);
-          cur = w;
-        } while (nextFrom(cur, w));
-        // A walk through a vertex twice (two fans meeting there) is split into simple loops.
-        std::vector<std::uint32_t> path;
-        auto keep = [&](std::vector<std::uint32_t> simple) {
-          if (simple.size() >= 3 && simple.size() <= kMaxRimLoopEdges) loops.push_back(std::move(simple));
-        };
-        for (std::uint32_t u : loop) {
-          const auto again = std::find(path.begin(), path.end(), u);
-          if (again != path.end()) {
-            keep(std::vector<std::uint32_t>(again, path.end()));
-            path.erase(again + 1, path.end());
-          } else {
-            path.push_back(u);
-          }
-        }
-        keep(std::move(path));
-      }
-    }
-    for (const auto& e : marked) pem_.setMark(e.first, e.second, false);
+// closeRimLoops' state over one round, and its steps as methods (in the order they run). The
+// round's tables are as closeRimLoops kept them: the loops found, the triangles at each point as
+// they were then (firstAt, trianglesAt, idAt), each triangle's index now (curOf, kGone once taken
+// off) and id (idOf), and the closure triangles added since (added, addedId). Then the loop being
+// closed: its closure, the free points joined to it (joins, lonePoints), the triangles being taken
+// off (skipIds) and the mesh triangles near it (nearTri, nearId, box lo..hi).
+class Mesher::RimPass {
+public:
+  explicit RimPass(Mesher& m)
+      : m_(m), n(m.grid_.size()), pem_(m.pem_), grid_(m.grid_), tri_(m.tri_), pts_(m.pts_), spacing_(m.spacing_) {}
+  // One round: sec. 4.2, the loops, the tables, each loop closed at a thin part; true when it
+  // changed the mesh.
+  bool round();
 
-    // The triangles at each point (a copy of each at each of its vertices, as they were when the
-    // round's loops were found), and the closure triangles added since: a closure must cross
-    // neither (growth::facesIntersect, exact), so that it adds no self-intersection. Each triangle
-    // has an id (its index in tri_ when the tables were made; the closures' ids follow) and curOf
-    // gives its index in tri_ now, kGone once it is taken off (removeGrownTriangle moves the last
-    // triangle into the freed slot). A lookup scans the few triangles at a vertex: a scan of tri_
-    // for each cost the bunny, with its thousands of loops, seconds.
-    constexpr std::uint32_t kGone = ~0u;
-    std::vector<std::uint32_t> firstAt(n + 1, 0);
-    for (const Triangle& t : tri_)
-      for (std::uint32_t v : t) ++firstAt[v + 1];
-    for (size_t v = 0; v < n; ++v) firstAt[v + 1] += firstAt[v];
-    std::vector<Triangle> trianglesAt(firstAt[n]);
-    std::vector<std::uint32_t> idAt(firstAt[n]), curOf(tri_.size()), idOf(tri_.size());
-    {
-      std::vector<std::uint32_t> next(firstAt.begin(), firstAt.end() - 1);
-      for (size_t g = 0; g < tri_.size(); ++g) {
-        curOf[g] = idOf[g] = static_cast<std::uint32_t>(g);
-        for (std::uint32_t v : tri_[g]) {
-          idAt[next[v]] = static_cast<std::uint32_t>(g);
-          trianglesAt[next[v]++] = tri_[g];
+private:
+  static constexpr std::uint32_t kGone = ~0u;
+  // Sec. 4.2 first: takes off the extra fans of the non-manifold vertices.
+  void removeNonManifoldFans();
+  // The boundary loops of 3 to kMaxRimLoopEdges edges, into loops.
+  void findLoops();
+  // The triangle tables (firstAt, trianglesAt, idAt, curOf, idOf) of tri_ as it is now.
+  void makeTables();
+  // Triangle t is (a, b, c) in some rotation.
+  static bool same(const Triangle& t, std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // The index in tri_ of triangle (a, b, c) (in any rotation), or tri_.size().
+  size_t findTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // Takes triangle f off the mesh, keeping the tables.
+  void takeOff(size_t f);
+  // v has an edge carrying a triangle to a point other than x and y.
+  bool hasOtherEdge(std::uint32_t v, std::uint32_t x, std::uint32_t y);
+  // One loop, through the steps below: closed where it is at a thin part.
+  void closeAtRim(std::vector<std::uint32_t>& loop);
+  // The loop's points are distinct and its edges still open.
+  bool isOpen(const std::vector<std::uint32_t>& loop);
+  // The mesh triangle on the used half-edge from -> to: its third point (false: none found).
+  bool thirdPoint(std::uint32_t from, std::uint32_t to, std::uint32_t& third);
+  // The thin-part test: another sheet faces the other way 2-5 spacings off a triangle at the loop.
+  bool atThinPart(const std::vector<std::uint32_t>& loop);
+  // Takes the flaps off the loop (the loop runs across their bases instead).
+  void takeOffFlaps(std::vector<std::uint32_t>& loop);
+  // A loop of three: takes a stray triangle off; true when the loop is done with.
+  bool strayTriangle(const std::vector<std::uint32_t>& loop);
+  // Both points of edge u, v are points of lone triangles being taken.
+  bool isLoneEdge(std::uint32_t u, std::uint32_t v);
+  // The third point of the triangle on loop half-edge from -> to (a join, or a mesh triangle).
+  bool thirdOnLoopEdge(std::uint32_t from, std::uint32_t to, std::uint32_t& x);
+  // The mesh triangles that a closure triangle of loop l could cross, into nearTri, nearId, lo, hi.
+  void gatherNear(const std::vector<std::uint32_t>& l);
+  // Triangle c crosses one of the near triangles.
+  bool crossesNear(const Triangle& c);
+  // The least-area triangulation of loop (crossing no near triangle with `avoid`), into closure.
+  bool triangulate(const std::vector<std::uint32_t>& loop, bool avoid);
+  // A triangle of closure crosses another of them, or a near triangle.
+  bool crossesMesh();
+  // v is a point of a lone triangle (v, x, y).
+  bool lonePartners(std::uint32_t v, std::uint32_t& x, std::uint32_t& y);
+  // Point i is free: unused, or a point of a lone triangle, and not joined yet.
+  bool freePoint(std::uint32_t i);
+  // A free point inside triangle (a, b, c), or ~0u.
+  std::uint32_t freeInside(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // Joins free point p to loop l.
+  bool join(std::vector<std::uint32_t>& l, std::uint32_t p);
+  // Closes loop l (into closure), joining free points first; false: it cannot be closed.
+  bool closeLoop(std::vector<std::uint32_t>& l);
+  // The unfold step: closes the loop with up to kMaxUnfolds folded triangles taken off.
+  bool closeUnfolded(std::vector<std::uint32_t>& loop);
+  // Commits the closure of loop: its lone triangles off, its triangles into the mesh.
+  void commit(const std::vector<std::uint32_t>& loop);
+
+  Mesher& m_;
+  const size_t n;
+  PointEdgeMap& pem_;
+  MortonGrid& grid_;
+  std::vector<Triangle>& tri_;
+  const P3* const pts_;
+  const double spacing_;
+  bool changed = false;
+  std::vector<std::vector<std::uint32_t>> loops;
+  // The triangles at each point (a copy of each at each of its vertices, as they were when the
+  // round's loops were found), and the closure triangles added since: a closure must cross
+  // neither (growth::facesIntersect, exact), so that it adds no self-intersection. Each triangle
+  // has an id (its index in tri_ when the tables were made; the closures' ids follow) and curOf
+  // gives its index in tri_ now, kGone once it is taken off (removeGrownTriangle moves the last
+  // triangle into the freed slot). A lookup scans the few triangles at a vertex: a scan of tri_
+  // for each cost the bunny, with its thousands of loops, seconds.
+  std::vector<std::uint32_t> firstAt;
+  std::vector<Triangle> trianglesAt;
+  std::vector<std::uint32_t> idAt, curOf, idOf;
+  std::vector<Triangle> added;
+  std::vector<std::uint32_t> addedId;
+  // The loop being closed. The closure's triangles use the loop's half-edges the other way (see
+  // triangulate).
+  std::vector<std::array<std::uint32_t, 3>> closure;
+  // Free points taken into the loop (see closeLoop): each is joined to a loop edge a -> b by the
+  // triangle (b, a, p), after which the loop runs a -> p -> b. Lone triangles whose points are
+  // taken are taken off when the closure is made (their edges do not count as edges).
+  std::vector<std::array<std::uint32_t, 3>> joins;
+  std::vector<std::uint32_t> lonePoints, skipIds;
+  // The mesh triangles that a triangle of the closure could cross: those with a vertex within
+  // reach of the loop (its radius about its centroid, its longest edge and two spacings), and
+  // those added this round; gathered once per loop (`near`, with their ids).
+  std::vector<Triangle> nearTri;
+  std::vector<std::uint32_t> nearId;
+  P3 lo, hi;
+};
+
+bool Mesher::RimPass::round() {
+  removeNonManifoldFans(); // sec. 4.2's extra fans off
+  findLoops();             // the short boundary loops
+  makeTables();            // the triangles at each point, by id
+  for (std::vector<std::uint32_t>& loop : loops) closeAtRim(loop);
+  return changed;
+}
+
+// Sec. 4.2 first, here rather than after the growth: taking off the extra fans of a
+// non-manifold vertex opens a loop, which is then closed below where it is at a thin part.
+void Mesher::RimPass::removeNonManifoldFans() {
+  if (m_.params_.removeNonManifoldVertices && !m_.joinedAtVertex_.empty()) {
+    std::sort(m_.joinedAtVertex_.begin(), m_.joinedAtVertex_.end());
+    m_.joinedAtVertex_.erase(std::unique(m_.joinedAtVertex_.begin(), m_.joinedAtVertex_.end()),
+                             m_.joinedAtVertex_.end());
+    std::vector<char> alive(tri_.size(), 1);
+    const ManifoldCleanupStat st = growth::removeNonManifoldVertices(tri_, n, alive, &m_.joinedAtVertex_);
+    // From the last: removeGrownTriangle moves the last triangle into the slot it frees.
+    for (size_t f = tri_.size(); f-- > 0;)
+      if (!alive[f]) m_.removeGrownTriangle(f);
+    m_.thinCleanup_.nonManifoldVertices += st.nonManifoldVertices;
+    m_.thinCleanup_.facesRemoved += st.facesRemoved;
+    changed = st.facesRemoved > 0;
+  }
+}
+
+// The boundary loops: walks along boundary half-edges (used, twin unused), as in boundary(),
+// each walk marking its half-edges; loops through a vertex more than once are left alone.
+void Mesher::RimPass::findLoops() {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
+  auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return m_.nextBoundaryHalfEdge(v, w); };
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (m_.freeEdges_[v] == 0) continue;
+    std::uint32_t w = 0;
+    while (nextFrom(v, w)) {
+      std::vector<std::uint32_t> loop;
+      std::uint32_t cur = v;
+      do {
+        pem_.setMark(cur, w, true);
+        marked.emplace_back(cur, w);
+        loop.push_back(cur);
+        cur = w;
+      } while (nextFrom(cur, w));
+      // A walk through a vertex twice (two fans meeting there) is split into simple loops.
+      std::vector<std::uint32_t> path;
+      auto keep = [&](std::vector<std::uint32_t> simple) {
+        if (simple.size() >= 3 && simple.size() <= kMaxRimLoopEdges) loops.push_back(std::move(simple));
+      };
+      for (std::uint32_t u : loop) {
+        const auto again = std::find(path.begin(), path.end(), u);
+        if (again != path.end()) {
+          keep(std::vector<std::uint32_t>(again, path.end()));
+          path.erase(again + 1, path.end());
+        } else {
+          path.push_back(u);
         }
+      }
+      keep(std::move(path));
+    }
+  }
+  for (const auto& e : marked) pem_.setMark(e.first, e.second, false);
+}
+
+void Mesher::RimPass::makeTables() {
+  firstAt.assign(n + 1, 0);
+  for (const Triangle& t : tri_)
+    for (std::uint32_t v : t) ++firstAt[v + 1];
+  for (size_t v = 0; v < n; ++v) firstAt[v + 1] += firstAt[v];
+  trianglesAt.resize(firstAt[n]);
+  idAt.resize(firstAt[n]);
+  curOf.resize(tri_.size());
+  idOf.resize(tri_.size());
+  {
+    std::vector<std::uint32_t> next(firstAt.begin(), firstAt.end() - 1);
+    for (size_t g = 0; g < tri_.size(); ++g) {
+      curOf[g] = idOf[g] = static_cast<std::uint32_t>(g);
+      for (std::uint32_t v : tri_[g]) {
+        idAt[next[v]] = static_cast<std::uint32_t>(g);
+        trianglesAt[next[v]++] = tri_[g];
       }
     }
-    std::vector<Triangle> added;
-    std::vector<std::uint32_t> addedId;
-    auto same = [](const Triangle& t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-      return (t[0] == a && t[1] == b && t[2] == c) || (t[1] == a && t[2] == b && t[0] == c) ||
-             (t[2] == a && t[0] == b && t[1] == c);
-    };
-    // The index in tri_ of triangle (a, b, c) (in any rotation), or tri_.size().
-    auto findTriangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) -> size_t {
-      for (std::uint32_t f = firstAt[a]; f < firstAt[a + 1]; ++f)
-        if (same(trianglesAt[f], a, b, c) && curOf[idAt[f]] != kGone) return curOf[idAt[f]];
-      for (size_t k = added.size(); k-- > 0;)
-        if (same(added[k], a, b, c) && curOf[addedId[k]] != kGone) return curOf[addedId[k]];
-      return tri_.size();
-    };
-    auto takeOff = [&](size_t f) {
-      const size_t last = tri_.size() - 1;
-      curOf[idOf[f]] = kGone;
-      if (f != last) {
-        idOf[f] = idOf[last];
-        curOf[idOf[f]] = static_cast<std::uint32_t>(f);
-      }
-      idOf.pop_back();
-      removeGrownTriangle(f);
-    };
-    // v has an edge carrying a triangle to a point other than x and y.
-    auto hasOtherEdge = [&](std::uint32_t v, std::uint32_t x, std::uint32_t y) {
-      bool other = false;
-      pem_.forEachEdge(v, [&](std::uint32_t w, bool, bool) { other = other || (w != x && w != y); });
-      return other;
-    };
-    for (std::vector<std::uint32_t>& loop : loops) {
-      const size_t loopEdges = loop.size();
-      std::vector<std::uint32_t> sorted(loop);
-      std::sort(sorted.begin(), sorted.end());
-      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-      // Still open (an earlier closure does not touch another loop's edges, but be safe).
-      bool open = true;
-      for (size_t i = 0; i < loopEdges; ++i)
-        open = open && pem_.used(loop[i], loop[(i + 1) % loopEdges]) && !pem_.used(loop[(i + 1) % loopEdges], loop[i]);
-      if (!open) continue;
-      // The mesh triangle on the used half-edge from -> to: its third point (false: none found).
-      auto thirdPoint = [&](std::uint32_t from, std::uint32_t to, std::uint32_t& third) {
-        bool found = false;
-        pem_.forEachEdge(to, [&](std::uint32_t x, bool out, bool) {
-          // (from, to, x) is a triangle when its three half-edges are used, unless all three are
-          // boundary half-edges (then they can be three triangles' edges, as on a loop of three).
-          if (!found && out && x != from && pem_.used(x, from) && (pem_.used(x, to) || pem_.used(from, x))) {
-            third = x;
-            found = true;
-          }
-        });
-        return found;
-      };
-      // At a thin part (kThinFrom): the two sheets of a closed part face apart (or, where it was
-      // grown inside out, towards each other), both ways antiparallel. A smooth sheet does not
-      // pass: a triangle tilted by noise sees its own sheet along its normal, facing its own way; a
-      // triangle flipped within the sheet sees nothing that far off its plane. (Where the growth
-      // folded a noisy sheet or the layers of merged scans over themselves, the mesh has two
-      // sheets facing apart, and the loops there are closed too: see docs/g2s-robustness.md.)
-      bool apart = false;
-      for (size_t s = 0; s < 2 * loop.size() && !apart; ++s) {
-        std::array<std::uint32_t, 3> t;
-        // The triangles on the loop's edges, and the last triangle at each loop vertex.
-        if (s < loop.size()) {
-          const std::uint32_t a = loop[s], b = loop[(s + 1) % loop.size()];
-          if (!thirdPoint(a, b, t[2])) continue;
-          t[0] = a;
-          t[1] = b;
-        } else if (!triangleAt(loop[s - loop.size()], t)) {
-          continue;
-        }
-        const P3 centre = (pts_[t[0]] + pts_[t[1]] + pts_[t[2]]) / 3.0;
-        P3 normal = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
-        const double len = normal.Norm();
-        if (!(len > 0)) continue;
-        normal /= len;
-        const double from = kThinFrom * spacing_, to = kThinTo * spacing_, side = kThinSide * spacing_;
-        const double probe = std::sqrt(0.25 * (to - from) * (to - from) + side * side);
-        for (double dir : {1.0, -1.0}) {
-          if (apart) break;
-          apart = grid_.anyInBall(centre + normal * (dir * 0.5 * (from + to)), probe, [&](std::uint32_t i, double) {
-            const P3 d = pts_[i] - centre;
-            const double h = d * normal;
-            std::array<std::uint32_t, 3> u;
-            if (std::abs(h) < from || std::abs(h) > to || (d - normal * h).SquaredNorm() > side * side) return false;
-            if (isolated(i) || !triangleAt(i, u)) return false;
-            const P3 m = (pts_[u[1]] - pts_[u[0]]) ^ (pts_[u[2]] - pts_[u[0]]);
-            return m * normal < kFacingApartCos * m.Norm();
-          });
-        }
-      }
-      if (!apart) continue;
-      // Flaps: a mesh triangle (a, tip, b) on two consecutive loop edges a -> tip -> b whose tip
-      // has other triangles (a second fan there, which the non-manifold vertex removal of sec. 4.2
-      // would take it off from later, leaving the loop open). It is taken off now, and the loop
-      // runs a -> b instead (a -> b is used by the triangle on the other side of the flap's base).
-      for (bool again = true; again && loop.size() > 3;) {
-        again = false;
-        const size_t kk = loop.size();
-        for (size_t i = 0; i < kk && !again; ++i) {
-          const std::uint32_t a = loop[i], tip = loop[(i + 1) % kk], b = loop[(i + 2) % kk];
-          if (!pem_.used(b, a) || !pem_.used(a, b)) continue;
-          if (!hasOtherEdge(tip, a, b)) continue;
-          const size_t f = findTriangle(a, tip, b);
-          if (f == tri_.size()) continue;
-          takeOff(f);
-          loop.erase(loop.begin() + std::ptrdiff_t((i + 1) % kk));
-          again = changed = true;
-        }
-      }
-      // A stray triangle (all three edges boundary) held to the mesh by its vertices alone: taken
-      // off (sec. 4.2 would take it off later), which opens the loop of the mesh around it for the
-      // next round.
-      if (loop.size() == 3) {
-        const size_t f = findTriangle(loop[0], loop[1], loop[2]);
-        if (f < tri_.size() && hasOtherEdge(loop[0], loop[1], loop[2]) && hasOtherEdge(loop[1], loop[2], loop[0]) &&
-            hasOtherEdge(loop[2], loop[0], loop[1])) {
-          takeOff(f);
-          changed = true;
-          continue;
-        }
-        // A lone triangle's own loop: its closure would be the triangle again, reversed.
-        if (f < tri_.size()) continue;
-      }
-      // The closure's triangles use the loop's half-edges the other way: polygon q = the loop
-      // reversed, triangles (q_i, q_m, q_j) for i < m < j. Least total area (dynamic programming over
-      // the polygon's sub-chains), no diagonal between points that have or had an edge, and no
-      // triangle folding back onto the mesh triangle across its loop edge; with `avoid`, no
-      // triangle crossing a mesh triangle near the loop either (see crossesMesh).
-      const double inf = std::numeric_limits<double>::infinity();
-      std::vector<std::array<std::uint32_t, 3>> closure;
-      // Free points taken into the loop (below): each is joined to a loop edge a -> b by the
-      // triangle (b, a, p), after which the loop runs a -> p -> b. Lone triangles whose points are
-      // taken are taken off when the closure is made (their edges do not count as edges).
-      std::vector<std::array<std::uint32_t, 3>> joins;
-      std::vector<std::uint32_t> lonePoints, skipIds;
-      auto isLoneEdge = [&](std::uint32_t u, std::uint32_t v) {
-        return !lonePoints.empty() && std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
-               std::find(lonePoints.begin(), lonePoints.end(), v) != lonePoints.end();
-      };
-      // The triangle on loop half-edge from -> to (a join, or a mesh triangle not being taken
-      // off): its third point. (While triangles are being taken off, by findTriangle: around a
-      // triangle taken off, the half-edges of its neighbours make its reverse, which thirdPoint
-      // would take.)
-      auto thirdOnLoopEdge = [&](std::uint32_t from, std::uint32_t to, std::uint32_t& x) {
-        for (const auto& t : joins)
-          for (int e = 0; e < 3; ++e)
-            if (t[e] == from && t[(e + 1) % 3] == to) {
-              x = t[(e + 2) % 3];
-              return true;
-            }
-        if (skipIds.empty()) return thirdPoint(from, to, x);
-        bool found = false;
-        pem_.forEachEdge(to, [&](std::uint32_t w, bool out, bool) {
-          if (found || !out || w == from) return;
-          const size_t f = findTriangle(from, to, w);
-          if (f < tri_.size() && std::find(skipIds.begin(), skipIds.end(), idOf[f]) == skipIds.end()) {
-            x = w;
-            found = true;
-          }
-        });
-        return found;
-      };
-      // The mesh triangles that a triangle of the closure could cross: those with a vertex within
-      // reach of the loop (its radius about its centroid, its longest edge and two spacings), and
-      // those added this round; gathered once per loop (`near`, with their ids).
-      std::vector<Triangle> nearTri;
-      std::vector<std::uint32_t> nearId;
-      P3 lo, hi;
-      auto gatherNear = [&](const std::vector<std::uint32_t>& l) {
-        nearTri.clear();
-        nearId.clear();
-        P3 centroid(0, 0, 0);
-        for (std::uint32_t v : l) centroid += pts_[v];
-        centroid /= double(l.size());
-        double radius = 0, longest = 0;
-        for (size_t i = 0; i < l.size(); ++i) {
-          radius = std::max(radius, (pts_[l[i]] - centroid).Norm());
-          longest = std::max(longest, (pts_[l[(i + 1) % l.size()]] - pts_[l[i]]).Norm());
-        }
-        lo = hi = pts_[l[0]];
-        for (std::uint32_t v : l)
-          for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], pts_[v][a]);
-            hi[a] = std::max(hi[a], pts_[v][a]);
-          }
-        for (size_t k = 0; k < added.size(); ++k) {
-          nearTri.push_back(added[k]);
-          nearId.push_back(addedId[k]);
-        }
-        grid_.forEachInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
-          for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f) {
-            nearTri.push_back(trianglesAt[f]);
-            nearId.push_back(idAt[f]);
-          }
-        });
-      };
-      // Triangle c crosses one of `near` (triangles taken off, and lone triangles being taken, do
-      // not count; only those whose box meets the loop's).
-      auto crossesNear = [&](const Triangle& c) {
-        for (size_t k = 0; k < nearTri.size(); ++k) {
-          const Triangle& t = nearTri[k];
-          if (curOf[nearId[k]] == kGone ||
-              (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()))
-            continue;
-          if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
-          bool apartBox = false;
-          for (int a = 0; a < 3 && !apartBox; ++a)
-            apartBox = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
-                       std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a];
-          if (!apartBox && facesIntersect(grid_.points(), c, t)) return true;
-        }
-        return false;
-      };
-      auto triangulate = [&](const std::vector<std::uint32_t>& loop, bool avoid) {
-        const size_t k = loop.size();
-        const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
-        // Nothing changes while the programme runs, so what its cost asks of the mesh is looked up
-        // once: the third point of the triangle on each loop edge q_a -> q_(a+1) (a = k - 1: to
-        // q_0), and the near triangles crossesNear would test, with their boxes.
-        std::vector<std::uint32_t> third(k, 0);
-        std::vector<char> hasThird(k, 0);
-        for (size_t a = 0; a < k; ++a)
-          hasThird[a] = thirdOnLoopEdge(q[(a + 1) % k], q[a], third[a]) ? 1 : 0;
-        std::vector<Triangle> active;
-        std::vector<std::array<double, 6>> activeBox;
-        if (avoid)
-          for (size_t n = 0; n < nearTri.size(); ++n) {
-            const Triangle& t = nearTri[n];
-            if (curOf[nearId[n]] == kGone ||
-                (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
-              continue;
-            if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
-            std::array<double, 6> b;
-            bool apartBox = false;
-            for (int a = 0; a < 3; ++a) {
-              b[a] = std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
-              b[3 + a] = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
-              apartBox = apartBox || b[3 + a] < lo[a] || b[a] > hi[a];
-            }
-            if (apartBox) continue;
-            active.push_back(t);
-            activeBox.push_back(b);
-          }
-        // crossesNear(c) on the triangles kept above; a triangle whose box is apart from c's cannot
-        // meet it (the same answer as facesIntersect's, without the call).
-        auto crossesActive = [&](const Triangle& c) {
-          double clo[3], chi[3];
-          for (int a = 0; a < 3; ++a) {
-            clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
-            chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
-          }
-          const std::vector<P3>& pos = grid_.points();
-          std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
-          for (size_t n = 0; n < active.size(); ++n) {
-            const std::array<double, 6>& b = activeBox[n];
-            if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
-              continue;
-            if (!plane) plane.reset(new PlaneOf(pos, c));
-            const Triangle& t = active[n];
-            // The cheap sufficient tests of g2s_apart.h first (they change no decision).
-            if (!apartByPlane(pos, *plane, c, t) && !apartByPlane(pos, t, c) && !apartInShadow(pos, *plane, c, t) &&
-                facesIntersect(pos, c, t))
-              return true;
-          }
-          return false;
-        };
-        auto cost = [&](size_t i, size_t m, size_t j) {
-          const P3 &A = pts_[q[i]], &B = pts_[q[m]], &C = pts_[q[j]];
-          const P3 nt = (B - A) ^ (C - A);
-          const double len = nt.Norm();
-          if (!(len > 0)) return inf;
-          // Loop edges of this triangle: (i, m) when m = i + 1, (m, j) when j = m + 1, (j, i) when
-          // i = 0 and j = k - 1; each is q_a -> q_b here, used as q_b -> q_a by the mesh.
-          const std::pair<size_t, size_t> edges[3] = {{i, m}, {m, j}, {j, i}};
-          for (const auto& e : edges) {
-            const std::uint32_t u = q[e.first], v = q[e.second];
-            const bool loopEdge = (e.second == e.first + 1) || (e.first == k - 1 && e.second == 0);
-            if (!loopEdge) {
-              if (pem_.hasEntry(u, v) && !isLoneEdge(u, v)) return inf;
-              continue;
-            }
-            if (hasThird[e.first]) {
-              const std::uint32_t x = third[e.first];
-              const P3 meshNormal = (pts_[u] - pts_[v]) ^ (pts_[x] - pts_[v]);
-              const double ml = meshNormal.Norm();
-              if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
-            }
-          }
-          if (avoid && crossesActive(Triangle{q[i], q[m], q[j]})) return inf;
-          return 0.5 * len;
-        };
-        std::vector<double> best(k * k, 0.0);
-        std::vector<size_t> split(k * k, 0);
-        for (size_t span = 2; span < k; ++span)
-          for (size_t i = 0; i + span < k; ++i) {
-            const size_t j = i + span;
-            double b = inf;
-            for (size_t m = i + 1; m < j; ++m) {
-              if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
-              const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
-              if (c < b) {
-                b = c;
-                split[i * k + j] = m;
-              }
-            }
-            best[i * k + j] = b;
-          }
-        closure.clear();
-        if (!(best[k - 1] < inf)) return false;
-        std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
-        while (!stack.empty()) {
-          const size_t i = stack.back().first, j = stack.back().second;
-          stack.pop_back();
-          if (j < i + 2) continue;
-          const size_t m = split[i * k + j];
-          closure.push_back({q[i], q[m], q[j]});
-          stack.emplace_back(i, m);
-          stack.emplace_back(m, j);
-        }
-        closure.insert(closure.end(), joins.begin(), joins.end());
-        return true;
-      };
-      // A triangle of `closure` crosses another of them, or a triangle of `near`.
-      auto crossesMesh = [&]() {
-        for (size_t i = 0; i < closure.size(); ++i)
-          for (size_t j = i + 1; j < closure.size(); ++j)
-            if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
-                               Triangle{closure[j][0], closure[j][1], closure[j][2]}))
-              return true;
-        for (const auto& c : closure)
-          if (crossesNear(Triangle{c[0], c[1], c[2]})) return true;
-        return false;
-      };
-      // A free point: unused, or a point of a lone triangle (a triangle whose points have no other
-      // edge: a seed that grew nothing, see above).
-      auto lonePartners = [&](std::uint32_t v, std::uint32_t& x, std::uint32_t& y) {
-        // (x, y: the triangle is (v, x, y), v -> x its half-edge leaving v.)
-        int count = 0, outs = 0;
-        pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
-          ++count;
-          outs += out;
-          (out ? x : y) = w;
-        });
-        return count == 2 && outs == 1 && !hasOtherEdge(x, v, y) && !hasOtherEdge(y, v, x) &&
-               findTriangle(v, x, y) < tri_.size();
-      };
-      auto freePoint = [&](std::uint32_t i) {
-        std::uint32_t x, y;
-        for (const auto& t : joins)
-          if (t[2] == i) return false;
-        return isolated(i) || lonePartners(i, x, y);
-      };
-      // A free point inside triangle (a, b, c) (as in unusedPointInside: projecting inside it, at
-      // most the radius of its smallest enclosing ball from its plane), or ~0u.
-      auto freeInside = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
-        const P3 n = (B - A) ^ (C - A);
-        const double n2 = n.SquaredNorm();
-        std::uint32_t found = ~0u;
-        if (!(n2 > 0)) return found;
-        const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
-        P3 centre;
-        double r2;
-        if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
-        else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
-        else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
-        else {
-          Ball ball;
-          if (!circumBall(A, B, C, ball)) return found;
-          centre = ball.centre;
-          r2 = ball.radius2;
-        }
-        grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
-          // (The geometric tests first: most points of the ball are used, and freePoint asks the
-          // point-edge map; the same point is found.)
-          if (i == a || i == b || i == c) return false;
-          const P3& X = pts_[i];
-          const double h = (X - A) * n;
-          if (h * h > r2 * n2) return false;
-          if (((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0 &&
-              freePoint(i)) {
-            found = i;
-            return true;
-          }
-          return false;
-        });
-        return found;
-      };
-      // Joins free point p to the loop edge a -> b whose triangle (b, a, p) has the smallest
-      // circumradius among those that do not fold back onto the triangle on a -> b.
-      auto join = [&](std::vector<std::uint32_t>& l, std::uint32_t p) {
-        size_t at = l.size();
-        double bestR2 = inf;
-        for (size_t i = 0; i < l.size(); ++i) {
-          const std::uint32_t a = l[i], b = l[(i + 1) % l.size()];
-          std::uint32_t x;
-          const P3 nt = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
-          const double len = nt.Norm();
-          if (!(len > 0)) continue;
-          if (thirdOnLoopEdge(a, b, x)) {
-            const P3 meshNormal = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
-            const double ml = meshNormal.Norm();
-            if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) continue;
-          }
-          Ball ball;
-          if (!circumBall(pts_[b], pts_[a], pts_[p], ball) || !(ball.radius2 < bestR2)) continue;
-          bestR2 = ball.radius2;
-          at = i;
-        }
-        if (at == l.size()) return false;
-        joins.push_back({l[(at + 1) % l.size()], l[at], p});
-        l.insert(l.begin() + std::ptrdiff_t(at + 1), p);
-        return true;
-      };
-      // Closes loop l: its least-area triangulation, then (when that crosses the mesh or itself)
-      // the least-area one among those whose triangles cross no mesh triangle; a free point inside
-      // a triangle of the closure is joined to the loop first (at most kMaxJoins, with the other
-      // points of its lone triangle), as the growth grows an edge to an unused point inside a loop.
-      auto closeLoop = [&](std::vector<std::uint32_t>& l) {
-        const std::vector<std::uint32_t> original(l);
-        gatherNear(original); // (the same for both tries: nothing in the mesh changes between them)
-        for (bool avoid : {false, true}) {
-          l = original;
-          joins.clear();
-          lonePoints.clear();
-          for (;;) {
-            if (!triangulate(l, avoid)) break;
-            std::uint32_t p = ~0u;
-            for (size_t t = 0; t < closure.size() && p == ~0u; ++t) p = freeInside(closure[t][0], closure[t][1], closure[t][2]);
-            if (p == ~0u) {
-              if (!crossesMesh()) return true;
-              break;
-            }
-            if (joins.size() >= kMaxJoins) break;
-            std::uint32_t x, y;
-            if (!isolated(p) && lonePartners(p, x, y)) {
-              if (joins.size() + 3 > kMaxJoins) break;
-              lonePoints.insert(lonePoints.end(), {p, x, y});
-              if (!join(l, p) || !join(l, x) || !join(l, y)) break;
-            } else if (!join(l, p)) {
-              break;
-            }
-          }
-        }
-        l = original;
-        joins.clear();
-        lonePoints.clear();
-        return false;
-      };
-      bool closed = closeLoop(loop);
-      // Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b lies folded over the
-      // hole, facing with the loop's Newell normal (cosine above -kClosureFoldCos; the mesh around
-      // a hole faces against it, a hole's boundary running clockwise seen from outside), no
-      // closure can join it. Up to kMaxUnfolds such triangles, the one facing most with it first,
-      // are taken off when the loop then runs a -> x -> b and closes.
-      if (!closed) {
-        std::vector<std::uint32_t> unfolded(loop);
-        std::vector<std::array<std::uint32_t, 3>> off;
-        for (int unfold = 0; !closed && unfold < kMaxUnfolds; ++unfold) {
-          const size_t kk = unfolded.size();
-          P3 newell(0, 0, 0);
-          for (size_t i = 0; i < kk; ++i) newell += pts_[unfolded[i]] ^ pts_[unfolded[(i + 1) % kk]];
-          const double newellNorm = newell.Norm();
-          if (!(newellNorm > 0)) break;
-          double worst = -kClosureFoldCos;
-          size_t at = kk;
-          std::uint32_t third = 0;
-          for (size_t i = 0; i < kk; ++i) {
-            const std::uint32_t a = unfolded[i], b = unfolded[(i + 1) % kk];
-            std::uint32_t x;
-            if (!thirdPoint(a, b, x) || std::find(unfolded.begin(), unfolded.end(), x) != unfolded.end()) continue;
-            if (!pem_.used(a, x) || !pem_.used(x, b) || !hasOtherEdge(x, a, b)) continue;
-            const P3 nt = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
-            const double len = nt.Norm();
-            if (!(len > 0)) continue;
-            const double c = (nt * newell) / (len * newellNorm);
-            if (c > worst) {
-              worst = c;
-              at = i;
-              third = x;
-            }
-          }
-          if (at == kk) break;
-          off.push_back({unfolded[at], unfolded[(at + 1) % kk], third});
-          unfolded.insert(unfolded.begin() + std::ptrdiff_t(at + 1), third);
-          // (The triangles taken off do not count in the crossing test.)
-          {
-            const size_t f = findTriangle(off.back()[0], off.back()[1], off.back()[2]);
-            if (f < tri_.size()) skipIds.push_back(idOf[f]);
-          }
-          closed = closeLoop(unfolded);
-        }
-        skipIds.clear();
-        if (closed) {
-          for (const auto& t : off) {
-            const size_t f = findTriangle(t[0], t[1], t[2]);
-            if (f < tri_.size()) takeOff(f);
-          }
-          loop.swap(unfolded);
-          changed = true;
-        }
-      }
-      if (!closed) continue;
-      // Every point needs room for the closure's new edges.
-      bool clear = true;
-      const size_t k = loop.size();
-      for (std::uint32_t v : loop) clear = clear && pem_.entries(v) + k <= pem_.capacity();
-      if (!clear) continue;
-      for (std::uint32_t v : lonePoints) {
-        std::uint32_t x, y;
-        if (!lonePartners(v, x, y)) continue;
-        const size_t f = findTriangle(v, x, y);
-        if (f < tri_.size()) takeOff(f);
-      }
-      for (const auto& t : closure) {
-        addTriangle(t[0], t[1], t[2]);
-        added.push_back(Triangle{t[0], t[1], t[2]});
-        addedId.push_back(static_cast<std::uint32_t>(curOf.size()));
-        idOf.push_back(static_cast<std::uint32_t>(curOf.size()));
-        curOf.push_back(static_cast<std::uint32_t>(tri_.size() - 1));
-      }
-      ++rimLoopsClosed_;
+  }
+}
+
+bool Mesher::RimPass::same(const Triangle& t, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  return (t[0] == a && t[1] == b && t[2] == c) || (t[1] == a && t[2] == b && t[0] == c) ||
+         (t[2] == a && t[0] == b && t[1] == c);
+}
+
+size_t Mesher::RimPass::findTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  for (std::uint32_t f = firstAt[a]; f < firstAt[a + 1]; ++f)
+    if (same(trianglesAt[f], a, b, c) && curOf[idAt[f]] != kGone) return curOf[idAt[f]];
+  for (size_t k = added.size(); k-- > 0;)
+    if (same(added[k], a, b, c) && curOf[addedId[k]] != kGone) return curOf[addedId[k]];
+  return tri_.size();
+}
+
+void Mesher::RimPass::takeOff(size_t f) {
+  const size_t last = tri_.size() - 1;
+  curOf[idOf[f]] = kGone;
+  if (f != last) {
+    idOf[f] = idOf[last];
+    curOf[idOf[f]] = static_cast<std::uint32_t>(f);
+  }
+  idOf.pop_back();
+  m_.removeGrownTriangle(f);
+}
+
+bool Mesher::RimPass::hasOtherEdge(std::uint32_t v, std::uint32_t x, std::uint32_t y) {
+  bool other = false;
+  pem_.forEachEdge(v, [&](std::uint32_t w, bool, bool) { other = other || (w != x && w != y); });
+  return other;
+}
+
+void Mesher::RimPass::closeAtRim(std::vector<std::uint32_t>& loop) {
+  // (The loop's own state starts empty, as when it was local to the loop.)
+  closure.clear();
+  joins.clear();
+  lonePoints.clear();
+  skipIds.clear();
+  nearTri.clear();
+  nearId.clear();
+  if (!isOpen(loop)) return;           // distinct points, still open
+  if (!atThinPart(loop)) return;       // the thin-part test
+  takeOffFlaps(loop);                  // flaps off
+  if (strayTriangle(loop)) return;     // a stray triangle off, or a lone triangle's loop
+  bool closed = closeLoop(loop);       // the least-area closure, free points joined
+  if (!closed) closed = closeUnfolded(loop); // or with folded triangles off
+  if (!closed) return;
+  commit(loop);                        // the closure into the mesh
+}
+
+bool Mesher::RimPass::isOpen(const std::vector<std::uint32_t>& loop) {
+  const size_t loopEdges = loop.size();
+  std::vector<std::uint32_t> sorted(loop);
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
+  // Still open (an earlier closure does not touch another loop's edges, but be safe).
+  bool open = true;
+  for (size_t i = 0; i < loopEdges; ++i)
+    open = open && pem_.used(loop[i], loop[(i + 1) % loopEdges]) && !pem_.used(loop[(i + 1) % loopEdges], loop[i]);
+  return open;
+}
+
+bool Mesher::RimPass::thirdPoint(std::uint32_t from, std::uint32_t to, std::uint32_t& third) {
+  bool found = false;
+  pem_.forEachEdge(to, [&](std::uint32_t x, bool out, bool) {
+    // (from, to, x) is a triangle when its three half-edges are used, unless all three are
+    // boundary half-edges (then they can be three triangles' edges, as on a loop of three).
+    if (!found && out && x != from && pem_.used(x, from) && (pem_.used(x, to) || pem_.used(from, x))) {
+      third = x;
+      found = true;
+    }
+  });
+  return found;
+}
+
+// At a thin part (kThinFrom): the two sheets of a closed part face apart (or, where it was
+// grown inside out, towards each other), both ways antiparallel. A smooth sheet does not
+// pass: a triangle tilted by noise sees its own sheet along its normal, facing its own way; a
+// triangle flipped within the sheet sees nothing that far off its plane. (Where the growth
+// folded a noisy sheet or the layers of merged scans over themselves, the mesh has two
+// sheets facing apart, and the loops there are closed too: see docs/g2s-robustness.md.)
+bool Mesher::RimPass::atThinPart(const std::vector<std::uint32_t>& loop) {
+  bool apart = false;
+  for (size_t s = 0; s < 2 * loop.size() && !apart; ++s) {
+    std::array<std::uint32_t, 3> t;
+    // The triangles on the loop's edges, and the last triangle at each loop vertex.
+    if (s < loop.size()) {
+      const std::uint32_t a = loop[s], b = loop[(s + 1) % loop.size()];
+      if (!thirdPoint(a, b, t[2])) continue;
+      t[0] = a;
+      t[1] = b;
+    } else if (!m_.triangleAt(loop[s - loop.size()], t)) {
+      continue;
+    }
+    const P3 centre = (pts_[t[0]] + pts_[t[1]] + pts_[t[2]]) / 3.0;
+    P3 normal = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
+    const double len = normal.Norm();
+    if (!(len > 0)) continue;
+    normal /= len;
+    const double from = kThinFrom * spacing_, to = kThinTo * spacing_, side = kThinSide * spacing_;
+    const double probe = std::sqrt(0.25 * (to - from) * (to - from) + side * side);
+    for (double dir : {1.0, -1.0}) {
+      if (apart) break;
+      apart = grid_.anyInBall(centre + normal * (dir * 0.5 * (from + to)), probe, [&](std::uint32_t i, double) {
+        const P3 d = pts_[i] - centre;
+        const double h = d * normal;
+        std::array<std::uint32_t, 3> u;
+        if (std::abs(h) < from || std::abs(h) > to || (d - normal * h).SquaredNorm() > side * side) return false;
+        if (m_.isolated(i) || !m_.triangleAt(i, u)) return false;
+        const P3 m = (pts_[u[1]] - pts_[u[0]]) ^ (pts_[u[2]] - pts_[u[0]]);
+        return m * normal < kFacingApartCos * m.Norm();
+      });
+    }
+  }
+  return apart;
+}
+
+// Flaps: a mesh triangle (a, tip, b) on two consecutive loop edges a -> tip -> b whose tip
+// has other triangles (a second fan there, which the non-manifold vertex removal of sec. 4.2
+// would take it off from later, leaving the loop open). It is taken off now, and the loop
+// runs a -> b instead (a -> b is used by the triangle on the other side of the flap's base).
+void Mesher::RimPass::takeOffFlaps(std::vector<std::uint32_t>& loop) {
+  for (bool again = true; again && loop.size() > 3;) {
+    again = false;
+    const size_t kk = loop.size();
+    for (size_t i = 0; i < kk && !again; ++i) {
+      const std::uint32_t a = loop[i], tip = loop[(i + 1) % kk], b = loop[(i + 2) % kk];
+      if (!pem_.used(b, a) || !pem_.used(a, b)) continue;
+      if (!hasOtherEdge(tip, a, b)) continue;
+      const size_t f = findTriangle(a, tip, b);
+      if (f == tri_.size()) continue;
+      takeOff(f);
+      loop.erase(loop.begin() + std::ptrdiff_t((i + 1) % kk));
+      again = changed = true;
+    }
+  }
+}
+
+// A stray triangle (all three edges boundary) held to the mesh by its vertices alone: taken
+// off (sec. 4.2 would take it off later), which opens the loop of the mesh around it for the
+// next round.
+bool Mesher::RimPass::strayTriangle(const std::vector<std::uint32_t>& loop) {
+  if (loop.size() == 3) {
+    const size_t f = findTriangle(loop[0], loop[1], loop[2]);
+    if (f < tri_.size() && hasOtherEdge(loop[0], loop[1], loop[2]) && hasOtherEdge(loop[1], loop[2], loop[0]) &&
+        hasOtherEdge(loop[2], loop[0], loop[1])) {
+      takeOff(f);
       changed = true;
+      return true;
     }
-    if (!changed) break;
+    // A lone triangle's own loop: its closure would be the triangle again, reversed.
+    if (f < tri_.size()) return true;
+  }
+  return false;
+}
+
+bool Mesher::RimPass::isLoneEdge(std::uint32_t u, std::uint32_t v) {
+  return !lonePoints.empty() && std::find(lonePoints.begin(), lonePoints.end(), u) != lonePoints.end() &&
+         std::find(lonePoints.begin(), lonePoints.end(), v) != lonePoints.end();
+}
+
+// The triangle on loop half-edge from -> to (a join, or a mesh triangle not being taken
+// off): its third point. (While triangles are being taken off, by findTriangle: around a
+// triangle taken off, the half-edges of its neighbours make its reverse, which thirdPoint
+// would take.)
+bool Mesher::RimPass::thirdOnLoopEdge(std::uint32_t from, std::uint32_t to, std::uint32_t& x) {
+  for (const auto& t : joins)
+    for (int e = 0; e < 3; ++e)
+      if (t[e] == from && t[(e + 1) % 3] == to) {
+        x = t[(e + 2) % 3];
+        return true;
+      }
+  if (skipIds.empty()) return thirdPoint(from, to, x);
+  bool found = false;
+  pem_.forEachEdge(to, [&](std::uint32_t w, bool out, bool) {
+    if (found || !out || w == from) return;
+    const size_t f = findTriangle(from, to, w);
+    if (f < tri_.size() && std::find(skipIds.begin(), skipIds.end(), idOf[f]) == skipIds.end()) {
+      x = w;
+      found = true;
+    }
+  });
+  return found;
+}
+
+void Mesher::RimPass::gatherNear(const std::vector<std::uint32_t>& l) {
+  nearTri.clear();
+  nearId.clear();
+  P3 centroid(0, 0, 0);
+  for (std::uint32_t v : l) centroid += pts_[v];
+  centroid /= double(l.size());
+  double radius = 0, longest = 0;
+  for (size_t i = 0; i < l.size(); ++i) {
+    radius = std::max(radius, (pts_[l[i]] - centroid).Norm());
+    longest = std::max(longest, (pts_[l[(i + 1) % l.size()]] - pts_[l[i]]).Norm());
+  }
+  lo = hi = pts_[l[0]];
+  for (std::uint32_t v : l)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], pts_[v][a]);
+      hi[a] = std::max(hi[a], pts_[v][a]);
+    }
+  for (size_t k = 0; k < added.size(); ++k) {
+    nearTri.push_back(added[k]);
+    nearId.push_back(addedId[k]);
+  }
+  grid_.forEachInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
+    for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f) {
+      nearTri.push_back(trianglesAt[f]);
+      nearId.push_back(idAt[f]);
+    }
+  });
+}
+
+// Triangle c crosses one of `near` (triangles taken off, and lone triangles being taken, do
+// not count; only those whose box meets the loop's).
+bool Mesher::RimPass::crossesNear(const Triangle& c) {
+  for (size_t k = 0; k < nearTri.size(); ++k) {
+    const Triangle& t = nearTri[k];
+    if (curOf[nearId[k]] == kGone ||
+        (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()))
+      continue;
+    if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+    bool apartBox = false;
+    for (int a = 0; a < 3 && !apartBox; ++a)
+      apartBox = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
+                 std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a];
+    if (!apartBox && facesIntersect(grid_.points(), c, t)) return true;
+  }
+  return false;
+}
+
+// The closure's triangles use the loop's half-edges the other way: polygon q = the loop
+// reversed, triangles (q_i, q_m, q_j) for i < m < j. Least total area (dynamic programming over
+// the polygon's sub-chains), no diagonal between points that have or had an edge, and no
+// triangle folding back onto the mesh triangle across its loop edge; with `avoid`, no
+// triangle crossing a mesh triangle near the loop either (see crossesMesh).
+bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool avoid) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const size_t k = loop.size();
+  const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
+  // Nothing changes while the programme runs, so what its cost asks of the mesh is looked up
+  // once: the third point of the triangle on each loop edge q_a -> q_(a+1) (a = k - 1: to
+  // q_0), and the near triangles crossesNear would test, with their boxes.
+  std::vector<std::uint32_t> third(k, 0);
+  std::vector<char> hasThird(k, 0);
+  for (size_t a = 0; a < k; ++a)
+    hasThird[a] = thirdOnLoopEdge(q[(a + 1) % k], q[a], third[a]) ? 1 : 0;
+  std::vector<Triangle> active;
+  std::vector<std::array<double, 6>> activeBox;
+  if (avoid)
+    for (size_t n = 0; n < nearTri.size(); ++n) {
+      const Triangle& t = nearTri[n];
+      if (curOf[nearId[n]] == kGone ||
+          (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
+        continue;
+      if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+      std::array<double, 6> b;
+      bool apartBox = false;
+      for (int a = 0; a < 3; ++a) {
+        b[a] = std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+        b[3 + a] = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+        apartBox = apartBox || b[3 + a] < lo[a] || b[a] > hi[a];
+      }
+      if (apartBox) continue;
+      active.push_back(t);
+      activeBox.push_back(b);
+    }
+  // crossesNear(c) on the triangles kept above; a triangle whose box is apart from c's cannot
+  // meet it (the same answer as facesIntersect's, without the call).
+  auto crossesActive = [&](const Triangle& c) {
+    double clo[3], chi[3];
+    for (int a = 0; a < 3; ++a) {
+      clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+      chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+    }
+    const std::vector<P3>& pos = grid_.points();
+    std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
+    for (size_t n = 0; n < active.size(); ++n) {
+      const std::array<double, 6>& b = activeBox[n];
+      if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
+        continue;
+      if (!plane) plane.reset(new PlaneOf(pos, c));
+      const Triangle& t = active[n];
+      // The cheap sufficient tests of g2s_apart.h first (they change no decision).
+      if (!apartByPlane(pos, *plane, c, t) && !apartByPlane(pos, t, c) && !apartInShadow(pos, *plane, c, t) &&
+          facesIntersect(pos, c, t))
+        return true;
+    }
+    return false;
+  };
+  auto cost = [&](size_t i, size_t m, size_t j) {
+    const P3 &A = pts_[q[i]], &B = pts_[q[m]], &C = pts_[q[j]];
+    const P3 nt = (B - A) ^ (C - A);
+    const double len = nt.Norm();
+    if (!(len > 0)) return inf;
+    // Loop edges of this triangle: (i, m) when m = i + 1, (m, j) when j = m + 1, (j, i) when
+    // i = 0 and j = k - 1; each is q_a -> q_b here, used as q_b -> q_a by the mesh.
+    const std::pair<size_t, size_t> edges[3] = {{i, m}, {m, j}, {j, i}};
+    for (const auto& e : edges) {
+      const std::uint32_t u = q[e.first], v = q[e.second];
+      const bool loopEdge = (e.second == e.first + 1) || (e.first == k - 1 && e.second == 0);
+      if (!loopEdge) {
+        if (pem_.hasEntry(u, v) && !isLoneEdge(u, v)) return inf;
+        continue;
+      }
+      if (hasThird[e.first]) {
+        const std::uint32_t x = third[e.first];
+        const P3 meshNormal = (pts_[u] - pts_[v]) ^ (pts_[x] - pts_[v]);
+        const double ml = meshNormal.Norm();
+        if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
+      }
+    }
+    if (avoid && crossesActive(Triangle{q[i], q[m], q[j]})) return inf;
+    return 0.5 * len;
+  };
+  std::vector<double> best(k * k, 0.0);
+  std::vector<size_t> split(k * k, 0);
+  for (size_t span = 2; span < k; ++span)
+    for (size_t i = 0; i + span < k; ++i) {
+      const size_t j = i + span;
+      double b = inf;
+      for (size_t m = i + 1; m < j; ++m) {
+        if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
+        const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
+        if (c < b) {
+          b = c;
+          split[i * k + j] = m;
+        }
+      }
+      best[i * k + j] = b;
+    }
+  closure.clear();
+  if (!(best[k - 1] < inf)) return false;
+  std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
+  while (!stack.empty()) {
+    const size_t i = stack.back().first, j = stack.back().second;
+    stack.pop_back();
+    if (j < i + 2) continue;
+    const size_t m = split[i * k + j];
+    closure.push_back({q[i], q[m], q[j]});
+    stack.emplace_back(i, m);
+    stack.emplace_back(m, j);
+  }
+  closure.insert(closure.end(), joins.begin(), joins.end());
+  return true;
+}
+
+bool Mesher::RimPass::crossesMesh() {
+  for (size_t i = 0; i < closure.size(); ++i)
+    for (size_t j = i + 1; j < closure.size(); ++j)
+      if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
+                         Triangle{closure[j][0], closure[j][1], closure[j][2]}))
+        return true;
+  for (const auto& c : closure)
+    if (crossesNear(Triangle{c[0], c[1], c[2]})) return true;
+  return false;
+}
+
+// A free point: unused, or a point of a lone triangle (a triangle whose points have no other
+// edge: a seed that grew nothing, see above).
+bool Mesher::RimPass::lonePartners(std::uint32_t v, std::uint32_t& x, std::uint32_t& y) {
+  // (x, y: the triangle is (v, x, y), v -> x its half-edge leaving v.)
+  int count = 0, outs = 0;
+  pem_.forEachEdge(v, [&](std::uint32_t w, bool out, bool) {
+    ++count;
+    outs += out;
+    (out ? x : y) = w;
+  });
+  return count == 2 && outs == 1 && !hasOtherEdge(x, v, y) && !hasOtherEdge(y, v, x) &&
+         findTriangle(v, x, y) < tri_.size();
+}
+
+bool Mesher::RimPass::freePoint(std::uint32_t i) {
+  std::uint32_t x, y;
+  for (const auto& t : joins)
+    if (t[2] == i) return false;
+  return m_.isolated(i) || lonePartners(i, x, y);
+}
+
+// A free point inside triangle (a, b, c) (as in unusedPointInside: projecting inside it, at
+// most the radius of its smallest enclosing ball from its plane), or ~0u.
+std::uint32_t Mesher::RimPass::freeInside(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const P3 &A = pts_[a], &B = pts_[b], &C = pts_[c];
+  const P3 n = (B - A) ^ (C - A);
+  const double n2 = n.SquaredNorm();
+  std::uint32_t found = ~0u;
+  if (!(n2 > 0)) return found;
+  const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
+  P3 centre;
+  double r2;
+  if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
+  else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
+  else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
+  else {
+    Ball ball;
+    if (!circumBall(A, B, C, ball)) return found;
+    centre = ball.centre;
+    r2 = ball.radius2;
+  }
+  grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
+    // (The geometric tests first: most points of the ball are used, and freePoint asks the
+    // point-edge map; the same point is found.)
+    if (i == a || i == b || i == c) return false;
+    const P3& X = pts_[i];
+    const double h = (X - A) * n;
+    if (h * h > r2 * n2) return false;
+    if (((B - A) ^ (X - A)) * n > 0 && ((C - B) ^ (X - B)) * n > 0 && ((A - C) ^ (X - C)) * n > 0 &&
+        freePoint(i)) {
+      found = i;
+      return true;
+    }
+    return false;
+  });
+  return found;
+}
+
+// Joins free point p to the loop edge a -> b whose triangle (b, a, p) has the smallest
+// circumradius among those that do not fold back onto the triangle on a -> b.
+bool Mesher::RimPass::join(std::vector<std::uint32_t>& l, std::uint32_t p) {
+  const double inf = std::numeric_limits<double>::infinity();
+  size_t at = l.size();
+  double bestR2 = inf;
+  for (size_t i = 0; i < l.size(); ++i) {
+    const std::uint32_t a = l[i], b = l[(i + 1) % l.size()];
+    std::uint32_t x;
+    const P3 nt = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
+    const double len = nt.Norm();
+    if (!(len > 0)) continue;
+    if (thirdOnLoopEdge(a, b, x)) {
+      const P3 meshNormal = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
+      const double ml = meshNormal.Norm();
+      if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) continue;
+    }
+    Ball ball;
+    if (!circumBall(pts_[b], pts_[a], pts_[p], ball) || !(ball.radius2 < bestR2)) continue;
+    bestR2 = ball.radius2;
+    at = i;
+  }
+  if (at == l.size()) return false;
+  joins.push_back({l[(at + 1) % l.size()], l[at], p});
+  l.insert(l.begin() + std::ptrdiff_t(at + 1), p);
+  return true;
+}
+
+// Closes loop l: its least-area triangulation, then (when that crosses the mesh or itself)
+// the least-area one among those whose triangles cross no mesh triangle; a free point inside
+// a triangle of the closure is joined to the loop first (at most kMaxJoins, with the other
+// points of its lone triangle), as the growth grows an edge to an unused point inside a loop.
+bool Mesher::RimPass::closeLoop(std::vector<std::uint32_t>& l) {
+  const std::vector<std::uint32_t> original(l);
+  gatherNear(original); // (the same for both tries: nothing in the mesh changes between them)
+  for (bool avoid : {false, true}) {
+    l = original;
+    joins.clear();
+    lonePoints.clear();
+    for (;;) {
+      if (!triangulate(l, avoid)) break;
+      std::uint32_t p = ~0u;
+      for (size_t t = 0; t < closure.size() && p == ~0u; ++t) p = freeInside(closure[t][0], closure[t][1], closure[t][2]);
+      if (p == ~0u) {
+        if (!crossesMesh()) return true;
+        break;
+      }
+      if (joins.size() >= kMaxJoins) break;
+      std::uint32_t x, y;
+      if (!m_.isolated(p) && lonePartners(p, x, y)) {
+        if (joins.size() + 3 > kMaxJoins) break;
+        lonePoints.insert(lonePoints.end(), {p, x, y});
+        if (!join(l, p) || !join(l, x) || !join(l, y)) break;
+      } else if (!join(l, p)) {
+        break;
+      }
+    }
+  }
+  l = original;
+  joins.clear();
+  lonePoints.clear();
+  return false;
+}
+
+// Folded mesh: where the mesh triangle (a, b, x) on loop edge a -> b lies folded over the
+// hole, facing with the loop's Newell normal (cosine above -kClosureFoldCos; the mesh around
+// a hole faces against it, a hole's boundary running clockwise seen from outside), no
+// closure can join it. Up to kMaxUnfolds such triangles, the one facing most with it first,
+// are taken off when the loop then runs a -> x -> b and closes.
+bool Mesher::RimPass::closeUnfolded(std::vector<std::uint32_t>& loop) {
+  bool closed = false;
+  std::vector<std::uint32_t> unfolded(loop);
+  std::vector<std::array<std::uint32_t, 3>> off;
+  for (int unfold = 0; !closed && unfold < kMaxUnfolds; ++unfold) {
+    const size_t kk = unfolded.size();
+    P3 newell(0, 0, 0);
+    for (size_t i = 0; i < kk; ++i) newell += pts_[unfolded[i]] ^ pts_[unfolded[(i + 1) % kk]];
+    const double newellNorm = newell.Norm();
+    if (!(newellNorm > 0)) break;
+    double worst = -kClosureFoldCos;
+    size_t at = kk;
+    std::uint32_t third = 0;
+    for (size_t i = 0; i < kk; ++i) {
+      const std::uint32_t a = unfolded[i], b = unfolded[(i + 1) % kk];
+      std::uint32_t x;
+      if (!thirdPoint(a, b, x) || std::find(unfolded.begin(), unfolded.end(), x) != unfolded.end()) continue;
+      if (!pem_.used(a, x) || !pem_.used(x, b) || !hasOtherEdge(x, a, b)) continue;
+      const P3 nt = (pts_[b] - pts_[a]) ^ (pts_[x] - pts_[a]);
+      const double len = nt.Norm();
+      if (!(len > 0)) continue;
+      const double c = (nt * newell) / (len * newellNorm);
+      if (c > worst) {
+        worst = c;
+        at = i;
+        third = x;
+      }
+    }
+    if (at == kk) break;
+    off.push_back({unfolded[at], unfolded[(at + 1) % kk], third});
+    unfolded.insert(unfolded.begin() + std::ptrdiff_t(at + 1), third);
+    // (The triangles taken off do not count in the crossing test.)
+    {
+      const size_t f = findTriangle(off.back()[0], off.back()[1], off.back()[2]);
+      if (f < tri_.size()) skipIds.push_back(idOf[f]);
+    }
+    closed = closeLoop(unfolded);
+  }
+  skipIds.clear();
+  if (closed) {
+    for (const auto& t : off) {
+      const size_t f = findTriangle(t[0], t[1], t[2]);
+      if (f < tri_.size()) takeOff(f);
+    }
+    loop.swap(unfolded);
+    changed = true;
+  }
+  return closed;
+}
+
+void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
+  // Every point needs room for the closure's new edges.
+  bool clear = true;
+  const size_t k = loop.size();
+  for (std::uint32_t v : loop) clear = clear && pem_.entries(v) + k <= pem_.capacity();
+  if (!clear) return;
+  for (std::uint32_t v : lonePoints) {
+    std::uint32_t x, y;
+    if (!lonePartners(v, x, y)) continue;
+    const size_t f = findTriangle(v, x, y);
+    if (f < tri_.size()) takeOff(f);
+  }
+  for (const auto& t : closure) {
+    m_.addTriangle(t[0], t[1], t[2]);
+    added.push_back(Triangle{t[0], t[1], t[2]});
+    addedId.push_back(static_cast<std::uint32_t>(curOf.size()));
+    idOf.push_back(static_cast<std::uint32_t>(curOf.size()));
+    curOf.push_back(static_cast<std::uint32_t>(tri_.size() - 1));
+  }
+  ++m_.rimLoopsClosed_;
+  changed = true;
+}
+
+void Mesher::closeRimLoops() {
+  // A few rounds: taking off a stray piece (see strayTriangle) opens the loop of the mesh around it.
+  for (int round = 0; round < kRounds; ++round) {
+    RimPass pass(*this);
+    if (!pass.round()) break;
   }
   // The closures' new edges (the diagonals) were queued by addTriangle and then closed by their
   // second triangle: the queue only drains.
