@@ -795,6 +795,24 @@ void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
   const size_t k = loop.size();
   for (std::uint32_t v : loop) clear = clear && pem_.entries(v) + k <= pem_.capacity();
   if (!clear) return;
+  // Every half-edge of the closure must be free in the point-edge map as it will be once the lone
+  // triangles are off, and used by one closure triangle only. The programme's checks do not
+  // always see it (the joins' edges; found by fuzz_ply, input in fuzz/regressions/ply/): such a
+  // closure is not made, and the loop stays open.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> freed, taken;
+  for (std::uint32_t v : lonePoints) {
+    std::uint32_t x, y;
+    if (lonePartners(v, x, y) && findTriangle(v, x, y) < tri_.size())
+      freed.insert(freed.end(), {{v, x}, {x, y}, {y, v}});
+  }
+  for (const auto& t : closure)
+    for (int e = 0; e < 3; ++e) {
+      const std::pair<std::uint32_t, std::uint32_t> h(t[e], t[(e + 1) % 3]);
+      if (h.first == h.second || std::find(taken.begin(), taken.end(), h) != taken.end() ||
+          (pem_.used(h.first, h.second) && std::find(freed.begin(), freed.end(), h) == freed.end()))
+        return;
+      taken.push_back(h);
+    }
   for (std::uint32_t v : lonePoints) {
     std::uint32_t x, y;
     if (!lonePartners(v, x, y)) continue;
