@@ -742,6 +742,8 @@ TEST(G2SBuild, InvalidParametersAreRefused) {
   refuses([](g2s::Params& p) { p.sizeLevels = 0; });
   refuses([](g2s::Params& p) { p.flatnessLevels = 0; });
   refuses([](g2s::Params& p) { p.flatnessLevels = 1000; });
+  refuses([](g2s::Params& p) { p.maxHoleEdges = -1; });
+  refuses([](g2s::Params& p) { p.minComponentFaces = -1; });
   // maxSearchRadiusFactor 0 means the default.
   g2s::Params p = g2s::suggestParams(*cloud);
   p.maxSearchRadiusFactor = 0;

@@ -44,6 +44,18 @@ inline bool circumBall(const P3& a, const P3& b, const P3& c, Ball& ball) {
   return std::isfinite(ball.radius2);
 }
 
+// The smallest ball holding a, b and c: the ball on the longest edge for a right or obtuse
+// triangle, else the circumball (unlike circumBall, it stays at the triangle's own scale for a
+// sliver). False when the triangle is degenerate.
+inline bool smallestEnclosingBall(const P3& a, const P3& b, const P3& c, Ball& ball) {
+  const double ab2 = (b - a).SquaredNorm(), bc2 = (c - b).SquaredNorm(), ca2 = (a - c).SquaredNorm();
+  if (ab2 >= bc2 + ca2) ball.centre = (a + b) * 0.5, ball.radius2 = 0.25 * ab2;
+  else if (bc2 >= ab2 + ca2) ball.centre = (b + c) * 0.5, ball.radius2 = 0.25 * bc2;
+  else if (ca2 >= ab2 + bc2) ball.centre = (c + a) * 0.5, ball.radius2 = 0.25 * ca2;
+  else return circumBall(a, b, c, ball);
+  return true;
+}
+
 // Unit normal of triangle (a, b, c) by the right-hand rule; (0,0,0) when degenerate.
 inline P3 unitNormal(const P3& a, const P3& b, const P3& c) {
   P3 n = (b - a) ^ (c - a);

@@ -325,18 +325,10 @@ bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c
   const P3 n = (B - A) ^ (C - A);
   const double n2 = n.SquaredNorm();
   if (!(n2 > 0)) return false;
-  const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
-  P3 centre;
-  double r2;
-  if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
-  else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
-  else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
-  else {
-    Ball ball;
-    if (!circumBall(A, B, C, ball)) return false;
-    centre = ball.centre;
-    r2 = ball.radius2;
-  }
+  Ball ball;
+  if (!smallestEnclosingBall(A, B, C, ball)) return false;
+  const P3& centre = ball.centre;
+  const double r2 = ball.radius2;
   return grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
     if (!isolated(i)) return false;
     const P3& X = pts_[i];

@@ -641,18 +641,10 @@ std::uint32_t Mesher::RimPass::freeInside(std::uint32_t a, std::uint32_t b, std:
   const double n2 = n.SquaredNorm();
   std::uint32_t found = ~0u;
   if (!(n2 > 0)) return found;
-  const double ab2 = (B - A).SquaredNorm(), bc2 = (C - B).SquaredNorm(), ca2 = (A - C).SquaredNorm();
-  P3 centre;
-  double r2;
-  if (ab2 >= bc2 + ca2) centre = (A + B) * 0.5, r2 = 0.25 * ab2;
-  else if (bc2 >= ab2 + ca2) centre = (B + C) * 0.5, r2 = 0.25 * bc2;
-  else if (ca2 >= ab2 + bc2) centre = (C + A) * 0.5, r2 = 0.25 * ca2;
-  else {
-    Ball ball;
-    if (!circumBall(A, B, C, ball)) return found;
-    centre = ball.centre;
-    r2 = ball.radius2;
-  }
+  Ball ball;
+  if (!smallestEnclosingBall(A, B, C, ball)) return found;
+  const P3& centre = ball.centre;
+  const double r2 = ball.radius2;
   grid_.anyInBall(centre, std::sqrt(2.0 * r2), [&](std::uint32_t i, double) {
     // (The geometric tests first: most points of the ball are used, and freePoint asks the
     // point-edge map; the same point is found.)
