@@ -61,6 +61,20 @@ const double kGapFoldCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 constexpr int kGapSheetPoints = 5;
 constexpr double kGapSheetReach = 3.0;
 const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
+// - under a sheet (rims; branch thin): a candidate kUnderGap spacings or more behind the front
+//   triangle, on a surface, is refused when a point of the mesh lies in front of the new triangle
+//   (in the cylinder over its circumcircle, kSheetGap spacings to kUnderReach circumradii along its
+//   normal, and kUnderFrontGap spacings or more in front of the front triangle's plane), with at
+//   least kUnderSheetEdges edges and its triangle facing the same way (cosine above
+//   kUnderSameWayCos): the new triangle would lie in the material under that sheet. At the rim of
+//   a plate 3 spacings thick, a front triangle across the top-side corner otherwise continued to a
+//   bottom point 0.8-1.7 spacings behind it, through the corner of the material (fold 20-42
+//   degrees, under the fold rules above), and the bottom grew inside out from it.
+constexpr double kUnderGap = 0.5;
+constexpr double kUnderReach = 3.0;
+constexpr double kUnderFrontGap = 1.0;
+constexpr std::uint32_t kUnderSheetEdges = 4;
+constexpr double kUnderSameWayCos = 0.25;
 
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 
@@ -445,9 +459,11 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
           emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
       continue;
     const Candidate cand = accepted(A, B, id, level, frontNormal, frontNorm, false);
-    if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
-        ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
-         foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) {
+    if ((__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
+         ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
+          foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) ||
+        (__builtin_expect((pts_[id] - A) * frontNormal <= -kUnderGap * spacing_ * frontNorm, 0) &&
+         growsUnderASheet(a, b, id, frontNormal, frontNorm))) {
       ++foldsRefused_;
       continue;
     }
@@ -524,7 +540,9 @@ GROWTH_G2S_INLINE Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std
     if (found == 1) {
       if (!topologyAllows(a, b, c, scored_[0].id)) continue;
       const Candidate cand = accepted(A, B, scored_[0].id, level, frontNormal, frontNorm, true);
-      if (__builtin_expect(cand.cosBeta < kGapFoldCos, 0) && foldsAcrossAGap(a, b, scored_[0].id, dir, frontNormal, frontNorm)) {
+      if ((__builtin_expect(cand.cosBeta < kGapFoldCos, 0) && foldsAcrossAGap(a, b, scored_[0].id, dir, frontNormal, frontNorm)) ||
+          (__builtin_expect((pts_[scored_[0].id] - A) * frontNormal <= -kUnderGap * spacing_ * frontNorm, 0) &&
+           growsUnderASheet(a, b, scored_[0].id, frontNormal, frontNorm))) {
         ++foldsRefused_;
         continue;
       }
@@ -589,6 +607,43 @@ bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t 
     if (len > 0 && (frontNormal * n) > kFlatAheadCos * frontNorm * len) return true;
   }
   return false;
+}
+
+bool Mesher::growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
+                              double frontNorm) const {
+  const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
+  // p is a point of a surface (kGapSheetPoints others within kGapSheetReach spacings), not a
+  // stray one: where outliers float about a surface, their candidates are left to the G2S rules.
+  int near = 0;
+  grid_.anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
+    near += i != p;
+    return near >= kGapSheetPoints;
+  });
+  if (near < kGapSheetPoints) return false;
+  // The new triangle (b, a, p), its circumball and unit normal (outwards, as the component).
+  Ball ball;
+  if (!circumBall(B, A, Q, ball)) return false;
+  const P3 n = unitNormal(B, A, Q);
+  if (isZero(n)) return false;
+  const double reach = kUnderReach * std::sqrt(ball.radius2);
+  const double gapNew = kSheetGap * spacing_, gapFront = kUnderFrontGap * spacing_ * frontNorm;
+  // A point of the mesh inside the cylinder over the triangle's circumcircle, in front of it by
+  // kSheetGap spacings up to kUnderReach circumradii, and in front of the front triangle too,
+  // whose (last) triangle faces the same way: the triangle lies under a sheet of the mesh, in the
+  // material, and would grow the other sheet inside out. Two surfaces facing each other across
+  // the air face opposite ways; the point's own sheet, seen past a tilted triangle, lies about the
+  // front triangle's plane; the points of a stray triangle have fewer than kUnderSheetEdges edges.
+  return grid_.anyInBall(ball.centre, std::sqrt(ball.radius2 + reach * reach), [&](std::uint32_t i, double) {
+    if (i == a || i == b || i == p || edgeCount_[i] < kUnderSheetEdges) return false;
+    const P3 d = pts_[i] - ball.centre;
+    const double h = d * n;
+    if (h < gapNew || h > reach || !strictlyInside(d.SquaredNorm() - h * h, ball.radius2)) return false;
+    if ((pts_[i] - A) * frontNormal < gapFront) return false;
+    std::array<std::uint32_t, 3> t;
+    if (!triangleAt(i, t)) return false;
+    const P3 m = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
+    return m * n > kUnderSameWayCos * m.Norm();
+  });
 }
 
 bool Mesher::foldsAcrossAGap(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& dir, const P3& frontNormal,

@@ -279,6 +279,10 @@ private:
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
+  // Candidate (b, a, p), p kUnderGap or more behind the front triangle, would lie in the material
+  // under a sheet of the mesh facing the same way (see kUnderGap in g2s_mesher.cpp).
+  GROWTH_G2S_COLD bool growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
+                                        double frontNorm) const;
   // Candidate (b, a, p) folds across a gap of the front's sheet to another sheet parallel to it
   // (p at least kFoldGap behind the front triangle, on such a sheet, and the front's sheet going on
   // flat beyond p).
