@@ -537,11 +537,16 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     double thickness;
     size_t points;
     std::uint64_t seed;
-    size_t maxHoles; // measured: 2, 0, 1, 0, 0, 0, 0, 0
+    size_t maxHoles; // measured: 0 on each
+    size_t maxInward = 0; // faces facing in on the large faces, off the rims (measured: 0, and 4 of
+                          // 200,000 on the 100k sampling, on the top 2.2-2.4 rim widths in)
   };
-  for (const Case c : {Case{0.025, 30000, 1, 2}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 1},
+  // Seed 10 and the 100k sampling are the rim crossings the under-a-sheet rule stops
+  // (g2s_mesher.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
+  for (const Case c : {Case{0.025, 30000, 1, 0}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 0},
                        Case{0.025, 50000, 1, 0}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 0},
-                       Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}}) {
+                       Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}, Case{0.025, 30000, 10, 0},
+                       Case{0.0135, 100000, 1, 0, 4}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;
@@ -555,7 +560,7 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     EXPECT_GT(spacings, 2.9);
     EXPECT_LT(spacings, 4.1);
     const SlabFacing facing = slabFacing(r->mesh, spec.slabHalfSize, spec.slabThickness);
-    EXPECT_EQ(facing.inward, 0u);
+    EXPECT_LE(facing.inward, c.maxInward);
     EXPECT_LE(facing.inwardAtRims, r->stat.faces / 4000); // 15 of 60,000 faces
     EXPECT_LE(r->topo.components, c.maxHoles == 0 ? 1u : 2u);
     // At most 3 points left out by the growth, plus those of the small pieces dropped (a piece of
