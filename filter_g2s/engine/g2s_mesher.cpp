@@ -56,10 +56,14 @@ const double kFlatAheadCos = std::cos(10.0 * 3.14159265358979323846 / 180.0);
 //   its search region or not, kFoldGap spacings or more behind the front triangle, whose point lies
 //   on a sheet parallel to the front's (kGapSheetPoints points near it in that plane), is refused
 //   when the front's sheet goes on flat beyond it (a wider ball than the search sphere: in a gap of
-//   the sheet, the search sphere can hold the other sheet's point alone).
+//   the sheet, the search sphere can hold the other sheet's point alone). kGapSheetReach is 4
+//   spacings: within 3, about 7 points of a sheet are expected (the mean spacing is the mean
+//   nearest-neighbour distance, about half the edge length), and where the other sheet's sampling
+//   is sparse too, as under the gap the front looks through, only 3 were found (a handle through
+//   a slab 3 spacings thick, 100k points seed 1).
 const double kGapFoldCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 constexpr int kGapSheetPoints = 5;
-constexpr double kGapSheetReach = 3.0;
+constexpr double kGapSheetReach = 4.0;
 const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 // - under a sheet (rims; branch thin): a candidate kUnderGap spacings or more behind the front
 //   triangle, on a surface, is refused when a point of the mesh lies in front of the new triangle
