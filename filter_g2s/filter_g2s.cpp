@@ -139,6 +139,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["holes_closed"] = int(st.holesClosed);
   outputs["hole_faces_added"] = int(st.holeFacesAdded);
   outputs["hole_faces_replaced"] = int(st.holeFacesReplaced);
+  outputs["hole_spikes_removed"] = int(st.holeSpikes);
   outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["seconds"] = double(st.seconds);
 
@@ -152,8 +153,8 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
-      "(%zu faces at them replaced)",
-      st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced);
+      "(%zu faces at them replaced; %zu spike vertices with two faces taken out)",
+      st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
   if (st.componentsDropped > 0)
     Log("Robust G2S: %zu piece%s of fewer than %d faces dropped (%zu faces): triangles among stray points",
         st.componentsDropped, st.componentsDropped == 1 ? "" : "s", p.minComponentFaces, st.componentFacesDropped);

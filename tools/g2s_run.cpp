@@ -178,8 +178,8 @@ int main(int argc, char** argv) {
     std::printf("faces_removed: %zu\n", st.facesRemoved);
     std::printf("non_manifold_vertices_left: %zu\n", st.nonManifoldVertices);
     std::printf("self_intersection_faces_removed: %zu\n", st.selfIntersectionFacesRemoved);
-    std::printf("holes_closed: %zu\nhole_faces_added: %zu\nhole_faces_replaced: %zu\n", st.holesClosed,
-                st.holeFacesAdded, st.holeFacesReplaced);
+    std::printf("holes_closed: %zu\nhole_faces_added: %zu\nhole_faces_replaced: %zu\nhole_spikes_removed: %zu\n",
+                st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
     std::printf("pieces_dropped: %zu\npiece_faces_dropped: %zu\n", st.componentsDropped, st.componentFacesDropped);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("seconds: %.4f\n", best);

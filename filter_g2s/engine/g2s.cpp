@@ -92,6 +92,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
     stat.holesClosed = hs.closed;
     stat.holeFacesAdded = hs.facesAdded;
     stat.holeFacesReplaced = hs.facesReplaced;
+    stat.holeSpikes = hs.spikes;
   }
   // The search structures go before the output's memory is taken (the repairs search).
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());

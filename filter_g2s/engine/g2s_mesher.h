@@ -140,12 +140,15 @@ public:
     size_t loops = 0;       // boundary loops of at most maxEdges edges, tried
     size_t closed = 0;      // of them, closed
     size_t facesAdded = 0;
-    size_t facesReplaced = 0; // faces at a loop taken out so that it could close (one per loop at most)
+    size_t facesReplaced = 0; // faces at a loop taken out so that it could close (one per loop, two at a spike)
+    size_t spikes = 0;        // loop vertices taken out with their two faces (left unused)
   };
   // Closes the boundary loops of at most maxEdges edges by ear cutting on their vertices; every
   // new triangle keeps each edge at two triangles with consistent orientation, each vertex one fan,
   // and intersects no face (exactly). A loop that cannot be closed whole is tried again with one of
-  // its faces taken out (facesReplaced); one that cannot be closed either way is left as it was.
+  // its faces taken out (facesReplaced), then at a spike (a loop vertex with only its two loop
+  // faces, sharing their third point) with that vertex and both faces out (spikes); one that cannot
+  // be closed is left as it was.
   HoleStat closeHoles(int maxEdges);
   // Removes the connected pieces of fewer than minFaces live faces but the largest
   // (growth::dropSmallComponents) from the mesh and the point-edge map. Returns the pieces removed;

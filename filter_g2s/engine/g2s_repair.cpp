@@ -27,7 +27,9 @@
 // or not at all; one that cannot be closed is tried again with one of its faces taken out (in loop
 // order, the first that lets it close), when that face's third point is inside the mesh: the point
 // joins the loop and leaves it with a closed fan again. On the noisy clouds most loops that failed
-// were loops of three whose triangle met a face nearby.
+// were loops of three whose triangle met a face nearby. Last, a loop vertex with only the two faces
+// on its loop edges, sharing their third point (a spike), is taken out of the mesh with both faces
+// and the loop runs through that point (one point left unused per such loop).
 #include "g2s_mesher.h"
 
 #include "g2s_apart.h"
@@ -643,6 +645,40 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
     } else {
       alive[f] = 1;
       pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    }
+  }
+  // A spike: a loop vertex whose only faces are the two on its loop edges, with the same third
+  // point inside the mesh (a point the growth joined by two triangles at a corner, whose one
+  // closing triangle folds back). Both faces are taken out, the vertex is left out of the mesh,
+  // and the loop runs through the third point instead, which leaves with a closed fan again.
+  for (size_t i = 0; i < m && !closed; ++i) {
+    const size_t h = (i + m - 1) % m;
+    const std::uint32_t u = original[h], v = original[i], w = original[(i + 1) % m];
+    const std::uint32_t f0 = face_[h], f1 = face_[i];
+    if (f0 == f1 || !alive[f0] || !alive[f1] || pem.degree(v) != 3) continue;
+    const std::uint32_t o = thirdPoint(f0, u, v);
+    if (o != thirdPoint(f1, v, w) || o == u || o == w || !pem.closed(o)) continue;
+    for (std::uint32_t f : {f0, f1}) {
+      alive[f] = 0;
+      pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    }
+    const std::int64_t g0 = faceOn(u, o), g1 = faceOn(o, w);
+    if (g0 >= 0 && g1 >= 0 && pem.isolated(v)) {
+      setUp();
+      loop_[i] = o;
+      opp_[h] = thirdPoint(static_cast<std::uint32_t>(g0), u, o);
+      opp_[i] = thirdPoint(static_cast<std::uint32_t>(g1), o, w);
+      gatherNearLoop();
+      closed = close();
+    }
+    if (closed) {
+      st.facesReplaced += 2;
+      ++st.spikes;
+    } else {
+      for (std::uint32_t f : {f0, f1}) {
+        alive[f] = 1;
+        pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
+      }
     }
   }
   if (closed) commit(st);
