@@ -52,6 +52,8 @@ constexpr double kSuspectReach = 1.0;
 constexpr double kLongEdgeSpacings = 3.0;
 // A hole triangle may fold over a neighbouring face by at most this angle.
 constexpr double kMaxFoldDegrees = 135.0;
+// Hole pass: spikes taken out of one loop at most (each leaves a point out of the mesh).
+constexpr size_t kMaxSpikes = 4;
 } // namespace
 
 void Mesher::boundarySuspects(std::vector<std::uint32_t>& out) const {
@@ -647,35 +649,56 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
       pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
     }
   }
-  // A spike: a loop vertex whose only faces are the two on its loop edges, with the same third
-  // point inside the mesh (a point the growth joined by two triangles at a corner, whose one
-  // closing triangle folds back). Both faces are taken out, the vertex is left out of the mesh,
-  // and the loop runs through the third point instead, which leaves with a closed fan again.
-  for (size_t i = 0; i < m && !closed; ++i) {
-    const size_t h = (i + m - 1) % m;
-    const std::uint32_t u = original[h], v = original[i], w = original[(i + 1) % m];
-    const std::uint32_t f0 = face_[h], f1 = face_[i];
-    if (f0 == f1 || !alive[f0] || !alive[f1] || pem.degree(v) != 3) continue;
-    const std::uint32_t o = thirdPoint(f0, u, v);
-    if (o != thirdPoint(f1, v, w) || o == u || o == w || !pem.closed(o)) continue;
-    for (std::uint32_t f : {f0, f1}) {
-      alive[f] = 0;
-      pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
-    }
-    const std::int64_t g0 = faceOn(u, o), g1 = faceOn(o, w);
-    if (g0 >= 0 && g1 >= 0 && pem.isolated(v)) {
-      setUp();
-      loop_[i] = o;
-      opp_[h] = thirdPoint(static_cast<std::uint32_t>(g0), u, o);
-      opp_[i] = thirdPoint(static_cast<std::uint32_t>(g1), o, w);
+  // Spikes: a loop vertex whose only faces are the two on its loop edges, with the same third point
+  // inside the mesh (a point the growth joined by two triangles at a corner, whose one closing
+  // triangle folds back). Both faces are taken out, the vertex leaves the mesh, and the loop runs
+  // through the third point instead, which leaves with a closed fan again. Spikes are taken out one
+  // after another (at most kMaxSpikes per loop), the loop tried after each; all are put back if it
+  // never closes.
+  if (!closed) {
+    std::vector<std::uint32_t> cur = original, removed;
+    size_t spikes = 0;
+    while (!closed && spikes < kMaxSpikes) {
+      const size_t mc = cur.size();
+      bool found = false;
+      for (size_t i = 0; i < mc && !found; ++i) {
+        const size_t h = (i + mc - 1) % mc;
+        const std::uint32_t u = cur[h], v = cur[i], w = cur[(i + 1) % mc];
+        const std::int64_t f0 = faceOn(u, v), f1 = faceOn(v, w);
+        if (f0 < 0 || f1 < 0 || f0 == f1 || pem.degree(v) != 3) continue;
+        const std::uint32_t o = thirdPoint(static_cast<std::uint32_t>(f0), u, v);
+        if (o != thirdPoint(static_cast<std::uint32_t>(f1), v, w) || !pem.closed(o) ||
+            std::find(cur.begin(), cur.end(), o) != cur.end())
+          continue;
+        for (std::int64_t f : {f0, f1}) {
+          alive[std::size_t(f)] = 0;
+          const Triangle& t = tri[std::size_t(f)];
+          pem.removeTriangle(t[0], t[1], t[2]);
+          removed.push_back(static_cast<std::uint32_t>(f));
+        }
+        cur[i] = o;
+        ++spikes;
+        found = true;
+      }
+      if (!found) break;
+      // The loop through the third points, with the faces on its half-edges.
+      loop_ = cur;
+      opp_.resize(mc);
+      bool complete = true;
+      for (size_t i = 0; i < mc && complete; ++i) {
+        const std::int64_t f = faceOn(cur[i], cur[(i + 1) % mc]);
+        complete = f >= 0;
+        if (complete) opp_[i] = thirdPoint(static_cast<std::uint32_t>(f), cur[i], cur[(i + 1) % mc]);
+      }
+      if (!complete) break;
       gatherNearLoop();
       closed = close();
     }
     if (closed) {
-      st.facesReplaced += 2;
-      ++st.spikes;
+      st.facesReplaced += removed.size();
+      st.spikes += spikes;
     } else {
-      for (std::uint32_t f : {f0, f1}) {
+      for (std::uint32_t f : removed) {
         alive[f] = 1;
         pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
       }
