@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace growth {
 namespace g2s {
@@ -367,31 +368,40 @@ GROWTH_G2S_INLINE size_t Mesher::spherePoints(std::uint32_t a, std::uint32_t b, 
   size_t count = 0;
   const P3 AB = A - B;
   const double collinear = 1e-20 * edge2;
-  for (size_t h = 0; h < hits; ++h) {
-    const std::uint32_t id = near_.hit[h];
-    const P3& q = pts_[id];
-    // In the search sphere.
-    const bool in = !((q - centre).SquaredNorm() > r2);
-    found += in;
-    // An interior point counts as found and for G2S balls, never as a candidate.
-    const bool candidate = in & !interior(id);
-    // A point of the previous level's sphere was a candidate there and was rejected by the
-    // topological or the G2S test; both depend on the point, the edge and the mesh only, which
-    // have not changed since, so the G2S ranking below would reject it again. Only the points
-    // new at this level are ranked: among them the order is that of the whole list, so the
-    // choice is the same. (The same exact test as at that level decides membership.) It still
-    // counts as found, and when it is the only point found it is taken directly below, as the
-    // single point of the region (the spheres are nested on the growing side only, so a level
-    // can hold fewer points than the one before).
-    const bool previous = (previousR2 >= 0) & ((q - previousCentre).SquaredNorm() <= previousR2);
-    const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
-    seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
-    // Not collinear with the edge, so a triangle; R² its squared circumradius.
-    const double n2 = (AB ^ (q - B)).SquaredNorm();
-    const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
-    scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
-    count += candidate & !previous & (n2 > collinear * aq2);
-  }
+  // (Two instances of the loop: at the first level, where most searches end, there is no
+  // previous sphere to test the points against.)
+  auto scan = [&](auto withPrevious) {
+    for (size_t h = 0; h < hits; ++h) {
+      const std::uint32_t id = near_.hit[h];
+      const P3& q = pts_[id];
+      // In the search sphere.
+      const bool in = !((q - centre).SquaredNorm() > r2);
+      found += in;
+      // An interior point counts as found and for G2S balls, never as a candidate.
+      const bool candidate = in & !interior(id);
+      // A point of the previous level's sphere was a candidate there and was rejected by the
+      // topological or the G2S test; both depend on the point, the edge and the mesh only, which
+      // have not changed since, so the G2S ranking below would reject it again. Only the points
+      // new at this level are ranked: among them the order is that of the whole list, so the
+      // choice is the same. (The same exact test as at that level decides membership.) It still
+      // counts as found, and when it is the only point found it is taken directly below, as the
+      // single point of the region (the spheres are nested on the growing side only, so a level
+      // can hold fewer points than the one before).
+      bool previous = false;
+      if (decltype(withPrevious)::value) {
+        previous = (q - previousCentre).SquaredNorm() <= previousR2;
+        const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
+        seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+      }
+      // Not collinear with the edge, so a triangle; R² its squared circumradius.
+      const double n2 = (AB ^ (q - B)).SquaredNorm();
+      const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
+      scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
+      count += candidate & !previous & (n2 > collinear * aq2);
+    }
+  };
+  if (previousR2 >= 0) scan(std::true_type());
+  else scan(std::false_type());
   return count;
 }
 
