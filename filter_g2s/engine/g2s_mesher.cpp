@@ -428,21 +428,23 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
   // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
   // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
   // tested in that order, skipping the points the topological tests reject.
-  // Short lists are ordered lazily, by selecting the next smallest (R², id) among the untested
-  // candidates (the first one or two are usually taken, so most of a sort would be wasted),
-  // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
-  // list: (R², id) is a strict order, the ids being distinct.
+  // The list is ordered lazily: the first kLazyPicks are selected one by one, the next smallest
+  // (R², id) among the untested candidates (the first one or two are usually taken, so most of a
+  // sort would be wasted), and only a list that gets that far is sorted, the rest of it at once
+  // (bounding the work on long lists). Either way the order, and so the choice, is that of the
+  // sorted list: (R², id) is a strict order, the ids being distinct.
   // (Evaluated without short-circuit branches: the selection is a chain of conditional moves.)
   auto before = [](const Scored& x, const Scored& y) {
     return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
   };
-  const bool sorted = count > 8;
-  if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
+  constexpr size_t kLazyPicks = 4;
   for (size_t done = 0; done < count; ++done) {
-    if (!sorted) {
+    if (done < kLazyPicks) {
       size_t best = done;
       for (size_t j = done + 1; j < count; ++j) best = before(scored_[j], scored_[best]) ? j : best;
       std::swap(scored_[done], scored_[best]);
+    } else if (done == kLazyPicks) {
+      std::sort(scored_.begin() + std::ptrdiff_t(done), scored_.begin() + std::ptrdiff_t(count), before);
     }
     const std::uint32_t id = scored_[done].id;
     if (!topologyAllows(a, b, c, id)) continue;
