@@ -253,8 +253,9 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
   if (ears && freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
-    pem_.forEachEdge(b, [&](std::uint32_t p, bool out, bool in) {
-      if (ear < 0 && out && !in && p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
+    pem_.anyOutOnly(b, [&](std::uint32_t p) {
+      if (p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
+      return ear >= 0;
     });
     if (ear >= 0) {
       const P3& E = pts_[ear];
