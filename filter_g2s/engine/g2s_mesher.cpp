@@ -370,10 +370,20 @@ GROWTH_G2S_INLINE size_t Mesher::spherePoints(std::uint32_t a, std::uint32_t b, 
   const P3 AB = A - B;
   const double collinear = 1e-20 * edge2;
   // (Two instances of the loop: at the first level, where most searches end, there is no
-  // previous sphere to test the points against.)
+  // previous sphere to test the points against. At the later ones, many of the hits lay in it:
+  // the new candidates are listed first, over the hits, in order, and ranked in a second loop.)
+  std::uint32_t* const hit = near_.hit.data();
+  size_t fresh = 0;
+  auto rank = [&](std::uint32_t id, const P3& q) {
+    // Not collinear with the edge, so a triangle; R² its squared circumradius.
+    const double n2 = (AB ^ (q - B)).SquaredNorm();
+    const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
+    scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
+    return n2 > collinear * aq2;
+  };
   auto scan = [&](auto withPrevious) {
     for (size_t h = 0; h < hits; ++h) {
-      const std::uint32_t id = near_.hit[h];
+      const std::uint32_t id = hit[h];
       const P3& q = pts_[id];
       // In the search sphere.
       const bool in = !((q - centre).SquaredNorm() > r2);
@@ -388,21 +398,23 @@ GROWTH_G2S_INLINE size_t Mesher::spherePoints(std::uint32_t a, std::uint32_t b, 
       // counts as found, and when it is the only point found it is taken directly below, as the
       // single point of the region (the spheres are nested on the growing side only, so a level
       // can hold fewer points than the one before).
-      bool previous = false;
       if (decltype(withPrevious)::value) {
-        previous = (q - previousCentre).SquaredNorm() <= previousR2;
+        const bool previous = (q - previousCentre).SquaredNorm() <= previousR2;
         const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
         seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+        hit[fresh] = id;
+        fresh += candidate & !previous;
+      } else {
+        count += candidate & rank(id, q);
       }
-      // Not collinear with the edge, so a triangle; R² its squared circumradius.
-      const double n2 = (AB ^ (q - B)).SquaredNorm();
-      const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
-      scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
-      count += candidate & !previous & (n2 > collinear * aq2);
     }
   };
-  if (previousR2 >= 0) scan(std::true_type());
-  else scan(std::false_type());
+  if (previousR2 >= 0) {
+    scan(std::true_type());
+    for (size_t h = 0; h < fresh; ++h) count += rank(hit[h], pts_[hit[h]]);
+  } else {
+    scan(std::false_type());
+  }
   return count;
 }
 
