@@ -215,3 +215,49 @@ TEST(PointEdgeMap, ReleaseFreesEverythingAndResetMakesItUsableAgain) {
   EXPECT_EQ(m.addTriangle(0, 1, 2), 7u);
   EXPECT_TRUE(m.used(0, 1));
 }
+
+// anyOutOnly visits exactly the free edges leaving v (v→w used, w→v not), in forEachEdge's order,
+// and stops at the first for which f returns true: checked at fans of 1 to 20 triangles around
+// point 0 (inline block and chained blocks), open, with gaps (removed triangles) and with some
+// entries left without a triangle at all.
+TEST(PointEdgeMap, AnyOutOnlyVisitsTheFreeEdgesLeavingAPointInOrder) {
+  for (std::uint32_t fan = 1; fan <= 20; ++fan) {
+    for (std::uint32_t gap = 0; gap <= fan; ++gap) {
+      PointEdgeMap m(fan + 2);
+      for (std::uint32_t i = 1; i <= fan; ++i) m.addTriangle(0, i, i + 1);
+      // A gap: one triangle taken out (its entries stay, some edges lose their only triangle).
+      if (gap > 0) m.removeTriangle(0, gap, gap + 1);
+      std::vector<std::uint32_t> want;
+      m.forEachEdge(0, [&](std::uint32_t w, bool out, bool in) {
+        if (out && !in) want.push_back(w);
+      });
+      std::vector<std::uint32_t> got;
+      EXPECT_FALSE(m.anyOutOnly(0, [&](std::uint32_t w) {
+        got.push_back(w);
+        return false;
+      }));
+      EXPECT_EQ(got, want) << "fan " << fan << " gap " << gap;
+      // Stops at the first accepted one.
+      for (size_t k = 0; k < want.size(); ++k) {
+        std::vector<std::uint32_t> seen;
+        EXPECT_TRUE(m.anyOutOnly(0, [&](std::uint32_t w) {
+          seen.push_back(w);
+          return w == want[k];
+        }));
+        EXPECT_EQ(seen, std::vector<std::uint32_t>(want.begin(), want.begin() + std::ptrdiff_t(k) + 1));
+      }
+      // At the rim points too (in and out entries mixed).
+      for (std::uint32_t v = 1; v <= fan + 1; ++v) {
+        std::vector<std::uint32_t> w1, w2;
+        m.forEachEdge(v, [&](std::uint32_t w, bool out, bool in) {
+          if (out && !in) w1.push_back(w);
+        });
+        m.anyOutOnly(v, [&](std::uint32_t w) {
+          w2.push_back(w);
+          return false;
+        });
+        EXPECT_EQ(w1, w2);
+      }
+    }
+  }
+}

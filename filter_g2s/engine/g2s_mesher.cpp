@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace growth {
 namespace g2s {
@@ -270,8 +271,9 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
   if (ears && freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
-    pem_.forEachEdge(b, [&](std::uint32_t p, bool out, bool in) {
-      if (ear < 0 && out && !in && p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
+    pem_.anyOutOnly(b, [&](std::uint32_t p) {
+      if (p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
+      return ear >= 0;
     });
     if (ear >= 0) {
       const P3& E = pts_[ear];
@@ -385,30 +387,51 @@ GROWTH_G2S_INLINE size_t Mesher::spherePoints(std::uint32_t a, std::uint32_t b, 
   size_t count = 0;
   const P3 AB = A - B;
   const double collinear = 1e-20 * edge2;
-  for (size_t h = 0; h < hits; ++h) {
-    const std::uint32_t id = near_.hit[h];
-    const P3& q = pts_[id];
-    // In the search sphere.
-    const bool in = !((q - centre).SquaredNorm() > r2);
-    found += in;
-    // An interior point counts as found and for G2S balls, never as a candidate.
-    const bool candidate = in & !interior(id);
-    // A point of the previous level's sphere was a candidate there and was rejected by the
-    // topological or the G2S test; both depend on the point, the edge and the mesh only, which
-    // have not changed since, so the G2S ranking below would reject it again. Only the points
-    // new at this level are ranked: among them the order is that of the whole list, so the
-    // choice is the same. (The same exact test as at that level decides membership.) It still
-    // counts as found, and when it is the only point found it is taken directly below, as the
-    // single point of the region (the spheres are nested on the growing side only, so a level
-    // can hold fewer points than the one before).
-    const bool previous = (previousR2 >= 0) & ((q - previousCentre).SquaredNorm() <= previousR2);
-    const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
-    seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+  // (Two instances of the loop: at the first level, where most searches end, there is no
+  // previous sphere to test the points against. At the later ones, many of the hits lay in it:
+  // the new candidates are listed first, over the hits, in order, and ranked in a second loop.)
+  std::uint32_t* const hit = near_.hit.data();
+  size_t fresh = 0;
+  auto rank = [&](std::uint32_t id, const P3& q) {
     // Not collinear with the edge, so a triangle; R² its squared circumradius.
     const double n2 = (AB ^ (q - B)).SquaredNorm();
     const double aq2 = (q - A).SquaredNorm(), bq2 = (q - B).SquaredNorm();
     scored_[count] = Scored{0, edge2 * aq2 * bq2 / (4.0 * n2), id, 0};
-    count += candidate & !previous & (n2 > collinear * aq2);
+    return n2 > collinear * aq2;
+  };
+  auto scan = [&](auto withPrevious) {
+    for (size_t h = 0; h < hits; ++h) {
+      const std::uint32_t id = hit[h];
+      const P3& q = pts_[id];
+      // In the search sphere.
+      const bool in = !((q - centre).SquaredNorm() > r2);
+      found += in;
+      // An interior point counts as found and for G2S balls, never as a candidate.
+      const bool candidate = in & !interior(id);
+      // A point of the previous level's sphere was a candidate there and was rejected by the
+      // topological or the G2S test; both depend on the point, the edge and the mesh only, which
+      // have not changed since, so the G2S ranking below would reject it again. Only the points
+      // new at this level are ranked: among them the order is that of the whole list, so the
+      // choice is the same. (The same exact test as at that level decides membership.) It still
+      // counts as found, and when it is the only point found it is taken directly below, as the
+      // single point of the region (the spheres are nested on the growing side only, so a level
+      // can hold fewer points than the one before).
+      if (decltype(withPrevious)::value) {
+        const bool previous = (q - previousCentre).SquaredNorm() <= previousR2;
+        const std::int64_t last = -std::int64_t(candidate & previous); // all ones or zero, no branch
+        seenBefore = (last & std::int64_t(id)) | (~last & seenBefore);
+        hit[fresh] = id;
+        fresh += candidate & !previous;
+      } else {
+        count += candidate & rank(id, q);
+      }
+    }
+  };
+  if (previousR2 >= 0) {
+    scan(std::true_type());
+    for (size_t h = 0; h < fresh; ++h) count += rank(hit[h], pts_[hit[h]]);
+  } else {
+    scan(std::false_type());
   }
   return count;
 }
@@ -436,21 +459,23 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
   // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
   // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
   // tested in that order, skipping the points the topological tests reject.
-  // Short lists are ordered lazily, by selecting the next smallest (R², id) among the untested
-  // candidates (the first one or two are usually taken, so most of a sort would be wasted),
-  // long ones sorted at once. Either way the order, and so the choice, is that of the sorted
-  // list: (R², id) is a strict order, the ids being distinct.
+  // The list is ordered lazily: the first kLazyPicks are selected one by one, the next smallest
+  // (R², id) among the untested candidates (the first one or two are usually taken, so most of a
+  // sort would be wasted), and only a list that gets that far is sorted, the rest of it at once
+  // (bounding the work on long lists). Either way the order, and so the choice, is that of the
+  // sorted list: (R², id) is a strict order, the ids being distinct.
   // (Evaluated without short-circuit branches: the selection is a chain of conditional moves.)
   auto before = [](const Scored& x, const Scored& y) {
     return (x.radius2 < y.radius2) | ((x.radius2 == y.radius2) & (x.id < y.id));
   };
-  const bool sorted = count > 8;
-  if (sorted) std::sort(scored_.begin(), scored_.begin() + std::ptrdiff_t(count), before);
+  constexpr size_t kLazyPicks = 4;
   for (size_t done = 0; done < count; ++done) {
-    if (!sorted) {
+    if (done < kLazyPicks) {
       size_t best = done;
       for (size_t j = done + 1; j < count; ++j) best = before(scored_[j], scored_[best]) ? j : best;
       std::swap(scored_[done], scored_[best]);
+    } else if (done == kLazyPicks) {
+      std::sort(scored_.begin() + std::ptrdiff_t(done), scored_.begin() + std::ptrdiff_t(count), before);
     }
     const std::uint32_t id = scored_[done].id;
     if (!topologyAllows(a, b, c, id)) continue;

@@ -158,6 +158,35 @@ public:
     });
   }
 
+  // Calls f(w) for every w with v→w traversed and w→v not (the free edges that leave v), in the
+  // order forEachEdge gives them, until f returns true; returns whether it did. (The mesher's ear
+  // test at every search: the inline block's entries are picked by one vector compare.)
+  template <class F>
+  bool anyOutOnly(std::uint32_t v, F&& f) const {
+    const std::uint32_t n = count_[v];
+#if defined(__SSE2__)
+    if (n <= kInline) {
+      const std::uint32_t* blk = &slot_[size_t(v) * kInline];
+      const __m128i bits = _mm_set1_epi32(static_cast<int>(kOut | kIn));
+      const __m128i want = _mm_set1_epi32(static_cast<int>(kOut));
+      const __m128i lo = _mm_cmpeq_epi32(_mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(blk)), bits), want);
+      const __m128i hi =
+          _mm_cmpeq_epi32(_mm_and_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(blk + 4)), bits), want);
+      unsigned match = (unsigned(_mm_movemask_ps(_mm_castsi128_ps(lo))) |
+                        unsigned(_mm_movemask_ps(_mm_castsi128_ps(hi))) << 4) &
+                       ((1u << n) - 1u);
+      for (; match != 0; match &= match - 1)
+        if (f(blk[__builtin_ctz(match)] & kIndex)) return true;
+      return false;
+    }
+#endif
+    bool done = false;
+    forEachEntry(v, [&](std::uint32_t e) {
+      if (!done && (e & (kOut | kIn)) == kOut) done = f(e & kIndex);
+    });
+    return done;
+  }
+
   // A marker bit per half-edge entry v→w (for walks such as boundary-loop tracing).
   bool marked(std::uint32_t v, std::uint32_t w) const {
     const std::uint32_t* e = find(v, w);

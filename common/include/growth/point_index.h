@@ -285,18 +285,25 @@ private:
   template <class F>
   __attribute__((always_inline)) bool visitCells(const P3& c, double radius, F&& cell) const {
     std::int64_t lo[3], hi[3];
+    if (__builtin_expect(bricksOnly_, 1)) {
+      // Every point in the bricks (no far points, no table): clamp to them, no other test. The
+      // same cells as max(coord(c − r), lo) .. min(coord(c + r), hi) of the bricks' cells (both
+      // >= 0), computed without branches: clamped in double, then truncated (a floor there), a
+      // negative or NaN upper end giving -1 (an empty range) as coord does.
+      bool empty = false;
+      for (int a = 0; a < 3; ++a) {
+        const double l = (c[a] - radius - origin_[a]) * inv_, h = (c[a] + radius - origin_[a]) * inv_;
+        const double cellLo = double(brickCellLo_[a]), cellHi = double(brickCellHi_[a]);
+        lo[a] = static_cast<std::int64_t>(std::min(std::max(cellLo, l), cellHi + 1.0));
+        hi[a] = static_cast<std::int64_t>(std::min(cellHi, h >= 0 ? h : -1.0));
+        empty |= lo[a] > hi[a];
+      }
+      if (empty) return false;
+      return splitCells_ == 0 ? visitBricks<false>(lo, hi, c, radius, cell) : visitBricks<true>(lo, hi, c, radius, cell);
+    }
     for (int a = 0; a < 3; ++a) {
       lo[a] = coord(c[a] - radius, a);
       hi[a] = coord(c[a] + radius, a);
-    }
-    if (__builtin_expect(bricksOnly_, 1)) {
-      // Every point in the bricks (no far points, no table): clamp to them, no other test.
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::max(lo[a], brickCellLo_[a]);
-        hi[a] = std::min(hi[a], brickCellHi_[a]);
-        if (lo[a] > hi[a]) return false;
-      }
-      return splitCells_ == 0 ? visitBricks<false>(lo, hi, c, radius, cell) : visitBricks<true>(lo, hi, c, radius, cell);
     }
     if (__builtin_expect(farBegin_ < pts_.size(), 0) &&
         (lo[0] < 0 || lo[1] < 0 || lo[2] < 0 || hi[0] > kMaxCoord || hi[1] > kMaxCoord || hi[2] > kMaxCoord) &&
