@@ -32,6 +32,7 @@
 #include <growth/self_intersections.h>
 
 #include <algorithm>
+#include <unordered_map>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -155,6 +156,7 @@ private:
   std::vector<std::uint32_t> idAt, curOf, idOf;
   std::vector<Triangle> added;
   std::vector<std::uint32_t> addedId;
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> addedAt; // point -> indices into added
   // The loop being closed. The closure's triangles use the loop's half-edges the other way (see
   // triangulate).
   std::vector<std::array<std::uint32_t, 3>> closure;
@@ -243,6 +245,10 @@ void Mesher::RimPass::makeTables() {
   idAt.resize(firstAt[n]);
   curOf.resize(tri_.size());
   idOf.resize(tri_.size());
+  // The closure triangles of earlier rounds are in the tables now (and their ids were made again).
+  added.clear();
+  addedId.clear();
+  addedAt.clear();
   {
     std::vector<std::uint32_t> next(firstAt.begin(), firstAt.end() - 1);
     for (size_t g = 0; g < tri_.size(); ++g) {
@@ -263,8 +269,12 @@ bool Mesher::RimPass::same(const Triangle& t, std::uint32_t a, std::uint32_t b, 
 size_t Mesher::RimPass::findTriangle(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   for (std::uint32_t f = firstAt[a]; f < firstAt[a + 1]; ++f)
     if (same(trianglesAt[f], a, b, c) && curOf[idAt[f]] != kGone) return curOf[idAt[f]];
-  for (size_t k = added.size(); k-- > 0;)
-    if (same(added[k], a, b, c) && curOf[addedId[k]] != kGone) return curOf[addedId[k]];
+  const auto at = addedAt.find(a);
+  if (at != addedAt.end())
+    for (size_t j = at->second.size(); j-- > 0;) {
+      const size_t k = at->second[j];
+      if (same(added[k], a, b, c) && curOf[addedId[k]] != kGone) return curOf[addedId[k]];
+    }
   return tri_.size();
 }
 
@@ -455,15 +465,26 @@ void Mesher::RimPass::gatherNear(const std::vector<std::uint32_t>& l) {
       lo[a] = std::min(lo[a], pts_[v][a]);
       hi[a] = std::max(hi[a], pts_[v][a]);
     }
-  for (size_t k = 0; k < added.size(); ++k) {
-    nearTri.push_back(added[k]);
-    nearId.push_back(addedId[k]);
-  }
-  grid_.forEachInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
-    for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f) {
-      nearTri.push_back(trianglesAt[f]);
-      nearId.push_back(idAt[f]);
+  // Only triangles whose box meets the loop's: the others are skipped by both users of the list
+  // (crossesNear, triangulate), whatever the loop's state.
+  auto meetsBox = [&](const Triangle& t) {
+    for (int a = 0; a < 3; ++a)
+      if (std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
+          std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a])
+        return false;
+    return true;
+  };
+  for (size_t k = 0; k < added.size(); ++k)
+    if (meetsBox(added[k])) {
+      nearTri.push_back(added[k]);
+      nearId.push_back(addedId[k]);
     }
+  grid_.forEachInBall(centroid, radius + longest + 2.0 * spacing_, [&](std::uint32_t i, double) {
+    for (std::uint32_t f = firstAt[i]; f < firstAt[i + 1]; ++f)
+      if (meetsBox(trianglesAt[f])) {
+        nearTri.push_back(trianglesAt[f]);
+        nearId.push_back(idAt[f]);
+      }
   });
 }
 
@@ -813,6 +834,7 @@ void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
   }
   for (const auto& t : closure) {
     m_.addTriangle(t[0], t[1], t[2]);
+    for (std::uint32_t v : t) addedAt[v].push_back(static_cast<std::uint32_t>(added.size()));
     added.push_back(Triangle{t[0], t[1], t[2]});
     addedId.push_back(static_cast<std::uint32_t>(curOf.size()));
     idOf.push_back(static_cast<std::uint32_t>(curOf.size()));
