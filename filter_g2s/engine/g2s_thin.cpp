@@ -114,8 +114,11 @@ private:
   bool thirdOnLoopEdge(std::uint32_t from, std::uint32_t to, std::uint32_t& x);
   // The mesh triangles that a closure triangle of loop l could cross, into nearTri, nearId, lo, hi.
   void gatherNear(const std::vector<std::uint32_t>& l);
-  // Triangle c crosses one of the near triangles.
-  bool crossesNear(const Triangle& c);
+  // The near triangles a closure triangle can cross now (not taken off, not skipped, not of a
+  // lone triangle being taken, box meeting the loop's), with their boxes, into active/activeBox.
+  void collectActive();
+  // Triangle c crosses one of active (the cheap tests of g2s_apart.h first, then the exact one).
+  bool crossesActive(const Triangle& c);
   // The least-area triangulation of loop (crossing no near triangle with `avoid`), into closure.
   bool triangulate(const std::vector<std::uint32_t>& loop, bool avoid);
   // A triangle of closure crosses another of them, or a near triangle.
@@ -170,6 +173,8 @@ private:
   // those added this round; gathered once per loop (`near`, with their ids).
   std::vector<Triangle> nearTri;
   std::vector<std::uint32_t> nearId;
+  std::vector<Triangle> active;
+  std::vector<std::array<double, 6>> activeBox;
   P3 lo, hi;
 };
 
@@ -466,7 +471,7 @@ void Mesher::RimPass::gatherNear(const std::vector<std::uint32_t>& l) {
       hi[a] = std::max(hi[a], pts_[v][a]);
     }
   // Only triangles whose box meets the loop's: the others are skipped by both users of the list
-  // (crossesNear, triangulate), whatever the loop's state.
+  // (collectActive), whatever the loop's state.
   auto meetsBox = [&](const Triangle& t) {
     for (int a = 0; a < 3; ++a)
       if (std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
@@ -488,20 +493,50 @@ void Mesher::RimPass::gatherNear(const std::vector<std::uint32_t>& l) {
   });
 }
 
-// Triangle c crosses one of `near` (triangles taken off, and lone triangles being taken, do
-// not count; only those whose box meets the loop's).
-bool Mesher::RimPass::crossesNear(const Triangle& c) {
-  for (size_t k = 0; k < nearTri.size(); ++k) {
-    const Triangle& t = nearTri[k];
-    if (curOf[nearId[k]] == kGone ||
-        (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[k]) != skipIds.end()))
+// The near triangles that count (triangles taken off, skipped ones and lone triangles being taken
+// do not; only those whose box meets the loop's), with their boxes.
+void Mesher::RimPass::collectActive() {
+  active.clear();
+  activeBox.clear();
+  for (size_t n = 0; n < nearTri.size(); ++n) {
+    const Triangle& t = nearTri[n];
+    if (curOf[nearId[n]] == kGone ||
+        (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
       continue;
     if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
+    std::array<double, 6> b;
     bool apartBox = false;
-    for (int a = 0; a < 3 && !apartBox; ++a)
-      apartBox = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) < lo[a] ||
-                 std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]}) > hi[a];
-    if (!apartBox && facesIntersect(grid_.points(), c, t)) return true;
+    for (int a = 0; a < 3; ++a) {
+      b[a] = std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+      b[3 + a] = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
+      apartBox = apartBox || b[3 + a] < lo[a] || b[a] > hi[a];
+    }
+    if (apartBox) continue;
+    active.push_back(t);
+    activeBox.push_back(b);
+  }
+}
+
+// Triangle c crosses one of active: a triangle whose box is apart from c's cannot meet it (the
+// same answer as facesIntersect's, without the call), and the cheap sufficient tests of
+// g2s_apart.h come before the exact one (they change no decision).
+bool Mesher::RimPass::crossesActive(const Triangle& c) {
+  double clo[3], chi[3];
+  for (int a = 0; a < 3; ++a) {
+    clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+    chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
+  }
+  const std::vector<P3>& pos = grid_.points();
+  std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
+  for (size_t n = 0; n < active.size(); ++n) {
+    const std::array<double, 6>& b = activeBox[n];
+    if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
+      continue;
+    if (!plane) plane.reset(new PlaneOf(pos, c));
+    const Triangle& t = active[n];
+    if (!apartByPlane(pos, *plane, c, t) && !apartByPlane(pos, t, c) && !apartInShadow(pos, *plane, c, t) &&
+        facesIntersect(pos, c, t))
+      return true;
   }
   return false;
 }
@@ -517,54 +552,12 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
   const std::vector<std::uint32_t> q(loop.rbegin(), loop.rend());
   // Nothing changes while the programme runs, so what its cost asks of the mesh is looked up
   // once: the third point of the triangle on each loop edge q_a -> q_(a+1) (a = k - 1: to
-  // q_0), and the near triangles crossesNear would test, with their boxes.
+  // q_0), and the near triangles that count (collectActive), with their boxes.
   std::vector<std::uint32_t> third(k, 0);
   std::vector<char> hasThird(k, 0);
   for (size_t a = 0; a < k; ++a)
     hasThird[a] = thirdOnLoopEdge(q[(a + 1) % k], q[a], third[a]) ? 1 : 0;
-  std::vector<Triangle> active;
-  std::vector<std::array<double, 6>> activeBox;
-  if (avoid)
-    for (size_t n = 0; n < nearTri.size(); ++n) {
-      const Triangle& t = nearTri[n];
-      if (curOf[nearId[n]] == kGone ||
-          (!skipIds.empty() && std::find(skipIds.begin(), skipIds.end(), nearId[n]) != skipIds.end()))
-        continue;
-      if (!lonePoints.empty() && isLoneEdge(t[0], t[1]) && isLoneEdge(t[1], t[2])) continue;
-      std::array<double, 6> b;
-      bool apartBox = false;
-      for (int a = 0; a < 3; ++a) {
-        b[a] = std::min({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
-        b[3 + a] = std::max({pts_[t[0]][a], pts_[t[1]][a], pts_[t[2]][a]});
-        apartBox = apartBox || b[3 + a] < lo[a] || b[a] > hi[a];
-      }
-      if (apartBox) continue;
-      active.push_back(t);
-      activeBox.push_back(b);
-    }
-  // crossesNear(c) on the triangles kept above; a triangle whose box is apart from c's cannot
-  // meet it (the same answer as facesIntersect's, without the call).
-  auto crossesActive = [&](const Triangle& c) {
-    double clo[3], chi[3];
-    for (int a = 0; a < 3; ++a) {
-      clo[a] = std::min({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
-      chi[a] = std::max({pts_[c[0]][a], pts_[c[1]][a], pts_[c[2]][a]});
-    }
-    const std::vector<P3>& pos = grid_.points();
-    std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
-    for (size_t n = 0; n < active.size(); ++n) {
-      const std::array<double, 6>& b = activeBox[n];
-      if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
-        continue;
-      if (!plane) plane.reset(new PlaneOf(pos, c));
-      const Triangle& t = active[n];
-      // The cheap sufficient tests of g2s_apart.h first (they change no decision).
-      if (!apartByPlane(pos, *plane, c, t) && !apartByPlane(pos, t, c) && !apartInShadow(pos, *plane, c, t) &&
-          facesIntersect(pos, c, t))
-        return true;
-    }
-    return false;
-  };
+  if (avoid) collectActive();
   auto cost = [&](size_t i, size_t m, size_t j) {
     const P3 &A = pts_[q[i]], &B = pts_[q[m]], &C = pts_[q[j]];
     const P3 nt = (B - A) ^ (C - A);
@@ -587,22 +580,39 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
         if (ml > 0 && (meshNormal * nt) < kClosureFoldCos * ml * len) return inf;
       }
     }
-    if (avoid && crossesActive(Triangle{q[i], q[m], q[j]})) return inf;
     return 0.5 * len;
   };
   std::vector<double> best(k * k, 0.0);
   std::vector<size_t> split(k * k, 0);
+  // For each sub-chain (i, j): the split m of least total cost, the first such m on ties. With
+  // `avoid`, a triangle that crosses the mesh costs infinity; that test is the expensive part, so
+  // the splits are ranked by their cost without it, (cost, m), and tested in that order until
+  // one does not cross: the same split as testing every one.
+  std::vector<std::pair<double, size_t>> ranked;
   for (size_t span = 2; span < k; ++span)
     for (size_t i = 0; i + span < k; ++i) {
       const size_t j = i + span;
-      double b = inf;
+      ranked.clear();
       for (size_t m = i + 1; m < j; ++m) {
         if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
         const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
-        if (c < b) {
-          b = c;
-          split[i * k + j] = m;
-        }
+        if (c < inf) ranked.emplace_back(c, m);
+      }
+      double b = inf;
+      if (!avoid) {
+        for (const auto& r : ranked)
+          if (r.first < b) {
+            b = r.first;
+            split[i * k + j] = r.second;
+          }
+      } else {
+        std::sort(ranked.begin(), ranked.end());
+        for (const auto& r : ranked)
+          if (!crossesActive(Triangle{q[i], q[r.second], q[j]})) {
+            b = r.first;
+            split[i * k + j] = r.second;
+            break;
+          }
       }
       best[i * k + j] = b;
     }
@@ -628,8 +638,9 @@ bool Mesher::RimPass::crossesMesh() {
       if (facesIntersect(grid_.points(), Triangle{closure[i][0], closure[i][1], closure[i][2]},
                          Triangle{closure[j][0], closure[j][1], closure[j][2]}))
         return true;
+  collectActive();
   for (const auto& c : closure)
-    if (crossesNear(Triangle{c[0], c[1], c[2]})) return true;
+    if (crossesActive(Triangle{c[0], c[1], c[2]})) return true;
   return false;
 }
 
