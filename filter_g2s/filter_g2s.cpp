@@ -153,7 +153,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
-      "(%zu faces at them replaced; %zu spike vertices with two faces taken out)",
+      "(%zu faces at them replaced; %zu spike vertices with one or two faces taken out)",
       st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
   if (st.componentsDropped > 0)
     Log("Robust G2S: %zu piece%s of fewer than %d faces dropped (%zu faces): triangles among stray points",

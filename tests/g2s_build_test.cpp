@@ -543,11 +543,11 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   // Seed 10 and the 100k seed 1 sampling are the rim crossings the under-a-sheet rule stops
   // (g2s_mesher.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
   // The 100k seed 2 sampling keeps a hole of 3 edges round a spike at a corner without the hole
-  // pass's spike step (g2s_repair.cpp).
+  // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap (it closes with a handle).
   for (const Case c : {Case{0.025, 30000, 1, 0}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 0},
                        Case{0.025, 50000, 1, 0}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 0, 0},
                        Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}, Case{0.025, 30000, 10, 0},
-                       Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}}) {
+                       Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}, Case{0.025, 30000, 5, 0, 0}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;

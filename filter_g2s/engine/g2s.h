@@ -48,7 +48,7 @@ struct Stat {
   size_t holesClosed = 0;                 // hole pass: boundary loops closed
   size_t holeFacesAdded = 0;              // and the faces it added
   size_t holeFacesReplaced = 0;           // faces it took out at a loop so that it could close
-  size_t holeSpikes = 0;                  // of them, spikes: a vertex with two faces, left unused
+  size_t holeSpikes = 0;                  // spikes and flaps: a loop vertex with two or one faces, left unused
   size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
   size_t componentFacesDropped = 0;       // and their faces
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another

@@ -29,7 +29,8 @@
 // joins the loop and leaves it with a closed fan again. On the noisy clouds most loops that failed
 // were loops of three whose triangle met a face nearby. Last, a loop vertex with only the two faces
 // on its loop edges, sharing their third point (a spike), is taken out of the mesh with both faces
-// and the loop runs through that point (one point left unused per such loop).
+// and the loop runs through that point; a loop vertex with one face on both its loop edges (a flap)
+// goes with that face (one point left unused per spike or flap, at most kMaxSpikes per loop).
 #include "g2s_mesher.h"
 
 #include "g2s_apart.h"
@@ -665,6 +666,18 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
         const size_t h = (i + mc - 1) % mc;
         const std::uint32_t u = cur[h], v = cur[i], w = cur[(i + 1) % mc];
         const std::int64_t f0 = faceOn(u, v), f1 = faceOn(v, w);
+        if (f0 >= 0 && f0 == f1 && mc > 3 && pem.degree(v) == 2 && faceOn(u, w) >= 0) {
+          // A flap: v's one face lies on both its loop edges; it goes with v, and the loop runs
+          // u -> w over the face on the other side of that edge.
+          alive[std::size_t(f0)] = 0;
+          const Triangle& t = tri[std::size_t(f0)];
+          pem.removeTriangle(t[0], t[1], t[2]);
+          removed.push_back(static_cast<std::uint32_t>(f0));
+          cur.erase(cur.begin() + std::ptrdiff_t(i));
+          ++spikes;
+          found = true;
+          continue;
+        }
         if (f0 < 0 || f1 < 0 || f0 == f1 || pem.degree(v) != 3) continue;
         const std::uint32_t o = thirdPoint(static_cast<std::uint32_t>(f0), u, v);
         if (o != thirdPoint(static_cast<std::uint32_t>(f1), v, w) || !pem.closed(o) ||
@@ -682,13 +695,14 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
       }
       if (!found) break;
       // The loop through the third points, with the faces on its half-edges.
+      const size_t mk = cur.size();
       loop_ = cur;
-      opp_.resize(mc);
+      opp_.resize(mk);
       bool complete = true;
-      for (size_t i = 0; i < mc && complete; ++i) {
-        const std::int64_t f = faceOn(cur[i], cur[(i + 1) % mc]);
+      for (size_t i = 0; i < mk && complete; ++i) {
+        const std::int64_t f = faceOn(cur[i], cur[(i + 1) % mk]);
         complete = f >= 0;
-        if (complete) opp_[i] = thirdPoint(static_cast<std::uint32_t>(f), cur[i], cur[(i + 1) % mc]);
+        if (complete) opp_[i] = thirdPoint(static_cast<std::uint32_t>(f), cur[i], cur[(i + 1) % mk]);
       }
       if (!complete) break;
       gatherNearLoop();
