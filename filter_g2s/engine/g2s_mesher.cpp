@@ -1171,7 +1171,6 @@ Mesher::BoundaryCount Mesher::boundary() {
   // marked; the marks are then taken off the walked half-edges only (the map is left as it was).
   BoundaryCount count;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
-  auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return nextBoundaryHalfEdge(v, w); };
   for (std::uint32_t v = 0; v < grid_.size(); ++v) {
     bool boundaryHere = false;
     pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) {
@@ -1181,14 +1180,9 @@ Mesher::BoundaryCount Mesher::boundary() {
     });
     if (!boundaryHere) continue;
     std::uint32_t w = 0;
-    while (nextFrom(v, w)) {
+    while (nextBoundaryHalfEdge(v, w)) {
       ++count.loops;
-      std::uint32_t cur = v;
-      do {
-        pem_.setMark(cur, w, true);
-        marked.emplace_back(cur, w);
-        cur = w;
-      } while (nextFrom(cur, w));
+      walkBoundary(v, w, marked, nullptr);
     }
   }
   for (const auto& e : marked) pem_.setMark(e.first, e.second, false);

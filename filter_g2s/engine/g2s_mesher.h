@@ -233,6 +233,22 @@ private:
     });
     return found;
   }
+  // Walks a boundary from the boundary half-edge v→w on (nextBoundaryHalfEdge at each point),
+  // marking each half-edge in the point-edge map and recording it in `walked` (the caller takes
+  // the marks off), the points from v on into *loop when given. Returns the point where the walk
+  // stopped: v again where the boundary is manifold. (boundary(), the hole pass, the rim pass.)
+  std::uint32_t walkBoundary(std::uint32_t v, std::uint32_t w,
+                             std::vector<std::pair<std::uint32_t, std::uint32_t>>& walked,
+                             std::vector<std::uint32_t>* loop) {
+    std::uint32_t cur = v;
+    do {
+      pem_.setMark(cur, w, true);
+      walked.emplace_back(cur, w);
+      if (loop != nullptr) loop->push_back(cur);
+      cur = w;
+    } while (nextBoundaryHalfEdge(cur, w));
+    return cur;
+  }
   struct Scored {
     int flatLevel;     // pl_f
     double radius2;    // squared circumradius of the candidate triangle

@@ -259,15 +259,9 @@ void Mesher::boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges
     std::uint32_t w = 0;
     while (nextBoundaryHalfEdge(v, w)) {
       loop.clear();
-      std::uint32_t cur = v;
-      do {
-        pem_.setMark(cur, w, true);
-        walked.emplace_back(cur, w);
-        loop.push_back(cur);
-        cur = w;
-      } while (nextBoundaryHalfEdge(cur, w));
+      const std::uint32_t end = walkBoundary(v, w, walked, &loop);
       // A walk ends where it started on a manifold mesh; anything else is left alone.
-      if (cur == v && loop.size() >= 3 && loop.size() <= size_t(maxEdges)) loops.push_back(loop);
+      if (end == v && loop.size() >= 3 && loop.size() <= size_t(maxEdges)) loops.push_back(loop);
     }
   }
   for (const auto& e : walked) pem_.setMark(e.first, e.second, false);

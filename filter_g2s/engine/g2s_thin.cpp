@@ -208,19 +208,12 @@ void Mesher::RimPass::removeNonManifoldFans() {
 // each walk marking its half-edges; loops through a vertex more than once are left alone.
 void Mesher::RimPass::findLoops() {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> marked;
-  auto nextFrom = [&](std::uint32_t v, std::uint32_t& w) { return m_.nextBoundaryHalfEdge(v, w); };
   for (std::uint32_t v = 0; v < n; ++v) {
     if (m_.freeEdges_[v] == 0) continue;
     std::uint32_t w = 0;
-    while (nextFrom(v, w)) {
+    while (m_.nextBoundaryHalfEdge(v, w)) {
       std::vector<std::uint32_t> loop;
-      std::uint32_t cur = v;
-      do {
-        pem_.setMark(cur, w, true);
-        marked.emplace_back(cur, w);
-        loop.push_back(cur);
-        cur = w;
-      } while (nextFrom(cur, w));
+      m_.walkBoundary(v, w, marked, &loop);
       // A walk through a vertex twice (two fans meeting there) is split into simple loops.
       std::vector<std::uint32_t> path;
       auto keep = [&](std::vector<std::uint32_t> simple) {
@@ -593,19 +586,18 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
     for (size_t i = 0; i + span < k; ++i) {
       const size_t j = i + span;
       ranked.clear();
+      double b = inf;
       for (size_t m = i + 1; m < j; ++m) {
         if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
         const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
-        if (c < inf) ranked.emplace_back(c, m);
+        if (avoid) {
+          if (c < inf) ranked.emplace_back(c, m);
+        } else if (c < b) {
+          b = c;
+          split[i * k + j] = m;
+        }
       }
-      double b = inf;
-      if (!avoid) {
-        for (const auto& r : ranked)
-          if (r.first < b) {
-            b = r.first;
-            split[i * k + j] = r.second;
-          }
-      } else {
+      if (avoid) {
         std::sort(ranked.begin(), ranked.end());
         for (const auto& r : ranked)
           if (!crossesActive(Triangle{q[i], q[r.second], q[j]})) {
