@@ -143,6 +143,7 @@ TEST(MeshMeasures, RegularTetrahedron) {
   EXPECT_EQ(r.duplicateFaces, 0u);
   EXPECT_EQ(r.unreferencedVertices, 0u);
   EXPECT_EQ(r.eulerCharacteristic, 2);
+  EXPECT_EQ(r.genus, 0);
   EXPECT_NEAR(r.boxDiagonal, 2 * std::sqrt(3.0), 1e-12);
   EXPECT_TRUE(r.manifold());
   EXPECT_TRUE(r.consistentlyOriented());
@@ -172,6 +173,7 @@ TEST(MeshMeasures, OpenSquare) {
   EXPECT_EQ(r.components, 1u);
   EXPECT_EQ(r.inconsistentEdges, 0u);
   EXPECT_EQ(r.eulerCharacteristic, 1);
+  EXPECT_EQ(r.genus, 0);
   const double mean = (4 + std::sqrt(2.0)) / 5;
   EXPECT_NEAR(r.edgeMean, mean, 1e-12);
   const double rms = std::sqrt((4 * (1 - mean) * (1 - mean) + (std::sqrt(2.0) - mean) * (std::sqrt(2.0) - mean)) / 5);
@@ -382,6 +384,7 @@ TEST(MeshMeasures, AnnulusHasTwoBoundaryLoops) {
   EXPECT_EQ(r.boundaryEdges, 8u);
   EXPECT_EQ(r.boundaryLoops, 2u);
   EXPECT_EQ(r.eulerCharacteristic, 0);
+  EXPECT_EQ(r.genus, 0);  // an annulus: χ = 0 from its two loops, not from a handle
   EXPECT_EQ(r.nonManifoldVertices, 0u);
   EXPECT_EQ(r.inconsistentEdges, 0u);
   EXPECT_EQ(r.components, 1u);
@@ -401,6 +404,7 @@ TEST(MeshMeasures, LargerClosedAndOpenGrids) {
   const MeshMeasures t = measure(torus);
   EXPECT_EQ(t.faces, 1600u);
   EXPECT_EQ(t.eulerCharacteristic, 0);
+  EXPECT_EQ(t.genus, 1);
   EXPECT_EQ(t.boundaryEdges, 0u);
   EXPECT_EQ(t.boundaryLoops, 0u);
   EXPECT_EQ(t.components, 1u);
@@ -413,6 +417,7 @@ TEST(MeshMeasures, LargerClosedAndOpenGrids) {
   EXPECT_EQ(p.boundaryEdges, 120u);
   EXPECT_EQ(p.boundaryLoops, 1u);
   EXPECT_EQ(p.eulerCharacteristic, 1);
+  EXPECT_EQ(p.genus, 0);
   EXPECT_TRUE(p.manifold());
   EXPECT_NEAR(p.qualityMean, kSqrt3 / 2, 1e-6);
   EXPECT_NEAR(p.minVertexDistance, 1.0 / 30, 1e-6);
@@ -431,6 +436,7 @@ TEST(MeshMeasures, LargerClosedAndOpenGrids) {
   EXPECT_EQ(cut.nonManifoldVertices, 1u);
   EXPECT_EQ(cut.boundaryLoops, 2u);
   EXPECT_EQ(cut.boundaryEdges, 120u + 8u);
+  EXPECT_EQ(cut.genus, -1);  // not a surface there: no genus
 }
 
 TEST(MeshMeasures, HistogramsCountEveryValue) {

@@ -567,6 +567,11 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   m.selfIntersectingPairs = selfIntersectingPairs(c);
   const size_t properFaces = size_t(std::count(c.proper.begin(), c.proper.end(), 1));
   m.eulerCharacteristic = int(m.vertices - m.unreferencedVertices) - int(m.edges) + int(properFaces);
+  // An orientable surface of genus g with b boundary loops has χ = 2 − 2g − b, per component.
+  if (m.manifold() && m.consistentlyOriented() && m.degenerateFaces == 0 && m.duplicateFaces == 0) {
+    const long twiceGenus = 2 * long(m.components) - long(m.eulerCharacteristic) - long(m.boundaryLoops);
+    if (twiceGenus >= 0 && twiceGenus % 2 == 0) m.genus = int(twiceGenus / 2);
+  }
 
   // Edge lengths.
   std::vector<double> len(e.ends.size());
@@ -683,6 +688,7 @@ std::string MeshMeasures::toJson() const {
   field("duplicate_faces", count(duplicateFaces));
   field("self_intersecting_pairs", count(selfIntersectingPairs));
   field("euler_characteristic", std::to_string(eulerCharacteristic));
+  field("genus", std::to_string(genus));
   if (hasCloud) {
     field("cloud_points", count(cloudPoints));
     field("cloud_spacing", number(cloudSpacing));
