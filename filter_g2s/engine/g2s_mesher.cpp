@@ -148,20 +148,6 @@ double Mesher::sampleSpacing() const {
   return trimmedMeanSpacing(d2);
 }
 
-int Mesher::flatnessLevelOfCos(double cosBeta) const {
-  // pl_f = 1 + the number of class limits kπ/m (k = 1..m−1) that β reaches; cos is decreasing.
-  int level = 1;
-  for (double limit : cosLimit_) {
-    if (cosBeta > limit) break; // most candidates are flat: one comparison
-    ++level;
-  }
-  return level;
-}
-
-double Mesher::localSpacing(std::uint32_t v) const {
-  return edgeCount_[v] > 0 ? double(edgeLengthSum_[v]) / double(edgeCount_[v]) : 0.0;
-}
-
 void Mesher::gather(const P3& centre, double radius) {
   grid_.gatherNear(centre, radius, near_);
 }

@@ -326,8 +326,20 @@ private:
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
   // (Both loads and a bitwise and: no branch, the outcome is data-dependent.)
   bool interior(std::uint32_t v) const { return (edgeCount_[v] != 0) & (freeEdges_[v] == 0); }
-  double localSpacing(std::uint32_t v) const;
-  int flatnessLevelOfCos(double cosBeta) const;
+  // The mean length of v's edges (0 without one). (Defined here, inline: the searches ask it
+  // for both points of every edge.)
+  double localSpacing(std::uint32_t v) const {
+    return edgeCount_[v] > 0 ? double(edgeLengthSum_[v]) / double(edgeCount_[v]) : 0.0;
+  }
+  int flatnessLevelOfCos(double cosBeta) const {
+    // pl_f = 1 + the number of class limits kπ/m (k = 1..m−1) that β reaches; cos is decreasing.
+    int level = 1;
+    for (double limit : cosLimit_) {
+      if (cosBeta > limit) break; // most candidates are flat: one comparison
+      ++level;
+    }
+    return level;
+  }
   void orientSeed(std::array<std::uint32_t, 3>& tri) const;
   bool triangleAt(std::uint32_t v, std::array<std::uint32_t, 3>& tri) const;
   // orientComponents, step 1: parent[v], v's root (the smallest vertex of its component over the
