@@ -390,6 +390,20 @@ TEST(MeshMeasures, AnnulusHasTwoBoundaryLoops) {
   EXPECT_EQ(r.components, 1u);
 }
 
+// A closed tetrahedron whose vertex 3 lies between 0 and 1: face (0, 1, 3) has zero area, yet it is
+// a face of a sphere, and the genus is still defined (the scans' meshes have such faces in float).
+TEST(MeshMeasures, GenusCountsZeroAreaFaces) {
+  CMeshO m;
+  makeMesh(m, {Point3d(0, 0, 0), Point3d(2, 0, 0), Point3d(1, 1, 1), Point3d(1, 0, 0)},
+           {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}});
+  const MeshMeasures r = measure(m);
+  EXPECT_EQ(r.degenerateFaces, 1u);
+  EXPECT_EQ(r.eulerCharacteristic, 2);
+  EXPECT_TRUE(r.manifold());
+  EXPECT_TRUE(r.consistentlyOriented());
+  EXPECT_EQ(r.genus, 0);
+}
+
 TEST(MeshMeasures, SeparateTrianglesAreSeparateComponents) {
   CMeshO m;
   makeMesh(m, {Point3d(0, 0, 0), Point3d(1, 0, 0), Point3d(0, 1, 0), Point3d(5, 0, 0), Point3d(6, 0, 0), Point3d(5, 1, 0)},

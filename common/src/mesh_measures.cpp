@@ -567,8 +567,9 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   m.selfIntersectingPairs = selfIntersectingPairs(c);
   const size_t properFaces = size_t(std::count(c.proper.begin(), c.proper.end(), 1));
   m.eulerCharacteristic = int(m.vertices - m.unreferencedVertices) - int(m.edges) + int(properFaces);
-  // An orientable surface of genus g with b boundary loops has χ = 2 − 2g − b, per component.
-  if (m.manifold() && m.consistentlyOriented() && m.degenerateFaces == 0 && m.duplicateFaces == 0) {
+  // An orientable surface of genus g with b boundary loops has χ = 2 − 2g − b, per component. A face
+  // of zero area is still a face of the surface; one with a repeated vertex is not.
+  if (m.manifold() && m.consistentlyOriented() && properFaces == m.faces && m.duplicateFaces == 0) {
     const long twiceGenus = 2 * long(m.components) - long(m.eulerCharacteristic) - long(m.boundaryLoops);
     if (twiceGenus >= 0 && twiceGenus % 2 == 0) m.genus = int(twiceGenus / 2);
   }

@@ -104,7 +104,8 @@ struct MeshMeasures {
   size_t selfIntersectingPairs = 0; // face pairs meeting beyond their shared vertices and edge
   int eulerCharacteristic = 0;      // V − E + F over the referenced vertices and proper faces
   int genus = -1;                   // handles, summed over components: (2·components − χ − boundaryLoops) / 2;
-                                    // −1 unless manifold, consistently oriented, without degenerate or duplicate faces
+                                    // −1 unless manifold, consistently oriented, without duplicate faces or faces with a
+                                    // repeated vertex (zero-area faces count: they are faces of the surface)
 
   // Distance of the input cloud to the mesh (only when a cloud was given)
   bool hasCloud = false;
