@@ -70,6 +70,13 @@ void FilterG2SPlugin::addParameters(FilterID filter, const MeshModel& m, RichPar
       "manifold, consistently oriented and free of intersecting faces; a loop that cannot be closed "
       "so is left open. 0 turns the pass off (it runs only with the non-manifold removal on). Real "
       "holes of the object that small are closed too."));
+  parlst.addParam(RichBool("removeSmallHandles", def.removeSmallHandles, "Cut small handles",
+      "Where two sheets of the surface come within a spacing or two (a thin plate's rim, the "
+      "overlapping layers of a merged scan), the growth can join them twice and leave a tunnel. A "
+      "handle around three points (a cycle of three edges that bounds no face and does not "
+      "separate the mesh around it) is cut: the faces on one side of the cycle are taken out and "
+      "the two loops closed as by the hole pass; where they do not close, the cut is undone. "
+      "Handles of the object wider than three points stay. Needs the two options above."));
   parlst.addParam(RichInt("minComponentFaces", def.minComponentFaces, "Smallest piece kept",
       "Connected pieces of the mesh with fewer faces are dropped (the largest piece always stays): "
       "triangles built among stray points and outliers, apart from the surface. 0 keeps all."));
@@ -98,6 +105,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   p.flatnessLevels = par.getInt("flatnessLevels");
   p.removeNonManifoldVertices = par.getBool("removeNonManifoldVertices");
   p.maxHoleEdges = par.getInt("maxHoleEdges");
+  p.removeSmallHandles = par.getBool("removeSmallHandles");
   p.minComponentFaces = par.getInt("minComponentFaces");
   p.randomSeed = static_cast<std::uint64_t>(par.getInt("randomSeed"));
 
@@ -140,6 +148,8 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["hole_faces_added"] = int(st.holeFacesAdded);
   outputs["hole_faces_replaced"] = int(st.holeFacesReplaced);
   outputs["hole_spikes_removed"] = int(st.holeSpikes);
+  outputs["handles_cut"] = int(st.handlesCut);
+  outputs["handles"] = int(st.handles);
   outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["seconds"] = double(st.seconds);
 
@@ -155,6 +165,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
       "(%zu faces at them replaced; %zu spike vertices with one or two faces taken out)",
       st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
+  if (p.removeNonManifoldVertices)
+    Log("Robust G2S: %zu handles (genus, summed over the pieces); %zu small handles cut (%zu faces taken out, "
+        "%zu added to close them)",
+        st.handles, st.handlesCut, st.handleFacesRemoved, st.handleFacesAdded);
   if (st.componentsDropped > 0)
     Log("Robust G2S: %zu piece%s of fewer than %d faces dropped (%zu faces): triangles among stray points",
         st.componentsDropped, st.componentsDropped == 1 ? "" : "s", p.minComponentFaces, st.componentFacesDropped);

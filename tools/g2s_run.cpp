@@ -6,7 +6,7 @@
 //           [--rings R --segments S] [--inner-radius r] [--thickness T] [options]   a generated cloud
 // adversarial addition to either: --near-triples K (K points of the cloud each get two more within a
 // few float rounding steps: seeds of almost no size)
-// options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --holes E (close holes of <= E edges; 0 off)
+// options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --holes E (close holes of <= E edges; 0 off)  --keep-handles
 //          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
 //          --random-seed S
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
@@ -43,7 +43,7 @@ static void usage() {
                "               [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
                "               [--rings R --segments S] [--inner-radius r] [--thickness T]\n"
                "       [--near-triples K]\n"
-               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--min-component-faces F] [--random-seed S]\n"
+               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--keep-handles] [--min-component-faces F] [--random-seed S]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");
 }
 
@@ -100,6 +100,7 @@ int main(int argc, char** argv) {
       else if (a == "--m") params.flatnessLevels = std::atoi(value());
       else if (a == "--no-cleanup") params.removeNonManifoldVertices = false;
       else if (a == "--holes") params.maxHoleEdges = std::atoi(value());
+      else if (a == "--keep-handles") params.removeSmallHandles = false;
       else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
       else if (a == "--random-seed") params.randomSeed = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
@@ -180,6 +181,8 @@ int main(int argc, char** argv) {
     std::printf("self_intersection_faces_removed: %zu\n", st.selfIntersectionFacesRemoved);
     std::printf("holes_closed: %zu\nhole_faces_added: %zu\nhole_faces_replaced: %zu\nhole_spikes_removed: %zu\n",
                 st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
+    std::printf("handles_cut: %zu\nhandle_faces_removed: %zu\nhandle_faces_added: %zu\nhandles: %zu\n", st.handlesCut,
+                st.handleFacesRemoved, st.handleFacesAdded, st.handles);
     std::printf("pieces_dropped: %zu\npiece_faces_dropped: %zu\n", st.componentsDropped, st.componentFacesDropped);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("seconds: %.4f\n", best);

@@ -94,10 +94,27 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
     stat.holeFacesReplaced = hs.facesReplaced;
     stat.holeSpikes = hs.spikes;
   }
+  Mesher::BoundaryCount boundary = mesher.boundary();
+  if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)
+    // Not in the paper: small handles (tunnels between close sheets) cut, their loops closed.
+    if (p.removeSmallHandles) {
+      const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary.loops, p.maxHoleEdges);
+      stat.handlesCut = hs.handles;
+      stat.handleFacesRemoved = hs.facesRemoved;
+      stat.nonManifoldVerticesRemoved += hs.nonManifoldVertices;
+      stat.handleFacesAdded = hs.holeFacesAdded;
+      stat.handles = hs.handlesBefore;
+      if (hs.handles > 0) {
+        boundary = mesher.boundary();
+        stat.handles = mesher.handleCount(boundary.loops);
+      }
+    } else {
+      stat.handles = mesher.handleCount(boundary.loops);
+    }
+  }
   // The search structures go before the output's memory is taken (the repairs search).
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   mesher.releaseGrowthState();
-  const Mesher::BoundaryCount boundary = mesher.boundary();
   stat.boundaryEdges = boundary.edges;
   stat.holes = boundary.loops;
   mesher.orientComponents();

@@ -21,6 +21,8 @@ struct Params {
   int flatnessLevels = 8;            // m, sec. 4.1: classes of the angle β in [0°, 180°], pl_f = 1..m
   bool removeNonManifoldVertices = true; // sec. 4.2; with it, self-intersecting faces are removed too
   int maxHoleEdges = 20;             // hole pass (not in the paper): close boundary loops of at most this many edges; 0: off
+  bool removeSmallHandles = true;    // not in the paper: cut handles round three points (tunnels between close
+                                     // sheets) and close their loops; needs the two passes above
   int minComponentFaces = 50;        // not in the paper: connected pieces with fewer faces are dropped (the largest
                                      // always stays): triangles among stray points; 0 keeps all
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
@@ -49,6 +51,11 @@ struct Stat {
   size_t holeFacesAdded = 0;              // and the faces it added
   size_t holeFacesReplaced = 0;           // faces it took out at a loop so that it could close
   size_t holeSpikes = 0;                  // spikes and flaps: a loop vertex with two or one faces, left unused
+  size_t handlesCut = 0;                  // small handles cut (Params::removeSmallHandles)
+  size_t handleFacesRemoved = 0;          // and the faces they took out
+  size_t handleFacesAdded = 0;            // the faces that closed their loops (counted apart from the hole pass's)
+  size_t handles = 0;                     // handles of the output (genus summed over its components;
+                                          // 0 when sec. 4.2 is off, where it is not defined)
   size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
   size_t componentFacesDropped = 0;       // and their faces
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another

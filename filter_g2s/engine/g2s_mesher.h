@@ -150,6 +150,28 @@ public:
   // faces, sharing their third point) with that vertex and both faces out (spikes); one that cannot
   // be closed is left as it was.
   HoleStat closeHoles(int maxEdges);
+  // closeHoles on the loops through `seeds` (sorted, unique), adding to st.
+  void closeHolesAt(int maxEdges, const std::vector<std::uint32_t>& seeds, HoleStat& st);
+  struct HandleStat {
+    size_t handlesBefore = 0;       // handles of the mesh before the pass (sum over its components)
+    size_t candidates = 0;          // cycles of three edges bounding no face, tried
+    size_t handles = 0;             // of them, cut
+    size_t facesRemoved = 0;        // faces on the cut side, and of extra fans this left (sec. 4.2)
+    size_t nonManifoldVertices = 0; // points with two fans after a cut
+    size_t holesClosed = 0, holeFacesAdded = 0; // the cuts' loops closed
+    size_t pointsLost = 0;          // points left with no face by a cut
+    size_t undone = 0;              // cuts put back (a loop did not close)
+    size_t twoFans = 0;             // of them, because a point had two fans after the closure
+  };
+  // Cuts the small handles (g2s_handles.cpp): where the mesh has a handle, each cycle of three
+  // edges that bounds no face and does not separate the faces within two rings of its first point
+  // loses the faces on one side, and its two loops are closed (closeHolesAt, loops of at most
+  // maxHoleEdges edges); where neither side's loops close, the cut is undone. `loops`: the
+  // boundary loops of the mesh now (boundary()). Needs the cleanup's manifold vertices and the
+  // growth state (closeHoles).
+  HandleStat removeSmallHandles(size_t loops, int maxHoleEdges);
+  // Handles of the live mesh: the sum over its components of (2 - V + E - F - loops) / 2.
+  size_t handleCount(size_t loops) const;
   // Removes the connected pieces of fewer than minFaces live faces but the largest
   // (growth::dropSmallComponents) from the mesh and the point-edge map. Returns the pieces removed;
   // facesDropped gets their faces.
@@ -265,6 +287,7 @@ private:
   // closeHoles: the boundary loops of 3 to maxEdges edges through the seeds (g2s_repair.cpp).
   void boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges,
                      std::vector<std::vector<std::uint32_t>>& loops);
+  class HandlePass; // removeSmallHandles' state and steps (g2s_handles.cpp)
   class HolePass; // closeHoles' state and steps (g2s_repair.cpp)
   class CrossingPass; // removeSelfIntersections' state and steps (g2s_repair.cpp)
   // Finds the dense clumps and rebuilds the grid without all but one point of each (constructor).

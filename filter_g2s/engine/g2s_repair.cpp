@@ -34,6 +34,7 @@
 #include "g2s_mesher.h"
 
 #include "g2s_apart.h"
+#include "g2s_hole_pass.h"
 
 #include <growth/self_intersections.h>
 
@@ -267,85 +268,6 @@ void Mesher::boundaryLoops(const std::vector<std::uint32_t>& seeds, int maxEdges
   for (const auto& e : walked) pem_.setMark(e.first, e.second, false);
 }
 
-// The hole pass's state over the loops of one closeHoles call: the live faces at each point, the
-// long faces by cells, the faces added so far, and the loop being closed with the faces near it.
-class Mesher::HolePass {
-public:
-  explicit HolePass(Mesher& m);
-  // Closes loop `original` whole, if need be with one of its faces taken out (counted in st).
-  void closeLoop(const std::vector<std::uint32_t>& original, HoleStat& st);
-
-private:
-  struct NearFace {
-    double lo[3], hi[3];
-    std::uint32_t g;
-  };
-  struct Ear {
-    double score;
-    std::uint32_t index;
-  };
-  static constexpr long kMaxCells = 64;
-
-  // The cells of the box [boxLo, boxHi] (their number, at most kMaxCells + 1 along each axis).
-  long boxCells(const double boxLo[3], const double boxHi[3], long lo[3], long hi[3]) const;
-  // The cells of triangle t's box.
-  long cellRange(const Triangle& t, long lo[3], long hi[3]) const;
-  static std::uint64_t cellKey(long x, long y, long z) {
-    return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
-  }
-  // Face f into the long-face cells when an edge of it is longer than `longest_`.
-  void addIfLong(std::uint32_t f);
-  // The live face on half-edge v→w (-1: none), and its third point.
-  std::int64_t faceOn(std::uint32_t v, std::uint32_t w) const;
-  std::uint32_t thirdPoint(std::uint32_t f, std::uint32_t v, std::uint32_t w) const {
-    const Triangle& t = m_.tri_[f];
-    return t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
-  }
-  P3 normal(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
-    return (pts_[b] - pts_[a]) ^ (pts_[c] - pts_[a]);
-  }
-  static double cosBetween(const P3& x, const P3& y) {
-    const double d = std::sqrt(x.SquaredNorm() * y.SquaredNorm());
-    return d > 0 ? (x * y) / d : -1.0;
-  }
-  // The faces that a triangle on the points of loop_ can meet, into near_.
-  void gatherNearLoop();
-  // Triangle t meets no live face, no face added before and none of pending_ (exactly).
-  bool meetsNothing(const Triangle& t) const;
-  // Closes loop_ by ears; true with the new triangles in pending_ and the point–edge map.
-  bool close();
-  // The loop's triangles into the mesh.
-  void commit(HoleStat& st);
-
-  Mesher& m_;
-  const P3* pts_;
-  const std::vector<P3>& pos_;
-  std::vector<std::uint32_t> first_, at_; // live faces at each point (faceIndex)
-  // Faces with an edge longer than longest_ (few) are found by their boxes, the others at the
-  // points within a new triangle's enclosing radius plus longest_.
-  const double longest_;
-  // The long faces in a hash of cells 4·longest wide (each in the cells its box meets; the few
-  // meeting more than kMaxCells cells in a list of their own).
-  const double cell_;
-  const P3 origin_;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> longCells_;
-  std::vector<std::uint32_t> hugeFaces_;
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_; // faces added here, by point
-  std::vector<char> hasAdded_;
-  const double minCos_;
-  std::vector<Triangle> pending_;
-  std::vector<std::uint32_t> seen_;
-  std::vector<NearFace> near_;
-  // The long faces whose box meets the loop's box are in near_ too (from the cells that box
-  // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
-  bool nearHasLong_ = false;
-  std::vector<char> inNear_;
-  // The loop being closed, opp_[i]: the third point of the face on loop half-edge
-  // loop_[i]→loop_[i+1]; face_[i]: that face in the loop as found.
-  std::vector<std::uint32_t> loop_, opp_, face_;
-  std::vector<Ear> ears_;
-};
-
 Mesher::HolePass::HolePass(Mesher& m)
     : m_(m), pts_(m.pts_), pos_(m.grid_.points()), longest_(kLongEdgeSpacings * m.spacing_), cell_(4 * longest_),
       origin_(m.grid_.box().min), hasAdded_(m.grid_.size(), 0),
@@ -409,8 +331,9 @@ std::int64_t Mesher::HolePass::faceOn(std::uint32_t v, std::uint32_t w) const {
   const auto it = added_.find(v);
   if (it != added_.end())
     for (std::uint32_t f : it->second)
-      for (int k = 0; k < 3; ++k)
-        if (tri[f][k] == v && tri[f][(k + 1) % 3] == w) return f;
+      if (m_.alive_[f]) // (the handle pass takes back the faces of a cut it undoes)
+        for (int k = 0; k < 3; ++k)
+          if (tri[f][k] == v && tri[f][(k + 1) % 3] == w) return f;
   return -1;
 }
 
@@ -722,16 +645,20 @@ Mesher::HoleStat Mesher::closeHoles(int maxEdges) {
   std::vector<std::uint32_t> seeds;
   boundarySuspects(seeds);
   if (seeds.empty()) return st;
+  closeHolesAt(maxEdges, seeds, st);
+  return st;
+}
+
+void Mesher::closeHolesAt(int maxEdges, const std::vector<std::uint32_t>& seeds, HoleStat& st) {
   // 1. The boundary loops of at most maxEdges edges (v0→v1→…: half-edges used by one face each).
   std::vector<std::vector<std::uint32_t>> loops;
   boundaryLoops(seeds, maxEdges, loops);
-  st.loops = loops.size();
-  if (loops.empty()) return st;
+  st.loops += loops.size();
+  if (loops.empty()) return;
   // 2. The faces at each point and the long faces by cells, for the exact tests.
   HolePass pass(*this);
   // 3. Each loop closed by ears, whole or not at all.
   for (const std::vector<std::uint32_t>& original : loops) pass.closeLoop(original, st);
-  return st;
 }
 
 } // namespace g2s

@@ -23,6 +23,7 @@ sizeLevels: sizelevels: int
 flatnessLevels: flatnesslevels: int
 removeNonManifoldVertices: removenonmanifoldvertices: bool
 maxHoleEdges: maxholeedges: int
+removeSmallHandles: removesmallhandles: bool
 minComponentFaces: mincomponentfaces: int
 randomSeed: randomseed: int"
 [ "$(sed -n 's/^python //p' "$work/apply.log")" = "$python_names" ] \

@@ -1,0 +1,437 @@
+// Robust G2S: small handles cut after the growth (Mesher::removeSmallHandles; not in the paper).
+//
+// Where two sheets of one surface come within a spacing or two (the rim of a plate 3 spacings
+// thick, the overlapping layers of a merged scan), the growth can join them twice and leave a
+// tunnel: a handle of the mesh that the surface does not have. Measured on the closed slabs
+// 3 spacings thick (docs/g2s-robustness.md, "The handles"): each handle sat within two rings of
+// one rim vertex, and each was cut by a cycle of three mesh edges that bounds no face (a
+// non-face 3-cycle): removing the faces on one side of such a cycle lowered the genus of the two
+// rings around it from 1 to 0. So, as Guskov and Wood's topological noise removal (2001) does
+// with its short non-separating cycles, but only for the shortest ones:
+//  - the pass runs only where the mesh has a handle: the sum over components of
+//    (2 - V + E - F - loops) / 2 is above 0 (an O(faces) count; a clean sphere stops there);
+//  - every non-face 3-cycle (v, a, b) is a candidate (but the link of a point of degree 3, which
+//    bounds its three faces); it is cut when removing the faces on one of its sides (at each of
+//    its points, the fan between its next and its previous point) lowers the genus of the region
+//    made of the faces within two rings of v (vertices counted once per fan, boundary loops walked
+//    in the region): the cycle does not separate the region, hence not the mesh, and the mesh
+//    loses one handle;
+//  - the cut leaves two loops: the cycle itself (the tunnel's cap: three edges) and the outer edge
+//    of the removed faces (one loop, where it runs into a hole that was there); the hole pass
+//    (HolePass, g2s_hole_pass.h) closes them with its checks (no crossing, manifold, oriented).
+//    The cut is kept only when every loop closed, every point of the region that had no free edge
+//    has none after, and every point there has one fan; otherwise it is undone and the other side
+//    is tried. The cycle's points keep their faces on the other side, so no point is lost unless
+//    all of its faces were on the removed side.
+// Measured (docs/g2s-robustness.md, "Small handles cut"): the four slab samplings that closed with
+// a handle close with the plate's topology; the bunny's 741 handles become 617.
+// A handle of the object itself (a torus' tube, a mug's handle) has no cycle of three edges
+// around it unless it is sampled by three points across, so it stays.
+#include "g2s_hole_pass.h"
+#include "g2s_mesher.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+namespace growth {
+namespace g2s {
+
+namespace {
+
+// Genus of a set of faces of a manifold, consistently oriented mesh: per connected piece (faces
+// joined by edges), 2 - 2g = V - E + F + loops, with V counting each vertex once per fan in the
+// set (so that a region pinched at a vertex gives whole numbers). -1 when the set's boundary does
+// not walk (an inconsistent orientation).
+class RegionGenus {
+public:
+  int operator()(const std::vector<Triangle>& tri, const std::vector<std::uint32_t>& faces) {
+    const size_t nf = faces.size();
+    if (nf == 0) return 0;
+    half_.clear();
+    for (size_t i = 0; i < nf; ++i) {
+      const Triangle& t = tri[faces[i]];
+      for (int k = 0; k < 3; ++k) half_.push_back({t[k], t[(k + 1) % 3], std::uint32_t(3 * i + k)});
+    }
+    std::sort(half_.begin(), half_.end());
+    corner_.resize(3 * nf);
+    for (size_t c = 0; c < corner_.size(); ++c) corner_[c] = std::uint32_t(c);
+    face_.resize(nf);
+    for (size_t i = 0; i < nf; ++i) face_[i] = std::uint32_t(i);
+    size_t edges = 0;
+    // Corner c = 3i + k is face i at its k-th point; half-edge 3i + k runs from corner 3i + k to
+    // corner 3i + (k + 1) % 3.
+    auto to = [](std::uint32_t h) { return h - h % 3 + (h % 3 + 1) % 3; };
+    twin_.assign(3 * nf, ~0u);
+    for (const Half& h : half_) {
+      const Half key{h.b, h.a, 0};
+      auto it = std::lower_bound(half_.begin(), half_.end(), key);
+      if (it != half_.end() && it->a == h.b && it->b == h.a) {
+        twin_[h.id] = it->id;
+        if (h.a < h.b) {
+          ++edges;
+          // h: a→b from corner h.id to to(h.id); twin: b→a from corner it->id to to(it->id).
+          join(corner_, h.id, to(it->id));
+          join(corner_, to(h.id), it->id);
+          join(face_, h.id / 3, it->id / 3);
+        }
+      } else {
+        ++edges;
+      }
+    }
+    size_t vertices = 0, pieces = 0;
+    for (size_t c = 0; c < corner_.size(); ++c) vertices += root(corner_, std::uint32_t(c)) == c;
+    for (size_t i = 0; i < nf; ++i) pieces += root(face_, std::uint32_t(i)) == i;
+    // Boundary loops: the one boundary half-edge leaving each open fan.
+    out_.assign(3 * nf, ~0u);
+    for (std::uint32_t h = 0; h < 3 * nf; ++h)
+      if (twin_[h] == ~0u) {
+        const std::uint32_t r = root(corner_, h);
+        if (out_[r] != ~0u) return -1;
+        out_[r] = h;
+      }
+    seen_.assign(3 * nf, 0);
+    size_t loops = 0;
+    for (std::uint32_t h = 0; h < 3 * nf; ++h) {
+      if (twin_[h] != ~0u || seen_[h]) continue;
+      ++loops;
+      std::uint32_t x = h;
+      while (!seen_[x]) {
+        seen_[x] = 1;
+        x = out_[root(corner_, to(x))];
+        if (x == ~0u) return -1;
+      }
+      if (x != h) return -1;
+    }
+    const long twice = 2 * long(pieces) - (long(vertices) - long(edges) + long(nf)) - long(loops);
+    if (twice < 0 || twice % 2 != 0) return -1;
+    return int(twice / 2);
+  }
+
+private:
+  struct Half {
+    std::uint32_t a, b, id;
+    bool operator<(const Half& o) const { return a != o.a ? a < o.a : b < o.b; }
+  };
+  static std::uint32_t root(std::vector<std::uint32_t>& p, std::uint32_t i) {
+    while (p[i] != i) {
+      p[i] = p[p[i]];
+      i = p[i];
+    }
+    return i;
+  }
+  static void join(std::vector<std::uint32_t>& p, std::uint32_t a, std::uint32_t b) {
+    a = root(p, a);
+    b = root(p, b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+  std::vector<Half> half_;
+  std::vector<std::uint32_t> corner_, face_, twin_, out_;
+  std::vector<char> seen_;
+};
+
+} // namespace
+
+size_t Mesher::handleCount(size_t loops) const {
+  const size_t n = grid_.size();
+  std::vector<std::uint32_t> parent;
+  unionComponents(parent);
+  std::vector<char> used(n, 0);
+  size_t faces = 0, boundaryHalfEdges = 0;
+  for (size_t f = 0; f < tri_.size(); ++f) {
+    if (!alive_[f]) continue;
+    ++faces;
+    for (std::uint32_t v : tri_[f]) used[v] = 1;
+  }
+  size_t vertices = 0, pieces = 0;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (!used[v]) continue;
+    ++vertices;
+    pieces += parent[v] == v;
+    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { boundaryHalfEdges += out && !in; });
+  }
+  const size_t edges = (3 * faces + boundaryHalfEdges) / 2;
+  const long twice = 2 * long(pieces) - (long(vertices) - long(edges) + long(faces)) - long(loops);
+  return twice > 0 ? size_t(twice / 2) : 0;
+}
+
+// removeSmallHandles' state: the faces at each point (the live ones at the start, the ones added
+// since by point), the region of the cycle being tried, and the hole pass that closes the cuts.
+class Mesher::HandlePass {
+public:
+  HandlePass(Mesher& m, int maxHoleEdges) : m_(m), maxHoleEdges_(maxHoleEdges), inRing_(m.grid_.size(), 0) {
+    m_.faceIndex(first_, at_);
+  }
+  // Tries every non-face 3-cycle with v as its smallest point, cutting those that lower the genus.
+  void at(std::uint32_t v, HandleStat& st);
+
+private:
+  template <class F> void forEachFace(std::uint32_t v, F&& f) const {
+    for (std::uint32_t k = first_[v]; k < first_[v + 1]; ++k)
+      if (m_.alive_[at_[k]]) f(at_[k]);
+    const auto it = added_.find(v);
+    if (it != added_.end())
+      for (std::uint32_t g : it->second)
+        if (m_.alive_[g]) f(g);
+  }
+  void neighbours(std::uint32_t v, std::vector<std::uint32_t>& out) const {
+    out.clear();
+    m_.pem_.forEachEdge(v, [&](std::uint32_t w, bool o, bool i) {
+      if (o || i) out.push_back(w);
+    });
+    std::sort(out.begin(), out.end());
+  }
+  // The live face with half-edge v→w (-1: none).
+  std::int64_t faceWith(std::uint32_t v, std::uint32_t w) const {
+    std::int64_t found = -1;
+    forEachFace(v, [&](std::uint32_t f) {
+      const Triangle& t = m_.tri_[f];
+      for (int j = 0; j < 3; ++j)
+        if (t[j] == v && t[(j + 1) % 3] == w) found = f;
+    });
+    return found;
+  }
+  // The faces at x from half-edge x→next round to half-edge x→prev: the cycle's left at x
+  // (from the face with x→y to the face with x→(the point before x in it)). False at a boundary.
+  bool leftWedge(std::uint32_t prev, std::uint32_t x, std::uint32_t next, std::vector<std::uint32_t>& out) const {
+    std::uint32_t y = next;
+    for (int guard = 0; guard < 1024; ++guard) {
+      if (y == prev) return true;
+      const std::int64_t f = faceWith(x, y);
+      if (f < 0) return false;
+      out.push_back(std::uint32_t(f));
+      const Triangle& t = m_.tri_[size_t(f)];
+      const int j = t[0] == x ? 0 : t[1] == x ? 1 : 2;
+      y = t[(j + 2) % 3];
+    }
+    return false;
+  }
+  // The points within two rings of v into ring_ (marked in inRing_), their live faces into region_.
+  void gatherRegion(std::uint32_t v);
+  // Takes the faces cut_ out and closes the loops through their points; keeps that when every
+  // loop closed and every point of the region that had no free edge has none after (or no face:
+  // counted lost). Otherwise everything is put back; false.
+  bool cutAndClose(HandleStat& st);
+  // Points of `touched` with more than one fan of live faces.
+  bool anyTwoFans(const std::vector<std::uint32_t>& touched) const;
+
+  Mesher& m_;
+  const int maxHoleEdges_;
+  std::vector<std::uint32_t> first_, at_;
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_;
+  std::unique_ptr<HolePass> holes_;
+  RegionGenus genus_;
+  std::vector<char> inRing_;
+  std::vector<std::uint32_t> nv_, na_, ring_, next_, region_, cut_, rest_, outside_;
+};
+
+void Mesher::HandlePass::gatherRegion(std::uint32_t v) {
+  ring_.assign(1, v);
+  inRing_[v] = 1;
+  size_t from = 0;
+  for (int r = 0; r < 2; ++r) {
+    const size_t to = ring_.size();
+    for (size_t i = from; i < to; ++i)
+      m_.pem_.forEachEdge(ring_[i], [&](std::uint32_t w, bool o, bool in) {
+        if ((o || in) && !inRing_[w]) {
+          inRing_[w] = 1;
+          ring_.push_back(w);
+        }
+      });
+    from = to;
+  }
+  region_.clear();
+  for (std::uint32_t x : ring_) forEachFace(x, [&](std::uint32_t f) { region_.push_back(f); });
+  std::sort(region_.begin(), region_.end());
+  region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
+}
+
+bool Mesher::HandlePass::anyTwoFans(const std::vector<std::uint32_t>& touched) const {
+  std::vector<std::uint32_t> fan;
+  for (std::uint32_t x : touched) {
+    fan.clear();
+    forEachFace(x, [&](std::uint32_t f) { fan.push_back(f); });
+    if (fan.size() < 2) continue;
+    // Walk one fan from fan[0] across the edges at x, both ways (once round, if it is closed):
+    // all faces reached?
+    size_t reached = 1;
+    bool closedFan = false;
+    for (int dir = 0; dir < 2 && !closedFan; ++dir) {
+      std::uint32_t f = fan[0];
+      for (size_t guard = 0; guard < fan.size(); ++guard) {
+        const Triangle& t = m_.tri_[f];
+        const int j = t[0] == x ? 0 : t[1] == x ? 1 : 2;
+        // dir 0: across edge (x, next); the face there has half-edge next→x.
+        const std::int64_t g = dir == 0 ? faceWith(t[(j + 1) % 3], x) : faceWith(x, t[(j + 2) % 3]);
+        if (g < 0) break;
+        if (std::uint32_t(g) == fan[0]) {
+          closedFan = true;
+          break;
+        }
+        ++reached;
+        f = std::uint32_t(g);
+      }
+    }
+    if (reached != fan.size()) return true;
+  }
+  return false;
+}
+
+bool Mesher::HandlePass::cutAndClose(HandleStat& st) {
+  std::vector<char>& alive = m_.alive_;
+  const std::vector<Triangle>& tri = m_.tri_;
+  PointEdgeMap& pem = m_.pem_;
+  const size_t oldFaces = tri.size();
+  std::vector<char> wasClosed(ring_.size());
+  for (size_t i = 0; i < ring_.size(); ++i) wasClosed[i] = !pem.hasFreeEdge(ring_[i]);
+  // (The hole pass indexes the live faces when it is made: before the first cut, so that it
+  // finds the faces of a cut that is undone.)
+  if (!holes_) holes_.reset(new HolePass(m_));
+  outside_.clear();
+  std::vector<std::uint32_t> touched;
+  for (std::uint32_t f : cut_) {
+    alive[f] = 0;
+    pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    for (std::uint32_t x : tri[f]) touched.push_back(x);
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  bool ok = !anyTwoFans(touched);
+  HoleStat hs;
+  if (ok) {
+    std::vector<std::vector<std::uint32_t>> loops;
+    m_.boundaryLoops(touched, maxHoleEdges_, loops);
+    // A loop can run on through a hole that was there before: the faces at its points beyond
+    // the region are kept too, in case the closure is undone.
+    for (const auto& loop : loops)
+      for (std::uint32_t x : loop)
+        if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
+    if (ok) {
+      for (const auto& loop : loops) holes_->closeLoop(loop, hs);
+      ok = hs.closed == loops.size();
+    }
+  }
+  // Every point of the region and of the loops with one fan (the hole pass keeps that; checked,
+  // as a cut is undone otherwise).
+  if (ok) {
+    std::vector<std::uint32_t> check(ring_.begin(), ring_.end());
+    for (std::uint32_t f : outside_)
+      for (std::uint32_t x : tri[f]) check.push_back(x);
+    for (size_t f = oldFaces; f < tri.size(); ++f)
+      for (std::uint32_t x : tri[f]) check.push_back(x);
+    std::sort(check.begin(), check.end());
+    check.erase(std::unique(check.begin(), check.end()), check.end());
+    ok = !anyTwoFans(check);
+    if (!ok) ++st.twoFans;
+  }
+  size_t lost = 0;
+  for (size_t i = 0; i < ring_.size() && ok; ++i) {
+    const std::uint32_t x = ring_[i];
+    if (pem.isolated(x))
+      lost += wasClosed[i];
+    else if (wasClosed[i] && pem.hasFreeEdge(x))
+      ok = false;
+  }
+  if (ok) {
+    for (size_t f = oldFaces; f < tri.size(); ++f)
+      for (std::uint32_t x : tri[f]) added_[x].push_back(std::uint32_t(f));
+    st.facesRemoved += cut_.size() + hs.facesReplaced;
+    st.holesClosed += hs.closed;
+    st.holeFacesAdded += hs.facesAdded;
+    st.pointsLost += lost;
+    return true;
+  }
+  // Undone: the closures' faces out (they stay in the arrays, dead), then the region's faces back
+  // (the cut's and any the hole pass took out: all at the region's points).
+  for (size_t f = oldFaces; f < tri.size(); ++f)
+    if (alive[f]) {
+      alive[f] = 0;
+      pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    }
+  outside_.insert(outside_.end(), region_.begin(), region_.end());
+  for (std::uint32_t f : outside_)
+    if (!alive[f]) {
+      alive[f] = 1;
+      pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
+    }
+  ++st.undone;
+  return false;
+}
+
+void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
+  bool again = true;
+  while (again) {
+    again = false;
+    neighbours(v, nv_);
+    for (size_t i = 0; i < nv_.size() && !again; ++i) {
+      const std::uint32_t a = nv_[i];
+      if (a < v) continue;
+      neighbours(a, na_);
+      for (size_t j = i + 1; j < nv_.size() && !again; ++j) {
+        const std::uint32_t b = nv_[j];
+        if (!std::binary_search(na_.begin(), na_.end(), b)) continue;
+        // A face on the three points (in either turn): the cycle bounds it.
+        bool bounds = false;
+        forEachFace(v, [&](std::uint32_t f) {
+          const Triangle& t = m_.tri_[f];
+          bounds = bounds || ((t[0] == a || t[1] == a || t[2] == a) && (t[0] == b || t[1] == b || t[2] == b));
+        });
+        if (bounds) continue;
+        // The link of a point of degree 3 inside it (three faces round a point x): it bounds them.
+        bool linkOfThree = false;
+        forEachFace(v, [&](std::uint32_t f) {
+          const Triangle& t = m_.tri_[f];
+          if (linkOfThree || !(t[0] == a || t[1] == a || t[2] == a)) return;
+          const std::uint32_t x = t[0] != v && t[0] != a ? t[0] : t[1] != v && t[1] != a ? t[1] : t[2];
+          if (m_.pem_.degree(x) != 3) return;
+          bool vbx = false, abx = false;
+          forEachFace(x, [&](std::uint32_t g) {
+            const Triangle& u = m_.tri_[g];
+            const bool hasB = u[0] == b || u[1] == b || u[2] == b;
+            vbx = vbx || (hasB && (u[0] == v || u[1] == v || u[2] == v));
+            abx = abx || (hasB && (u[0] == a || u[1] == a || u[2] == a));
+          });
+          linkOfThree = vbx && abx;
+        });
+        if (linkOfThree) continue;
+        ++st.candidates;
+        gatherRegion(v);
+        const int before = genus_(m_.tri_, region_);
+        // Each side of the cycle in turn: v→a→b→v (its left), then v→b→a→v.
+        for (int side = 0; side < 2 && before > 0 && !again; ++side) {
+          const std::uint32_t p = side == 0 ? a : b, q = side == 0 ? b : a;
+          cut_.clear();
+          if (!leftWedge(q, v, p, cut_) || !leftWedge(v, p, q, cut_) || !leftWedge(p, q, v, cut_)) continue;
+          std::sort(cut_.begin(), cut_.end());
+          cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());
+          if (cut_.empty()) continue;
+          rest_.clear();
+          std::set_difference(region_.begin(), region_.end(), cut_.begin(), cut_.end(), std::back_inserter(rest_));
+          const int after = genus_(m_.tri_, rest_);
+          if (after < 0 || after >= before) continue;
+          if (cutAndClose(st)) {
+            ++st.handles;
+            again = true; // v's neighbours changed
+          }
+        }
+        for (std::uint32_t x : ring_) inRing_[x] = 0;
+      }
+    }
+  }
+}
+
+Mesher::HandleStat Mesher::removeSmallHandles(size_t loops, int maxHoleEdges) {
+  HandleStat st;
+  if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  st.handlesBefore = handleCount(loops);
+  if (st.handlesBefore == 0 || maxHoleEdges < 3) return st;
+  HandlePass pass(*this, maxHoleEdges);
+  for (std::uint32_t v = 0; v < grid_.size(); ++v) pass.at(v, st);
+  return st;
+}
+
+} // namespace g2s
+} // namespace growth
