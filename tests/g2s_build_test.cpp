@@ -547,11 +547,14 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   // Seed 10 and the 100k seed 1 sampling are the rim crossings the under-a-sheet rule stops
   // (g2s_mesher.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
   // The 100k seed 2 sampling keeps a hole of 3 edges round a spike at a corner without the hole
-  // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap.
+  // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap. Seed 7 kept a rim loop of
+  // 7 edges with a handle beside it until the wider closure (Mesher::widenHoles: the faces on the
+  // loop's edges taken out, the wider loop closed).
   for (const Case c : {Case{0.025, 30000, 1, 0}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 0},
                        Case{0.025, 50000, 1, 0}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 0},
                        Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}, Case{0.025, 30000, 10, 0},
-                       Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}, Case{0.025, 30000, 5, 0}}) {
+                       Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}, Case{0.025, 30000, 5, 0},
+                       Case{0.025, 30000, 7, 0}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;
@@ -602,18 +605,19 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
 
 // Issue 13 item 5: the samplings of plates three spacings thick that closed with a handle, a
 // tunnel through a rim's corner between chamfer triangles from one sheet to the other and the side
-// strip (docs/g2s-robustness.md, "The handles"), and seed 7, whose handle ran into a rim hole of 7
-// edges. Each handle had a cycle of three edges bounding no face that does not separate the faces
-// around it; the handle pass (Params::removeSmallHandles) takes the faces on one side of it out
-// and closes the loops: all four close with the plate's topology, facing out. With the pass off
-// each keeps its handle, so the test fails without it.
+// strip (docs/g2s-robustness.md, "The handles"). Each handle had a cycle of three edges bounding
+// no face that does not separate the faces around it; the handle pass (Params::removeSmallHandles)
+// takes the faces on one side of it out and closes the loops: all three close with the plate's
+// topology, facing out. With the pass off each keeps its handle, so the test fails without it.
+// (Seed 7 had a handle too, beside a rim hole of 7 edges: the hole pass's wider closure
+// (Mesher::widenHoles) takes that hole's faces out with the handle's, see the test above.)
 TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
   struct Case {
     double thickness;
     size_t points;
     std::uint64_t seed;
   };
-  for (const Case c : {Case{0.025, 30000, 5}, Case{0.025, 30000, 7}, Case{0.02, 50000, 1}, Case{0.0135, 100000, 3}}) {
+  for (const Case c : {Case{0.025, 30000, 5}, Case{0.02, 50000, 1}, Case{0.0135, 100000, 3}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;

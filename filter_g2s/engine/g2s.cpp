@@ -88,7 +88,8 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
   if (p.minComponentFaces > 1)
     stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
   if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
-    const Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
+    Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
+    mesher.widenHoles(p.maxHoleEdges, hs);
     stat.holesClosed = hs.closed;
     stat.holeFacesAdded = hs.facesAdded;
     stat.holeFacesReplaced = hs.facesReplaced;
@@ -98,7 +99,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
   if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)
     // Not in the paper: small handles (tunnels between close sheets) cut, their loops closed.
     if (p.removeSmallHandles) {
-      const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary.loops, p.maxHoleEdges);
+      const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary, p.maxHoleEdges);
       stat.handlesCut = hs.handles;
       stat.handleFacesRemoved = hs.facesRemoved;
       stat.nonManifoldVerticesRemoved += hs.nonManifoldVertices;
@@ -106,10 +107,10 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
       stat.handles = hs.handlesBefore;
       if (hs.handles > 0) {
         boundary = mesher.boundary();
-        stat.handles = mesher.handleCount(boundary.loops);
+        stat.handles = mesher.handleCount(boundary);
       }
     } else {
-      stat.handles = mesher.handleCount(boundary.loops);
+      stat.handles = mesher.handleCount(boundary);
     }
   }
   // The search structures go before the output's memory is taken (the repairs search).

@@ -135,12 +135,24 @@ private:
 
 } // namespace
 
-size_t Mesher::handleCount(size_t loops) const {
+size_t Mesher::handleCount(const BoundaryCount& boundary) const {
+  // Every component grew from a seed, so where no face was ever taken out (neither by the cleanup
+  // nor by the rim pass, which may split a component) there are at most seeds() of them: with that
+  // bound, (2 C - V + E - F - loops) / 2 bounds the handles, and a clean closed cloud of genus 0
+  // stops here without numbering its components (V: the points used, which the hole pass does not
+  // change).
+  const bool noneRemoved = foldsRefused_ + otherSheetBalls_ == 0 &&
+                           std::find(alive_.begin(), alive_.end(), char(0)) == alive_.end();
+  if (noneRemoved) {
+    const long faces = long(tri_.size()), edges = (3 * faces + long(boundary.edges)) / 2;
+    const long twice = 2 * long(seeds_) - (long(usedPoints_) - edges + faces) - long(boundary.loops);
+    if (twice <= 0) return 0;
+  }
   const size_t n = grid_.size();
   std::vector<std::uint32_t> parent;
   unionComponents(parent);
   std::vector<char> used(n, 0);
-  size_t faces = 0, boundaryHalfEdges = 0;
+  size_t faces = 0;
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;
     ++faces;
@@ -151,10 +163,9 @@ size_t Mesher::handleCount(size_t loops) const {
     if (!used[v]) continue;
     ++vertices;
     pieces += parent[v] == v;
-    pem_.forEachEdge(v, [&](std::uint32_t, bool out, bool in) { boundaryHalfEdges += out && !in; });
   }
-  const size_t edges = (3 * faces + boundaryHalfEdges) / 2;
-  const long twice = 2 * long(pieces) - (long(vertices) - long(edges) + long(faces)) - long(loops);
+  const size_t edges = (3 * faces + boundary.edges) / 2;
+  const long twice = 2 * long(pieces) - (long(vertices) - long(edges) + long(faces)) - long(boundary.loops);
   return twice > 0 ? size_t(twice / 2) : 0;
 }
 
@@ -167,6 +178,9 @@ public:
   }
   // Tries every non-face 3-cycle with v as its smallest point, cutting those that lower the genus.
   void at(std::uint32_t v, HandleStat& st);
+  // A loop the hole pass left open, tried again with every face on its edges taken out (the loop
+  // then runs through their third points); true when it closed so.
+  bool widen(const std::vector<std::uint32_t>& loop, HandleStat& st);
 
 private:
   template <class F> void forEachFace(std::uint32_t v, F&& f) const {
@@ -214,7 +228,7 @@ private:
   // Takes the faces cut_ out and closes the loops through their points; keeps that when every
   // loop closed and every point of the region that had no free edge has none after (or no face:
   // counted lost). Otherwise everything is put back; false.
-  bool cutAndClose(HandleStat& st);
+  bool cutAndClose(HandleStat& st, int maxLoopEdges);
   // Points of `touched` with more than one fan of live faces.
   bool anyTwoFans(const std::vector<std::uint32_t>& touched) const;
 
@@ -280,7 +294,7 @@ bool Mesher::HandlePass::anyTwoFans(const std::vector<std::uint32_t>& touched) c
   return false;
 }
 
-bool Mesher::HandlePass::cutAndClose(HandleStat& st) {
+bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
   std::vector<char>& alive = m_.alive_;
   const std::vector<Triangle>& tri = m_.tri_;
   PointEdgeMap& pem = m_.pem_;
@@ -303,7 +317,7 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st) {
   HoleStat hs;
   if (ok) {
     std::vector<std::vector<std::uint32_t>> loops;
-    m_.boundaryLoops(touched, maxHoleEdges_, loops);
+    m_.boundaryLoops(touched, maxLoopEdges, loops);
     // A loop can run on through a hole that was there before: the faces at its points beyond
     // the region are kept too, in case the closure is undone.
     for (const auto& loop : loops)
@@ -311,8 +325,8 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st) {
         if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
     if (ok) {
       for (const auto& loop : loops) holes_->closeLoop(loop, hs);
-      ok = hs.closed == loops.size();
-    }
+      ok = !loops.empty() && hs.closed == loops.size();
+        }
   }
   // Every point of the region and of the loops with one fan (the hole pass keeps that; checked,
   // as a cut is undone otherwise).
@@ -327,13 +341,17 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st) {
     ok = !anyTwoFans(check);
     if (!ok) ++st.twoFans;
   }
+  for (size_t i = 0; i < ring_.size() && ok; ++i)
+    ok = !(wasClosed[i] && pem.hasFreeEdge(ring_[i]));
+  // The points left with no face (all had faces): the region's and those of the faces beyond it.
   size_t lost = 0;
-  for (size_t i = 0; i < ring_.size() && ok; ++i) {
-    const std::uint32_t x = ring_[i];
-    if (pem.isolated(x))
-      lost += wasClosed[i];
-    else if (wasClosed[i] && pem.hasFreeEdge(x))
-      ok = false;
+  if (ok) {
+    std::vector<std::uint32_t> had(ring_.begin(), ring_.end());
+    for (std::uint32_t f : outside_)
+      for (std::uint32_t x : tri[f]) had.push_back(x);
+    std::sort(had.begin(), had.end());
+    had.erase(std::unique(had.begin(), had.end()), had.end());
+    for (std::uint32_t x : had) lost += pem.isolated(x);
   }
   if (ok) {
     for (size_t f = oldFaces; f < tri.size(); ++f)
@@ -412,7 +430,7 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
           std::set_difference(region_.begin(), region_.end(), cut_.begin(), cut_.end(), std::back_inserter(rest_));
           const int after = genus_(m_.tri_, rest_);
           if (after < 0 || after >= before) continue;
-          if (cutAndClose(st)) {
+          if (cutAndClose(st, maxHoleEdges_)) {
             ++st.handles;
             again = true; // v's neighbours changed
           }
@@ -423,10 +441,63 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
   }
 }
 
-Mesher::HandleStat Mesher::removeSmallHandles(size_t loops, int maxHoleEdges) {
+bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleStat& st) {
+  const size_t m = loop.size();
+  cut_.clear();
+  for (size_t i = 0; i < m; ++i) {
+    const std::int64_t f = faceWith(loop[i], loop[(i + 1) % m]);
+    if (f < 0) return false;
+    cut_.push_back(std::uint32_t(f));
+  }
+  std::sort(cut_.begin(), cut_.end());
+  cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());
+  ring_.clear();
+  for (std::uint32_t f : cut_)
+    for (std::uint32_t x : m_.tri_[f])
+      if (!inRing_[x]) {
+        inRing_[x] = 1;
+        ring_.push_back(x);
+      }
+  region_.clear();
+  for (std::uint32_t x : ring_) forEachFace(x, [&](std::uint32_t f) { region_.push_back(f); });
+  std::sort(region_.begin(), region_.end());
+  region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
+  // (The wider loop runs through the faces' third points: up to twice as long.)
+  const bool closed = cutAndClose(st, 2 * maxHoleEdges_);
+  for (std::uint32_t x : ring_) inRing_[x] = 0;
+  return closed;
+}
+
+size_t Mesher::widenHoles(int maxHoleEdges, HoleStat& hs) {
+  if (maxHoleEdges < 3) return 0;
+  if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  std::vector<std::uint32_t> seeds;
+  boundarySuspects(seeds);
+  if (seeds.empty()) return 0;
+  std::vector<std::vector<std::uint32_t>> loops;
+  boundaryLoops(seeds, maxHoleEdges, loops);
+  if (loops.empty()) return 0;
+  HandlePass pass(*this, maxHoleEdges);
+  HandleStat st;
+  size_t closed = 0;
+  for (const auto& loop : loops) {
+    // (An earlier closure may have closed this loop too: all its half-edges still free?)
+    bool open = true;
+    for (size_t i = 0; i < loop.size() && open; ++i)
+      open = pem_.used(loop[i], loop[(i + 1) % loop.size()]) && !pem_.used(loop[(i + 1) % loop.size()], loop[i]);
+    if (open && pass.widen(loop, st)) ++closed;
+  }
+  hs.closed += closed;
+  hs.facesAdded += st.holeFacesAdded;
+  hs.facesReplaced += st.facesRemoved;
+  hs.spikes += st.pointsLost;
+  return closed;
+}
+
+Mesher::HandleStat Mesher::removeSmallHandles(const BoundaryCount& boundary, int maxHoleEdges) {
   HandleStat st;
   if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
-  st.handlesBefore = handleCount(loops);
+  st.handlesBefore = handleCount(boundary);
   if (st.handlesBefore == 0 || maxHoleEdges < 3) return st;
   HandlePass pass(*this, maxHoleEdges);
   for (std::uint32_t v = 0; v < grid_.size(); ++v) pass.at(v, st);

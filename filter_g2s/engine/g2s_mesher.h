@@ -152,6 +152,7 @@ public:
   HoleStat closeHoles(int maxEdges);
   // closeHoles on the loops through `seeds` (sorted, unique), adding to st.
   void closeHolesAt(int maxEdges, const std::vector<std::uint32_t>& seeds, HoleStat& st);
+  struct BoundaryCount; // (below)
   struct HandleStat {
     size_t handlesBefore = 0;       // handles of the mesh before the pass (sum over its components)
     size_t candidates = 0;          // cycles of three edges bounding no face, tried
@@ -166,12 +167,18 @@ public:
   // Cuts the small handles (g2s_handles.cpp): where the mesh has a handle, each cycle of three
   // edges that bounds no face and does not separate the faces within two rings of its first point
   // loses the faces on one side, and its two loops are closed (closeHolesAt, loops of at most
-  // maxHoleEdges edges); where neither side's loops close, the cut is undone. `loops`: the
-  // boundary loops of the mesh now (boundary()). Needs the cleanup's manifold vertices and the
+  // maxHoleEdges edges); where neither side's loops close, the cut is undone. `boundary`: the
+  // mesh's boundary now (boundary()). Needs the cleanup's manifold vertices and the
   // growth state (closeHoles).
-  HandleStat removeSmallHandles(size_t loops, int maxHoleEdges);
-  // Handles of the live mesh: the sum over its components of (2 - V + E - F - loops) / 2.
-  size_t handleCount(size_t loops) const;
+  HandleStat removeSmallHandles(const BoundaryCount& boundary, int maxHoleEdges);
+  // After closeHoles: each loop of at most maxHoleEdges edges it left open is tried again with
+  // every face on its edges taken out (g2s_handles.cpp), the wider loop closed by the hole pass's
+  // means; undone where it does not close or a point inside would be left on a boundary. Adds to
+  // hs (closed, faces added, faces replaced, points left out as spikes); returns the loops closed.
+  size_t widenHoles(int maxHoleEdges, HoleStat& hs);
+  // Handles of the live mesh: the sum over its components of (2 - V + E - F - loops) / 2, given
+  // its boundary (boundary()).
+  size_t handleCount(const BoundaryCount& boundary) const;
   // Removes the connected pieces of fewer than minFaces live faces but the largest
   // (growth::dropSmallComponents) from the mesh and the point-edge map. Returns the pieces removed;
   // facesDropped gets their faces.
