@@ -917,6 +917,7 @@ void Mesher::meshAll(Progress* progress) {
   }
   // Thin parts (kSheetGap): their rims stay open in loops of a few edges (g2s_thin.cpp).
   if (__builtin_expect(foldsRefused_ + otherSheetBalls_ > 0, 0)) closeRimLoops();
+  grownTriangles_ = tri_.size();
 }
 
 ManifoldCleanupStat Mesher::removeNonManifoldVertices() {

@@ -411,6 +411,7 @@ private:
   std::vector<Triangle> loopFaces_;
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
+  size_t grownTriangles_ = 0; // triangles at the end of meshAll (the repairs add after them)
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
