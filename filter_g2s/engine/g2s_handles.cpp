@@ -237,7 +237,6 @@ private:
   const int maxHoleEdges_;
   std::vector<std::uint32_t> first_, at_;
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_;
-  std::unique_ptr<HolePass> holes_;
   RegionGenus genus_;
   std::vector<char> inRing_, mark_;
   std::vector<std::uint8_t> nt_;
@@ -305,7 +304,7 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
   for (size_t i = 0; i < ring_.size(); ++i) wasClosed[i] = !pem.hasFreeEdge(ring_[i]);
   // (The hole pass indexes the live faces when it is made: before the first cut, so that it
   // finds the faces of a cut that is undone.)
-  if (!holes_) holes_.reset(new HolePass(m_));
+  if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
   outside_.clear();
   std::vector<std::uint32_t> touched;
   for (std::uint32_t f : cut_) {
@@ -326,7 +325,7 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
       for (std::uint32_t x : loop)
         if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
     if (ok) {
-      for (const auto& loop : loops) holes_->closeLoop(loop, hs);
+      for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
       ok = !loops.empty() && hs.closed == loops.size();
         }
   }
@@ -493,7 +492,8 @@ size_t Mesher::widenHoles(int maxHoleEdges, HoleStat& hs) {
   std::vector<std::vector<std::uint32_t>> loops;
   boundaryLoops(seeds, maxHoleEdges, loops);
   if (loops.empty()) return 0;
-  HandlePass pass(*this, maxHoleEdges);
+  if (!handlePass_) handlePass_.reset(new HandlePass(*this, maxHoleEdges));
+  HandlePass& pass = *handlePass_;
   HandleStat st;
   size_t closed = 0;
   for (const auto& loop : loops) {
@@ -523,10 +523,13 @@ Mesher::HandleStat Mesher::removeSmallHandles(const BoundaryCount& boundary, int
   const bool plainGrowth = foldsRefused_ + otherSheetBalls_ == 0 && tri_.size() == grownTriangles_ &&
                            std::find(alive_.begin(), alive_.end(), char(0)) == alive_.end();
   if (plainGrowth) return st;
-  HandlePass pass(*this, maxHoleEdges);
-  for (std::uint32_t v = 0; v < grid_.size(); ++v) pass.at(v, st);
+  if (!handlePass_) handlePass_.reset(new HandlePass(*this, maxHoleEdges));
+  for (std::uint32_t v = 0; v < grid_.size(); ++v) handlePass_->at(v, st);
   return st;
 }
+
+void Mesher::PassDeleter::operator()(HolePass* p) const { delete p; }
+void Mesher::PassDeleter::operator()(HandlePass* p) const { delete p; }
 
 } // namespace g2s
 } // namespace growth

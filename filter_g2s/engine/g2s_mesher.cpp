@@ -1105,6 +1105,8 @@ void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, s
 }
 
 void Mesher::releaseGrowthState() {
+  holePass_.reset();
+  handlePass_.reset();
   grid_.releaseSearch();
   HugeVector<float>().swap(edgeLengthSum_);
   HugeVector<std::uint16_t>().swap(edgeCount_);

@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #if defined(__GNUC__)
@@ -412,6 +413,14 @@ private:
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
   size_t grownTriangles_ = 0; // triangles at the end of meshAll (the repairs add after them)
+  // The hole pass's state, made by the first closeHoles and kept for the wider closures and the
+  // handle pass (its face index is built once); and the handle pass's. Freed by releaseGrowthState.
+  struct PassDeleter { // (defined in g2s_handles.cpp, where both passes are complete types)
+    void operator()(HolePass* p) const;
+    void operator()(HandlePass* p) const;
+  };
+  std::unique_ptr<HolePass, PassDeleter> holePass_;
+  std::unique_ptr<HandlePass, PassDeleter> handlePass_;
   size_t seeds_ = 0, seedAttempts_ = 0;
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;

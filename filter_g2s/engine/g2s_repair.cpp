@@ -655,10 +655,11 @@ void Mesher::closeHolesAt(int maxEdges, const std::vector<std::uint32_t>& seeds,
   boundaryLoops(seeds, maxEdges, loops);
   st.loops += loops.size();
   if (loops.empty()) return;
-  // 2. The faces at each point and the long faces by cells, for the exact tests.
-  HolePass pass(*this);
+  // 2. The faces at each point and the long faces by cells, for the exact tests (once: the pass
+  //    follows the faces taken out through alive() and keeps those it adds).
+  if (!holePass_) holePass_.reset(new HolePass(*this));
   // 3. Each loop closed by ears, whole or not at all.
-  for (const std::vector<std::uint32_t>& original : loops) pass.closeLoop(original, st);
+  for (const std::vector<std::uint32_t>& original : loops) holePass_->closeLoop(original, st);
 }
 
 } // namespace g2s
