@@ -58,6 +58,11 @@ private:
   bool meetsNothing(const Triangle& t) const;
   // Closes loop_ by ears; true with the new triangles in pending_ and the point–edge map.
   bool close();
+  // Where the ears fail: loop_ closed by its triangulation of least area among those whose every
+  // triangle passes the ears' tests (no existing edge, room, fold, crossing nothing); the
+  // triangles are then checked against each other and for folds across the new edges. Same
+  // result convention as close().
+  bool closeLeastArea();
   // The loop's triangles into the mesh.
   void commit(HoleStat& st);
 

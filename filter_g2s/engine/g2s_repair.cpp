@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace growth {
@@ -54,6 +55,9 @@ constexpr double kSuspectReach = 1.0;
 constexpr double kLongEdgeSpacings = 3.0;
 // A hole triangle may fold over a neighbouring face by at most this angle.
 constexpr double kMaxFoldDegrees = 135.0;
+// Hole pass: loops of at most this many edges are tried by their least-area triangulation where
+// the ears fail (O(n^3) triangles tested).
+constexpr size_t kMaxLeastAreaEdges = 48;
 // Hole pass: spikes taken out of one loop at most (each leaves a point out of the mesh).
 constexpr size_t kMaxSpikes = 4;
 } // namespace
@@ -506,6 +510,91 @@ bool Mesher::HolePass::close() {
   return ok;
 }
 
+bool Mesher::HolePass::closeLeastArea() {
+  PointEdgeMap& pem = m_.pem_;
+  pending_.clear();
+  const size_t n = loop_.size();
+  if (n < 4 || n > kMaxLeastAreaEdges) return false;
+  // Triangle (i, j, k), i < j < k in loop order, is {loop_[j], loop_[i], loop_[k]}: it uses the
+  // reverse of each loop edge among its sides (loop edge i→i+1, and n-1→0 as k→i).
+  auto tri = [&](size_t i, size_t j, size_t k) { return Triangle{loop_[j], loop_[i], loop_[k]}; };
+  auto loopEdge = [&](size_t a, size_t b) -> std::int64_t { // the loop edge a→b is on (-1: a diagonal)
+    if (b == a + 1) return std::int64_t(a);
+    if (a == 0 && b == n - 1) return std::int64_t(n - 1);
+    return -1;
+  };
+  std::vector<signed char> valid(n * n * n, -1);
+  auto isValid = [&](size_t i, size_t j, size_t k) {
+    signed char& v = valid[(i * n + j) * n + k];
+    if (v >= 0) return v == 1;
+    const Triangle t = tri(i, j, k);
+    const P3 nt = normal(t[0], t[1], t[2]);
+    bool ok = !isZero(nt) && pem.canAddTriangle(t[0], t[1], t[2]);
+    const size_t side[3][2] = {{i, j}, {j, k}, {i, k}};
+    for (int s = 0; s < 3 && ok; ++s) {
+      const std::int64_t e = loopEdge(side[s][0], side[s][1]);
+      if (e < 0) {
+        ok = pem.triangles(loop_[side[s][0]], loop_[side[s][1]]) == 0;
+      } else {
+        const size_t a = size_t(e);
+        ok = cosBetween(nt, normal(loop_[a], loop_[(a + 1) % n], opp_[a])) >= minCos_;
+      }
+    }
+    ok = ok && meetsNothing(t);
+    v = ok ? 1 : 0;
+    return ok;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> best(n * n, inf);
+  std::vector<std::uint32_t> split(n * n, 0);
+  for (size_t i = 0; i + 1 < n; ++i) best[i * n + i + 1] = 0;
+  for (size_t len = 2; len < n; ++len)
+    for (size_t i = 0; i + len < n; ++i) {
+      const size_t k = i + len;
+      for (size_t j = i + 1; j < k; ++j) {
+        const double sub = best[i * n + j] + best[j * n + k];
+        if (!(sub < best[i * n + k])) continue;
+        if (!isValid(i, j, k)) continue;
+        const Triangle t = tri(i, j, k);
+        const double cost = sub + 0.5 * normal(t[0], t[1], t[2]).Norm();
+        if (cost < best[i * n + k]) {
+          best[i * n + k] = cost;
+          split[i * n + k] = std::uint32_t(j);
+        }
+      }
+    }
+  if (!(best[n - 1] < inf)) return false;
+  // The triangles, each added at once so that the next is tested against it (meetsNothing looks at
+  // pending_) and its diagonal is used in the point–edge map.
+  std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
+  bool ok = true;
+  while (!stack.empty() && ok) {
+    const size_t i = stack.back()[0], k = stack.back()[1];
+    stack.pop_back();
+    if (k < i + 2) continue;
+    const size_t j = split[i * n + k];
+    const Triangle t = tri(i, j, k);
+    ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNothing(t);
+    // Folds across its diagonals, against the triangles on their other side (added before it or after).
+    const P3 nt = normal(t[0], t[1], t[2]);
+    for (const Triangle& u : pending_) {
+      int shared = 0;
+      for (std::uint32_t x : t) shared += x == u[0] || x == u[1] || x == u[2];
+      if (shared == 2 && cosBetween(nt, normal(u[0], u[1], u[2])) < minCos_) ok = false;
+    }
+    if (!ok) break;
+    pem.addTriangle(t[0], t[1], t[2]);
+    pending_.push_back(t);
+    stack.push_back({i, j});
+    stack.push_back({j, k});
+  }
+  if (!ok) {
+    for (const Triangle& t : pending_) pem.removeTriangle(t[0], t[1], t[2]);
+    pending_.clear();
+  }
+  return ok;
+}
+
 void Mesher::HolePass::commit(HoleStat& st) {
   for (const Triangle& t : pending_) {
     const auto f = static_cast<std::uint32_t>(m_.tri_.size());
@@ -538,10 +627,14 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
     opp_.resize(m);
     for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
   };
-  // The loop closed as it is.
+  // The loop closed as it is: by ears, else by its least-area triangulation.
   setUp();
   gatherNearLoop();
   bool closed = close();
+  if (!closed) {
+    setUp();
+    closed = closeLeastArea();
+  }
   // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
   // first that lets it close): the face's third point must be inside the mesh (its fan closed),
   // so that it joins the loop and leaves with a closed fan again.
