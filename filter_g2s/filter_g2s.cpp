@@ -163,8 +163,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
-      "(%zu faces at them replaced; %zu spike vertices with one or two faces taken out)",
-      st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
+      "(%zu faces at them replaced; %zu of the holes closed wider, taking out %zu faces; %zu points left "
+      "without a face: spikes, and the points of widened loops)",
+      st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holesWidened,
+      st.holeFacesWidened, st.holeSpikes);
   if (p.removeNonManifoldVertices)
     Log("Robust G2S: %zu handles (genus, summed over the pieces); %zu small handles cut (%zu faces taken out, "
         "%zu added to close them)",

@@ -549,12 +549,14 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   // The 100k seed 2 sampling keeps a hole of 3 edges round a spike at a corner without the hole
   // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap. Seed 7 kept a rim loop of
   // 7 edges with a handle beside it until the wider closure (Mesher::widenHoles: the faces on the
-  // loop's edges taken out, the wider loop closed).
+  // loop's edges taken out, the wider loop closed); seed 9 a rim loop of 10 edges, closed with the
+  // faces at its points taken out (its 11 points left out, counted as spikes). Seed 4 (not here)
+  // keeps a rim loop of 11 edges.
   for (const Case c : {Case{0.025, 30000, 1, 0}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 0},
                        Case{0.025, 50000, 1, 0}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 0},
                        Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}, Case{0.025, 30000, 10, 0},
                        Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}, Case{0.025, 30000, 5, 0},
-                       Case{0.025, 30000, 7, 0}}) {
+                       Case{0.025, 30000, 7, 0}, Case{0.025, 30000, 9, 0}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
     CloudSpec spec;
     spec.shape = Shape::Slab;

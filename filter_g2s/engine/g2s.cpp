@@ -94,6 +94,8 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
     stat.holeFacesAdded = hs.facesAdded;
     stat.holeFacesReplaced = hs.facesReplaced;
     stat.holeSpikes = hs.spikes;
+    stat.holesWidened = hs.widened;
+    stat.holeFacesWidened = hs.widenedFaces;
   }
   Mesher::BoundaryCount boundary = mesher.boundary();
   if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)

@@ -50,6 +50,9 @@ struct Stat {
   size_t holesClosed = 0;                 // hole pass: boundary loops closed
   size_t holeFacesAdded = 0;              // and the faces it added
   size_t holeFacesReplaced = 0;           // faces it took out at a loop so that it could close
+  size_t holesWidened = 0;                // of the holes closed, those closed wider (the faces on their edges,
+                                          // or at their points, taken out first)
+  size_t holeFacesWidened = 0;            // the faces these took out (in holeFacesReplaced too)
   size_t holeSpikes = 0;                  // spikes and flaps: a loop vertex with two or one faces, left unused
   size_t handlesCut = 0;                  // small handles cut (Params::removeSmallHandles)
   size_t handleFacesRemoved = 0;          // and the faces they took out

@@ -181,6 +181,8 @@ public:
   // A loop the hole pass left open, tried again with every face on its edges taken out (the loop
   // then runs through their third points); true when it closed so.
   bool widen(const std::vector<std::uint32_t>& loop, HandleStat& st);
+  // One try of widen: the faces on the loop's edges, or (stars) all the faces at its points.
+  bool widenBy(const std::vector<std::uint32_t>& loop, bool stars, HandleStat& st);
 
 private:
   template <class F> void forEachFace(std::uint32_t v, F&& f) const {
@@ -457,6 +459,10 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
 }
 
 bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleStat& st) {
+  return widenBy(loop, false, st) || widenBy(loop, true, st);
+}
+
+bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, bool stars, HandleStat& st) {
   const size_t m = loop.size();
   cut_.clear();
   for (size_t i = 0; i < m; ++i) {
@@ -464,6 +470,8 @@ bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleSta
     if (f < 0) return false;
     cut_.push_back(std::uint32_t(f));
   }
+  if (stars)
+    for (std::uint32_t x : loop) forEachFace(x, [&](std::uint32_t f) { cut_.push_back(f); });
   std::sort(cut_.begin(), cut_.end());
   cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());
   ring_.clear();
@@ -504,6 +512,8 @@ size_t Mesher::widenHoles(int maxHoleEdges, HoleStat& hs) {
     if (open && pass.widen(loop, st)) ++closed;
   }
   hs.closed += closed;
+  hs.widened += closed;
+  hs.widenedFaces += st.facesRemoved;
   hs.facesAdded += st.holeFacesAdded;
   hs.facesReplaced += st.facesRemoved;
   hs.spikes += st.pointsLost;

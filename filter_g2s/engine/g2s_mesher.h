@@ -143,6 +143,8 @@ public:
     size_t facesAdded = 0;
     size_t facesReplaced = 0; // faces at a loop taken out so that it could close (one per loop, two at a spike)
     size_t spikes = 0;        // loop vertices taken out with their one or two faces (left unused)
+    size_t widened = 0;       // of the loops closed, those closed wider (widenHoles)
+    size_t widenedFaces = 0;  // the faces these took out (counted in facesReplaced too)
   };
   // Closes the boundary loops of at most maxEdges edges by ear cutting on their vertices; every
   // new triangle keeps each edge at two triangles with consistent orientation, each vertex one fan,
