@@ -175,9 +175,10 @@ public:
   // growth state (closeHoles).
   HandleStat removeSmallHandles(const BoundaryCount& boundary, int maxHoleEdges);
   // After closeHoles: each loop of at most maxHoleEdges edges it left open is tried again with
-  // every face on its edges taken out (g2s_handles.cpp), the wider loop closed by the hole pass's
-  // means; undone where it does not close or a point inside would be left on a boundary. Adds to
-  // hs (closed, faces added, faces replaced, points left out as spikes); returns the loops closed.
+  // every face on its edges taken out, then with every face at its points (g2s_handles.cpp), the
+  // wider loop closed by the hole pass's means; undone where it does not close or a point inside
+  // would be left on a boundary. Adds to hs (closed, widened, faces added, faces replaced, points
+  // left out as spikes); returns the loops closed.
   size_t widenHoles(int maxHoleEdges, HoleStat& hs);
   // Handles of the live mesh: the sum over its components of (2 - V + E - F - loops) / 2, given
   // its boundary (boundary()).
