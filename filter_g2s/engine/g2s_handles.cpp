@@ -27,7 +27,11 @@
 //    is tried. The cycle's points keep their faces on the other side, so no point is lost unless
 //    all of its faces were on the removed side.
 // The wider closure uses the same trial: a loop the hole pass left open loses the faces on its
-// edges (then, if that fails, all the faces at its points) and the wider loop is closed.
+// edges (then, if that fails, all the faces at its points) and the wider loop is closed. Last,
+// where the loop's least-area triangulation (crossings not tested) meets faces of the mesh (the
+// blockers: at a plate's rim, triangles left from the front's crossing through the material, a
+// fin across the hole), the faces on its edges and the blockers go, then also all the faces at
+// the blockers' points off the loop; the loops this leaves are closed as above.
 // Measured in docs/g2s-robustness.md, "Small handles cut": 16 of 17 slab samplings close with the
 // plate's topology; the bunny's 741 handles become 516 and its 717 holes 260.
 // A handle of the object itself (a torus' tube, a mug's handle) has no cycle of three edges
@@ -186,8 +190,10 @@ public:
   // A loop the hole pass left open, tried again with every face on its edges taken out (the loop
   // then runs through their third points); true when it closed so.
   bool widen(const std::vector<std::uint32_t>& loop, HandleStat& st);
-  // One try of widen: the faces on the loop's edges, or (stars) all the faces at its points.
-  bool widenBy(const std::vector<std::uint32_t>& loop, bool stars, HandleStat& st);
+  // One try of widen: the faces on the loop's edges, and (stars) all the faces at its points, or
+  // (blockers) the faces that its least-area triangulation meets.
+  enum class Widen { Edges, Stars, Blockers, BlockerStars };
+  bool widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st);
 
 private:
   template <class F> void forEachFace(std::uint32_t v, F&& f) const {
@@ -240,7 +246,7 @@ private:
   RegionGenus genus_;
   std::vector<char> inRing_, mark_;
   std::vector<std::uint8_t> nt_;
-  std::vector<std::uint32_t> nv_, ring_, next_, region_, cut_, rest_, outside_;
+  std::vector<std::uint32_t> nv_, ring_, next_, region_, cut_, rest_, outside_, blockers_;
 };
 
 void Mesher::HandlePass::gatherRegion(std::uint32_t v) {
@@ -457,18 +463,29 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
 }
 
 bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleStat& st) {
-  return widenBy(loop, false, st) || widenBy(loop, true, st);
+  return widenBy(loop, Widen::Edges, st) || widenBy(loop, Widen::Stars, st) || widenBy(loop, Widen::Blockers, st) ||
+         widenBy(loop, Widen::BlockerStars, st);
 }
 
-bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, bool stars, HandleStat& st) {
+bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st) {
   const size_t m = loop.size();
   cut_.clear();
+  if (how == Widen::Blockers || how == Widen::BlockerStars) {
+    // (The hole pass finds them: its face index holds the faces added since this one's was made.)
+    if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
+    if (!m_.holePass_->blockers(loop, blockers_)) return false;
+    cut_.assign(blockers_.begin(), blockers_.end());
+    if (how == Widen::BlockerStars)
+      for (std::uint32_t f : blockers_)
+        for (std::uint32_t x : m_.tri_[f])
+          if (std::find(loop.begin(), loop.end(), x) == loop.end()) forEachFace(x, [&](std::uint32_t g) { cut_.push_back(g); });
+  }
   for (size_t i = 0; i < m; ++i) {
     const std::int64_t f = faceWith(loop[i], loop[(i + 1) % m]);
     if (f < 0) return false;
     cut_.push_back(std::uint32_t(f));
   }
-  if (stars)
+  if (how == Widen::Stars)
     for (std::uint32_t x : loop) forEachFace(x, [&](std::uint32_t f) { cut_.push_back(f); });
   std::sort(cut_.begin(), cut_.end());
   cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());

@@ -3,6 +3,7 @@
 // (g2s_handles.cpp), which closes the loops of its cuts with it.
 #include "g2s_mesher.h"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -18,6 +19,9 @@ public:
   explicit HolePass(Mesher& m);
   // Closes loop `original` whole, if need be with one of its faces taken out (counted in st).
   void closeLoop(const std::vector<std::uint32_t>& original, HoleStat& st);
+  // The live faces that the loop's least-area triangulation (with the ears' tests but the
+  // crossing test) meets, into out (sorted); false when there is none (or no such triangulation).
+  bool blockers(const std::vector<std::uint32_t>& original, std::vector<std::uint32_t>& out);
 
 private:
   struct NearFace {
@@ -56,6 +60,12 @@ private:
   void gatherNearLoop();
   // Triangle t meets no live face, no face added before and none of pending_ (exactly).
   bool meetsNothing(const Triangle& t) const;
+  // The live faces near loop_ (near_ and the long ones) that t meets: stop(face) for each, until it
+  // returns true (then true).
+  template <class F> bool anyMeeting(const Triangle& t, F&& stop) const;
+  // loop_'s triangulation of least area among those whose triangles pass the ears' tests, and the
+  // crossing test if crossingTest: its triangles as loop positions (i, j, k), outermost first.
+  bool leastArea(bool crossingTest, std::vector<std::array<size_t, 3>>& out);
   // Closes loop_ by ears; true with the new triangles in pending_ and the point–edge map.
   bool close();
   // Where the ears fail: loop_ closed by its triangulation of least area among those whose every
@@ -93,6 +103,7 @@ private:
   // loop_[i]→loop_[i+1]; face_[i]: that face in the loop as found.
   std::vector<std::uint32_t> loop_, opp_, face_;
   std::vector<Ear> ears_;
+  std::vector<std::array<size_t, 3>> split_;
 };
 
 

@@ -334,6 +334,26 @@ private:
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
   // Candidate (b, a, p), p kUnderGap or more behind the front triangle, would lie in the material
   // under a sheet of the mesh facing the same way (see kUnderGap in g2s_mesher.cpp).
+  // After a crossing (see kCrossingGenerations in g2s_mesher.cpp): a candidate kUnderGap or more
+  // behind the front triangle marks its points, and the triangles grown on from marked points for
+  // kCrossingGenerations generations are refused when underASheetAfterCrossing. True: refused.
+  bool refusedAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
+                            double frontNorm) {
+    const std::uint8_t generation = std::max(crossing_[a], crossing_[b]);
+    if (__builtin_expect((pts_[p] - pts_[a]) * frontNormal <= -kCrossingGap * spacing_ * frontNorm, 0)) {
+      crossing_[a] = crossing_[b] = crossing_[p] = kCrossingMark;
+      return false;
+    }
+    if (__builtin_expect(generation == 0, 1)) return false;
+    if (underASheetAfterCrossing(a, b, p, frontNormal, frontNorm)) return true;
+    if (generation > 1) crossing_[p] = std::max<std::uint8_t>(crossing_[p], std::uint8_t(generation - 1));
+    return false;
+  }
+  // The triangle (b, a, p) lies under a sheet of the mesh facing the same way, beyond an empty layer.
+  GROWTH_G2S_COLD bool underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p,
+                                                const P3& frontNormal, double frontNorm) const;
+  static constexpr double kCrossingGap = 0.5;         // = kUnderGap (g2s_mesher.cpp)
+  static constexpr std::uint8_t kCrossingMark = 4;    // = kCrossingGenerations
   GROWTH_G2S_COLD bool growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                                         double frontNorm) const;
   // Candidate (b, a, p) folds across a gap of the front's sheet to another sheet parallel to it
@@ -405,6 +425,9 @@ private:
   // Per point, during growth: the last triangle added at it (kNoFace: none yet), for triangleAt.
   static constexpr std::uint32_t kNoFace = ~std::uint32_t{0};
   HugeVector<std::uint32_t> faceAt_;
+  // Per point, during growth: generations left to check after a crossing (refusedAfterCrossing).
+  HugeVector<std::uint8_t> crossing_;
+  mutable std::vector<double> underHeights_; // scratch of underASheetAfterCrossing
   static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;

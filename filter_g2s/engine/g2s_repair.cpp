@@ -402,13 +402,9 @@ void Mesher::HolePass::gatherNearLoop() {
   for (std::uint32_t g : seen_) inNear_[g] = 0;
 }
 
-bool Mesher::HolePass::meetsNothing(const Triangle& t) const {
+template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
-  for (const Triangle& p : pending_)
-    if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
-        facesIntersect(pos, t, p))
-      return false;
   double lo[3], hi[3];
   for (int d = 0; d < 3; ++d) {
     lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
@@ -428,26 +424,36 @@ bool Mesher::HolePass::meetsNothing(const Triangle& t) const {
   };
   auto meetsLong = [&](const std::vector<std::uint32_t>& list) {
     for (std::uint32_t g : list)
-      if (m_.alive_[g] && meets(m_.tri_[g])) return true;
+      if (m_.alive_[g] && meets(m_.tri_[g]) && stop(g)) return true;
     return false;
   };
   if (!nearHasLong_) {
-    if (meetsLong(hugeFaces_)) return false;
+    if (meetsLong(hugeFaces_)) return true;
     long clo[3], chi[3];
     cellRange(t, clo, chi); // (t is small: a hole's triangle spans few cells)
     for (long x = clo[0]; x <= chi[0]; ++x)
       for (long y = clo[1]; y <= chi[1]; ++y)
         for (long z = clo[2]; z <= chi[2]; ++z) {
           const auto it = longCells_.find(cellKey(x, y, z));
-          if (it != longCells_.end() && meetsLong(it->second)) return false;
+          if (it != longCells_.end() && meetsLong(it->second)) return true;
         }
   }
   for (const NearFace& e : near_)
     if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
           e.lo[2] > hi[2]) &&
-        meetsBeside(m_.tri_[e.g]))
+        meetsBeside(m_.tri_[e.g]) && stop(e.g))
+      return true;
+  return false;
+}
+
+bool Mesher::HolePass::meetsNothing(const Triangle& t) const {
+  const std::vector<P3>& pos = pos_;
+  const PlaneOf tPlane(pos, t);
+  for (const Triangle& p : pending_)
+    if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+        facesIntersect(pos, t, p))
       return false;
-  return true;
+  return !anyMeeting(t, [](std::uint32_t) { return true; });
 }
 
 // False with pending_ and the point–edge map as before.
@@ -510,11 +516,11 @@ bool Mesher::HolePass::close() {
   return ok;
 }
 
-bool Mesher::HolePass::closeLeastArea() {
+bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_t, 3>>& out) {
   PointEdgeMap& pem = m_.pem_;
-  pending_.clear();
+  out.clear();
   const size_t n = loop_.size();
-  if (n < 4 || n > kMaxLeastAreaEdges) return false;
+  if (n < 3 || n > kMaxLeastAreaEdges) return false;
   // Triangle (i, j, k), i < j < k in loop order, is {loop_[j], loop_[i], loop_[k]}: it uses the
   // reverse of each loop edge among its sides (loop edge i→i+1, and n-1→0 as k→i).
   auto tri = [&](size_t i, size_t j, size_t k) { return Triangle{loop_[j], loop_[i], loop_[k]}; };
@@ -540,7 +546,7 @@ bool Mesher::HolePass::closeLeastArea() {
         ok = cosBetween(nt, normal(loop_[a], loop_[(a + 1) % n], opp_[a])) >= minCos_;
       }
     }
-    ok = ok && meetsNothing(t);
+    ok = ok && (!crossingTest || meetsNothing(t));
     v = ok ? 1 : 0;
     return ok;
   };
@@ -564,16 +570,29 @@ bool Mesher::HolePass::closeLeastArea() {
       }
     }
   if (!(best[n - 1] < inf)) return false;
-  // The triangles, each added at once so that the next is tested against it (meetsNothing looks at
-  // pending_) and its diagonal is used in the point–edge map.
+  // The triangles, outermost first.
   std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
-  bool ok = true;
-  while (!stack.empty() && ok) {
+  while (!stack.empty()) {
     const size_t i = stack.back()[0], k = stack.back()[1];
     stack.pop_back();
     if (k < i + 2) continue;
     const size_t j = split[i * n + k];
-    const Triangle t = tri(i, j, k);
+    out.push_back({i, j, k});
+    stack.push_back({i, j});
+    stack.push_back({j, k});
+  }
+  return true;
+}
+
+bool Mesher::HolePass::closeLeastArea() {
+  PointEdgeMap& pem = m_.pem_;
+  pending_.clear();
+  if (loop_.size() < 4 || !leastArea(true, split_)) return false;
+  // The triangles, each added at once so that the next is tested against it (meetsNothing looks at
+  // pending_) and its diagonal is used in the point–edge map.
+  bool ok = true;
+  for (const auto& s : split_) {
+    const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
     ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNothing(t);
     // Folds across its diagonals, against the triangles on their other side (added before it or after).
     const P3 nt = normal(t[0], t[1], t[2]);
@@ -585,14 +604,40 @@ bool Mesher::HolePass::closeLeastArea() {
     if (!ok) break;
     pem.addTriangle(t[0], t[1], t[2]);
     pending_.push_back(t);
-    stack.push_back({i, j});
-    stack.push_back({j, k});
   }
   if (!ok) {
     for (const Triangle& t : pending_) pem.removeTriangle(t[0], t[1], t[2]);
     pending_.clear();
   }
   return ok;
+}
+
+bool Mesher::HolePass::blockers(const std::vector<std::uint32_t>& original, std::vector<std::uint32_t>& out) {
+  out.clear();
+  const size_t m = original.size();
+  if (m < 3 || m > kMaxLeastAreaEdges) return false;
+  face_.resize(m);
+  for (size_t i = 0; i < m; ++i) {
+    const std::int64_t f = faceOn(original[i], original[(i + 1) % m]);
+    if (f < 0) return false;
+    face_[i] = static_cast<std::uint32_t>(f);
+  }
+  loop_ = original;
+  opp_.resize(m);
+  for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
+  pending_.clear();
+  gatherNearLoop();
+  if (!leastArea(false, split_)) return false;
+  for (const auto& s : split_) {
+    const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
+    anyMeeting(t, [&](std::uint32_t g) {
+      out.push_back(g);
+      return false;
+    });
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return !out.empty();
 }
 
 void Mesher::HolePass::commit(HoleStat& st) {
