@@ -486,6 +486,16 @@ TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
 // cross the corner of the material from one face of the box to another): outwards is the direction
 // from the slab's medial rectangle, [-(h - t/2), h - t/2]^2 x {0}, to the face's centroid (a box
 // normal on a face of the box, diagonal on a rim's chamfer).
+// A closed slab's cloud: `points` points on the box of half-size spec.slabHalfSize and `thickness`.
+CloudSpec slabSpec(double thickness, size_t points, std::uint64_t seed) {
+  CloudSpec spec;
+  spec.shape = Shape::Slab;
+  spec.count = points;
+  spec.seed = seed;
+  spec.slabThickness = thickness;
+  return spec;
+}
+
 struct SlabFacing {
   size_t inward = 0, inwardAtRims = 0;
 };
@@ -559,11 +569,7 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
                        Case{0.0135, 100000, 1, 0}, Case{0.0135, 100000, 2, 0}, Case{0.025, 30000, 5, 0},
                        Case{0.025, 30000, 7, 0}, Case{0.025, 30000, 9, 0}, Case{0.025, 30000, 4, 0}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
-    CloudSpec spec;
-    spec.shape = Shape::Slab;
-    spec.count = c.points;
-    spec.seed = c.seed;
-    spec.slabThickness = c.thickness;
+    const CloudSpec spec = slabSpec(c.thickness, c.points, c.seed);
     const Mesh cloud = cloudMesh(spec);
     const auto r = run(cloud);
     expectValidOutput(cloud, r);
@@ -625,11 +631,7 @@ TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
   for (const Case c : {Case{0.025, 30000, 33, 0}, Case{0.025, 30000, 40, 0}, Case{0.02, 50000, 4, 40},
                        Case{0.02, 50000, 9, 40}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
-    CloudSpec spec;
-    spec.shape = Shape::Slab;
-    spec.count = c.points;
-    spec.seed = c.seed;
-    spec.slabThickness = c.thickness;
+    const CloudSpec spec = slabSpec(c.thickness, c.points, c.seed);
     const Mesh cloud = cloudMesh(spec);
     const auto r = run(cloud);
     expectValidOutput(cloud, r);
@@ -666,11 +668,7 @@ TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
   };
   for (const Case c : {Case{0.025, 30000, 5}, Case{0.02, 50000, 1}, Case{0.0135, 100000, 3}}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.thickness << ", " << c.points << " points, seed " << c.seed);
-    CloudSpec spec;
-    spec.shape = Shape::Slab;
-    spec.count = c.points;
-    spec.seed = c.seed;
-    spec.slabThickness = c.thickness;
+    const CloudSpec spec = slabSpec(c.thickness, c.points, c.seed);
     const Mesh cloud = cloudMesh(spec);
     g2s::Params keep = defaults();
     keep.removeSmallHandles = false;

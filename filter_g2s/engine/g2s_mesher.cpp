@@ -659,17 +659,28 @@ bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t 
   return false;
 }
 
+bool Mesher::onASurface(std::uint32_t p) const {
+  int near = 0;
+  grid_.anyInBall(pts_[p], kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
+    near += i != p;
+    return near >= kGapSheetPoints;
+  });
+  return near >= kGapSheetPoints;
+}
+
+bool Mesher::facesTheSameWay(std::uint32_t i, const P3& n) const {
+  std::array<std::uint32_t, 3> t;
+  if (!triangleAt(i, t)) return false;
+  const P3 m = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
+  return m * n > kUnderSameWayCos * m.Norm();
+}
+
 bool Mesher::growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                               double frontNorm) const {
   const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
   // p is a point of a surface (kGapSheetPoints others within kGapSheetReach spacings), not a
   // stray one: where outliers float about a surface, their candidates are left to the G2S rules.
-  int near = 0;
-  grid_.anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
-    near += i != p;
-    return near >= kGapSheetPoints;
-  });
-  if (near < kGapSheetPoints) return false;
+  if (!onASurface(p)) return false;
   // The new triangle (b, a, p), its circumball and unit normal (outwards, as the component).
   Ball ball;
   if (!circumBall(B, A, Q, ball)) return false;
@@ -688,24 +699,14 @@ bool Mesher::growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p,
     const P3 d = pts_[i] - ball.centre;
     const double h = d * n;
     if (h < gapNew || h > reach || !strictlyInside(d.SquaredNorm() - h * h, ball.radius2)) return false;
-    if ((pts_[i] - A) * frontNormal < gapFront) return false;
-    std::array<std::uint32_t, 3> t;
-    if (!triangleAt(i, t)) return false;
-    const P3 m = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
-    return m * n > kUnderSameWayCos * m.Norm();
+    return (pts_[i] - A) * frontNormal >= gapFront && facesTheSameWay(i, n);
   });
 }
 
 bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                                       double frontNorm) const {
   const P3 &A = pts_[a], &B = pts_[b], &Q = pts_[p];
-  // A point of a surface, as for growsUnderASheet.
-  int near = 0;
-  grid_.anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
-    near += i != p;
-    return near >= kGapSheetPoints;
-  });
-  if (near < kGapSheetPoints) return false;
+  if (!onASurface(p)) return false; // as for growsUnderASheet
   Ball ball;
   if (!circumBall(B, A, Q, ball)) return false;
   const P3 n = unitNormal(B, A, Q); // the new triangle (b, a, p), outwards as its component
@@ -729,11 +730,7 @@ bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uin
     if (!strictlyInside(lateral2, wide2)) return false;
     heights.push_back(h);
     if (h < gap || h >= lowest || !strictlyInside(lateral2, narrow2) || edgeCount_[i] < kUnderSheetEdges) return false;
-    if ((pts_[i] - A) * frontNormal < kUnderFrontGap * spacing_ * frontNorm) return false;
-    std::array<std::uint32_t, 3> t;
-    if (!triangleAt(i, t)) return false;
-    const P3 m = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
-    if (m * n > kUnderSameWayCos * m.Norm()) lowest = h;
+    if ((pts_[i] - A) * frontNormal >= kUnderFrontGap * spacing_ * frontNorm && facesTheSameWay(i, n)) lowest = h;
     return false;
   });
   if (!(lowest <= reach)) return false;

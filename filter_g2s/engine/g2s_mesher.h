@@ -349,6 +349,10 @@ private:
     if (generation > 1) crossing_[p] = std::max<std::uint8_t>(crossing_[p], std::uint8_t(generation - 1));
     return false;
   }
+  // p has kGapSheetPoints other points within kGapSheetReach spacings (a point of a surface, not a
+  // stray one), and point i's last triangle faces within acos(kUnderSameWayCos) of n.
+  bool onASurface(std::uint32_t p) const;
+  bool facesTheSameWay(std::uint32_t i, const P3& n) const;
   // The triangle (b, a, p) lies under a sheet of the mesh facing the same way, beyond an empty layer.
   GROWTH_G2S_COLD bool underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p,
                                                 const P3& frontNormal, double frontNorm) const;
