@@ -159,6 +159,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       st.inputPoints, st.duplicatesDropped, st.clumps, st.clumpPointsMerged, st.spacing, st.maxSearchRadiusFactor);
   Log("Robust G2S: %zu faces on %zu vertices (%zu points unused), %zu seeds", st.faces, st.vertices,
       st.unusedPoints, st.seeds);
+  if (st.thinPartRefusals > 0)
+    Log("Robust G2S: %zu candidates refused at thin parts (a fold or a crossing into the material between "
+        "two close sheets; not in the paper)",
+        st.thinPartRefusals);
   Log("Robust G2S: %zu boundary edges, %zu holes, %zu non-manifold vertices removed (%zu faces), "
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);

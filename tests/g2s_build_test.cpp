@@ -211,6 +211,8 @@ TEST(G2SBuild, CleanClosedCloudsUseEveryPoint) {
     // The object's own handles are counted and kept (the handle pass cuts none of them).
     EXPECT_EQ(long(r->stat.handles), c.genus);
     EXPECT_EQ(r->stat.handlesCut, 0u);
+    // No thin part: the thin-part rules refuse nothing (the log line stays away).
+    EXPECT_EQ(r->stat.thinPartRefusals, 0u);
   }
 }
 
@@ -640,6 +642,7 @@ TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
     EXPECT_LE(facing.inwardAtRims, r->stat.faces / 1000);
     EXPECT_LE(r->stat.boundaryEdges, c.maxBoundaryEdges);
     EXPECT_LE(r->stat.holes, 1u);
+    EXPECT_GT(r->stat.thinPartRefusals, 0u); // (counted in the log)
     EXPECT_EQ(r->topo.components, 1u);
     EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
     // Points left out: at most 3 by the growth, plus those the hole pass's wider closures take out

@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
                 st.handleFacesRemoved, st.handleFacesAdded, st.handles);
     std::printf("pieces_dropped: %zu\npiece_faces_dropped: %zu\n", st.componentsDropped, st.componentFacesDropped);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
+    std::printf("thin_part_refusals: %zu\n", st.thinPartRefusals);
     std::printf("seconds: %.4f\n", best);
     std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,
                 st.secondsGrowth, st.secondsCleanup, st.secondsOutput);

@@ -61,6 +61,7 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
   stat.pointsVisited = mesher.pointsVisited();
   stat.candidateSearches = mesher.candidateSearches();
   stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
+  stat.thinPartRefusals = mesher.foldsRefused();
   if (stat.edgesLeftAtFullPoints > 0)
     stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "
                             "that already had " + std::to_string(PointEdgeMap::kMaxEntries) +

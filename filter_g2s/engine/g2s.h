@@ -61,6 +61,8 @@ struct Stat {
                                           // 0 when sec. 4.2 is off, where it is not defined)
   size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
   size_t componentFacesDropped = 0;       // and their faces
+  size_t thinPartRefusals = 0;            // candidates refused by the thin-part rules (not in the paper:
+                                          // a fold or crossing into a part's material, g2s_mesher.cpp)
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)
