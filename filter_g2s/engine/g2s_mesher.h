@@ -431,7 +431,6 @@ private:
   HugeVector<std::uint32_t> faceAt_;
   // Per point, during growth: generations left to check after a crossing (refusedAfterCrossing).
   HugeVector<std::uint8_t> crossing_;
-  mutable std::vector<double> underHeights_; // scratch of underASheetAfterCrossing
   static_assert(PointEdgeMap::kMaxEntries <= 65535, "edge counts are 16-bit");
   std::vector<Triangle> tri_;
   std::vector<char> alive_;
