@@ -191,7 +191,8 @@ public:
   // then runs through their third points); true when it closed so.
   bool widen(const std::vector<std::uint32_t>& loop, HandleStat& st);
   // One try of widen: the faces on the loop's edges, and (stars) all the faces at its points, or
-  // (blockers) the faces that its least-area triangulation meets.
+  // (blockers) the faces in blockers_ (those its least-area triangulation meets), and (blocker
+  // stars) all the faces at their points off the loop.
   enum class Widen { Edges, Stars, Blockers, BlockerStars };
   bool widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st);
 
@@ -463,17 +464,18 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
 }
 
 bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleStat& st) {
-  return widenBy(loop, Widen::Edges, st) || widenBy(loop, Widen::Stars, st) || widenBy(loop, Widen::Blockers, st) ||
-         widenBy(loop, Widen::BlockerStars, st);
+  if (widenBy(loop, Widen::Edges, st) || widenBy(loop, Widen::Stars, st)) return true;
+  // The blockers, found once for both tries (an undone try leaves the mesh as it was). (The hole
+  // pass finds them: its face index holds the faces added since this one's was made.)
+  if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
+  return m_.holePass_->blockers(loop, blockers_) &&
+         (widenBy(loop, Widen::Blockers, st) || widenBy(loop, Widen::BlockerStars, st));
 }
 
 bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st) {
   const size_t m = loop.size();
   cut_.clear();
-  if (how == Widen::Blockers || how == Widen::BlockerStars) {
-    // (The hole pass finds them: its face index holds the faces added since this one's was made.)
-    if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
-    if (!m_.holePass_->blockers(loop, blockers_)) return false;
+  if (how == Widen::Blockers || how == Widen::BlockerStars) { // (blockers_: set by widen)
     cut_.assign(blockers_.begin(), blockers_.end());
     if (how == Widen::BlockerStars)
       for (std::uint32_t f : blockers_)

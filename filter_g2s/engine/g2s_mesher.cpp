@@ -81,7 +81,7 @@ constexpr double kUnderFrontGap = 1.0;
 constexpr std::uint32_t kUnderSheetEdges = 4;
 constexpr double kUnderSameWayCos = 0.25;
 // - after a crossing (branch gens): the triangles grown on from a candidate kUnderGap or more
-//   behind its front triangle, for kCrossingGenerations generations (marked on their points), are
+//   behind its front triangle, for Mesher::kCrossingMark generations (marked on their points), are
 //   refused when they lie under a sheet of the mesh facing the same way beyond an empty layer: a
 //   point with kUnderSheetEdges edges and its triangle facing the same way, within kChildNarrow
 //   spacings of the axis through the new triangle's centroid (or its circumradius, if smaller),
@@ -99,8 +99,7 @@ constexpr double kUnderSameWayCos = 0.25;
 //   cylinder, 2,091 with the circumcircle's) from counting as a sheet, and the narrow axis keeps
 //   slivers' wide circumcircles from reaching far. kChildGap 2.5 rather than 2: the same plates,
 //   and fewer points of the merged bunny's second layers left out.
-//   (kCrossingGenerations is Mesher::kCrossingMark, and the crossing is Mesher::kCrossingGap =
-//   kUnderGap spacings behind.)
+//   (The crossing is Mesher::kCrossingGap = kUnderGap spacings behind.)
 constexpr double kChildGap = 2.5;
 constexpr double kChildReach = 4.0;
 constexpr double kChildMargin = 0.5;

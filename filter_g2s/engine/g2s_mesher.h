@@ -332,11 +332,9 @@ private:
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
-  // Candidate (b, a, p), p kUnderGap or more behind the front triangle, would lie in the material
-  // under a sheet of the mesh facing the same way (see kUnderGap in g2s_mesher.cpp).
-  // After a crossing (see kCrossingGenerations in g2s_mesher.cpp): a candidate kUnderGap or more
+  // After a crossing ("after a crossing" at kChildGap in g2s_mesher.cpp): a candidate kUnderGap or more
   // behind the front triangle marks its points, and the triangles grown on from marked points for
-  // kCrossingGenerations generations are refused when underASheetAfterCrossing. True: refused.
+  // kCrossingMark generations are refused when underASheetAfterCrossing. True: refused.
   bool refusedAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                             double frontNorm) {
     const std::uint8_t generation = std::max(crossing_[a], crossing_[b]);
@@ -357,7 +355,9 @@ private:
   GROWTH_G2S_COLD bool underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p,
                                                 const P3& frontNormal, double frontNorm) const;
   static constexpr double kCrossingGap = 0.5;         // = kUnderGap (g2s_mesher.cpp)
-  static constexpr std::uint8_t kCrossingMark = 4;    // = kCrossingGenerations
+  static constexpr std::uint8_t kCrossingMark = 4;    // the generations checked after a crossing
+  // Candidate (b, a, p), p kUnderGap or more behind the front triangle, would lie in the material
+  // under a sheet of the mesh facing the same way (see kUnderGap in g2s_mesher.cpp).
   GROWTH_G2S_COLD bool growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                                         double frontNorm) const;
   // Candidate (b, a, p) folds across a gap of the front's sheet to another sheet parallel to it
