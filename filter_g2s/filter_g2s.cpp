@@ -148,6 +148,7 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   outputs["hole_faces_added"] = int(st.holeFacesAdded);
   outputs["hole_faces_replaced"] = int(st.holeFacesReplaced);
   outputs["hole_spikes_removed"] = int(st.holeSpikes);
+  outputs["holes_regrown"] = int(st.holesRegrown);
   outputs["handles_cut"] = int(st.handlesCut);
   outputs["handles"] = int(st.handles);
   outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
@@ -167,10 +168,11 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
       "%zu front edges left open at points with no room for another edge",
       st.boundaryEdges, st.holes, st.nonManifoldVerticesRemoved, st.facesRemoved, st.edgesLeftAtFullPoints);
   Log("Robust G2S: %zu faces removed that intersected others; hole pass: %zu holes closed with %zu faces "
-      "(%zu faces at them replaced; %zu of the holes closed wider, taking out %zu faces; %zu points left "
-      "without a face: spikes, and the points of widened loops)",
+      "(%zu faces at them replaced; %zu of the holes closed wider, taking out %zu faces, %zu of them grown "
+      "into again on the points around them; %zu points left without a face: spikes, and the points of "
+      "widened loops)",
       st.selfIntersectionFacesRemoved, st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holesWidened,
-      st.holeFacesWidened, st.holeSpikes);
+      st.holeFacesWidened, st.holesRegrown, st.holeSpikes);
   if (p.removeNonManifoldVertices)
     Log("Robust G2S: %zu handles (genus, summed over the pieces); %zu small handles cut (%zu faces taken out, "
         "%zu added to close them)",

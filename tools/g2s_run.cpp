@@ -181,7 +181,8 @@ int main(int argc, char** argv) {
     std::printf("self_intersection_faces_removed: %zu\n", st.selfIntersectionFacesRemoved);
     std::printf("holes_closed: %zu\nhole_faces_added: %zu\nhole_faces_replaced: %zu\nhole_spikes_removed: %zu\n",
                 st.holesClosed, st.holeFacesAdded, st.holeFacesReplaced, st.holeSpikes);
-    std::printf("holes_widened: %zu\nhole_faces_widened: %zu\n", st.holesWidened, st.holeFacesWidened);
+    std::printf("holes_widened: %zu\nhole_faces_widened: %zu\nholes_regrown: %zu\n", st.holesWidened,
+                st.holeFacesWidened, st.holesRegrown);
     std::printf("handles_cut: %zu\nhandle_faces_removed: %zu\nhandle_faces_added: %zu\nhandles: %zu\n", st.handlesCut,
                 st.handleFacesRemoved, st.handleFacesAdded, st.handles);
     std::printf("pieces_dropped: %zu\npiece_faces_dropped: %zu\n", st.componentsDropped, st.componentFacesDropped);

@@ -97,6 +97,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
     stat.holeSpikes = hs.spikes;
     stat.holesWidened = hs.widened;
     stat.holeFacesWidened = hs.widenedFaces;
+    stat.holesRegrown = hs.regrown;
   }
   Mesher::BoundaryCount boundary = mesher.boundary();
   if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)

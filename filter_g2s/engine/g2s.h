@@ -53,6 +53,8 @@ struct Stat {
   size_t holesWidened = 0;                // of the holes closed, those closed wider (the faces on their edges,
                                           // or at their points, taken out first)
   size_t holeFacesWidened = 0;            // the faces these took out (in holeFacesReplaced too)
+  size_t holesRegrown = 0;                // of the holes closed wider, those grown into again by G2S on the
+                                          // points around them (the faces near the loop taken out first)
   size_t holeSpikes = 0;                  // spikes and flaps: a loop vertex with two or one faces, left unused
   size_t handlesCut = 0;                  // small handles cut (Params::removeSmallHandles)
   size_t handleFacesRemoved = 0;          // and the faces they took out

@@ -39,6 +39,8 @@
 #include "g2s_hole_pass.h"
 #include "g2s_mesher.h"
 
+#include <growth/self_intersections.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
@@ -182,8 +184,18 @@ size_t Mesher::handleCount(const BoundaryCount& boundary) const {
 // since by point), the region of the cycle being tried, and the hole pass that closes the cuts.
 class Mesher::HandlePass {
 public:
+  // The regrowth (Widen::Regrow, regrow): the faces at the points within kRegrowBand spacings of
+  // the loop are taken out too; the growth runs on the points within kRegrowMargin spacings of
+  // the loops' points' centroid beyond the farthest of them (at most kRegrowMaxPoints), and its
+  // triangles must keep kRegrowInside spacings inside that ball.
+  static constexpr double kRegrowBand = 1.5;
+  static constexpr double kRegrowMargin = 4.0;
+  static constexpr double kRegrowInside = 1.5;
+  static constexpr size_t kRegrowMaxPoints = 8192;
+  static constexpr size_t kRegrowPopsPerPoint = 64; // (a bound on the growth's work: measured ~5)
   HandlePass(Mesher& m, int maxHoleEdges) : m_(m), maxHoleEdges_(maxHoleEdges), inRing_(m.grid_.size(), 0), mark_(m.grid_.size(), 0) {
     m_.faceIndex(first_, at_);
+    indexed_ = m_.tri_.size();
   }
   // Tries every non-face 3-cycle with v as its smallest point, cutting those that lower the genus.
   void at(std::uint32_t v, HandleStat& st);
@@ -193,8 +205,15 @@ public:
   // One try of widen: the faces on the loop's edges, and (stars) all the faces at its points, or
   // (blockers) the faces in blockers_ (those its least-area triangulation meets), and (blocker
   // stars) all the faces at their points off the loop.
-  enum class Widen { Edges, Stars, Blockers, BlockerStars };
+  enum class Widen { Edges, Stars, Blockers, BlockerStars, Regrow };
   bool widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st);
+  // The faces of cut_'s points that would fall into more than one fan once cut_ is out: those of
+  // all but the largest fan join cut_ (sec. 4.2's rule), until each such point has one fan.
+  void splitFans();
+  // The live faces at x that skip(f) leaves into fan, and their fans: part[i] is the index in fan
+  // of the first face of fan[i]'s fan. Returns the number of fans.
+  template <class Skip>
+  size_t fansAt(std::uint32_t x, Skip&& skip, std::vector<std::uint32_t>& fan, std::vector<std::uint32_t>& part) const;
 
 private:
   template <class F> void forEachFace(std::uint32_t v, F&& f) const {
@@ -236,12 +255,27 @@ private:
   // Takes the faces cut_ out and closes the loops through their points; keeps that when every
   // loop closed and every point of the region that had no free edge has none after (or no face:
   // counted lost). Otherwise everything is put back; false.
-  bool cutAndClose(HandleStat& st, int maxLoopEdges);
+  bool cutAndClose(HandleStat& st, int maxLoopEdges, bool regrowFirst = false);
+  // cutAndClose with regrowFirst: the loops grown into by a G2S growth of their own, on the points
+  // near them (the faces there fixed), before the hole pass closes what is left. Adds the new
+  // faces (and their points to touched; kept: their number, less those of extra fans taken out
+  // again); false when they would cross a face or an edge.
+  bool regrow(const std::vector<std::vector<std::uint32_t>>& loops, std::vector<std::uint32_t>& touched,
+              size_t& kept);
   // Points of `touched` with more than one fan of live faces.
   bool anyTwoFans(const std::vector<std::uint32_t>& touched) const;
 
+  // The faces added to the mesh since the last call into added_ (dead ones are skipped by
+  // forEachFace, so an undone try needs nothing more).
+  void indexNewFaces() {
+    for (size_t f = indexed_; f < m_.tri_.size(); ++f)
+      for (std::uint32_t x : m_.tri_[f]) added_[x].push_back(std::uint32_t(f));
+    indexed_ = m_.tri_.size();
+  }
+
   Mesher& m_;
   const int maxHoleEdges_;
+  size_t indexed_ = 0; // faces of the mesh known to forEachFace
   std::vector<std::uint32_t> first_, at_;
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_;
   RegionGenus genus_;
@@ -302,7 +336,7 @@ bool Mesher::HandlePass::anyTwoFans(const std::vector<std::uint32_t>& touched) c
   return false;
 }
 
-bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
+bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges, bool regrowFirst) {
   std::vector<char>& alive = m_.alive_;
   const std::vector<Triangle>& tri = m_.tri_;
   PointEdgeMap& pem = m_.pem_;
@@ -314,6 +348,7 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
   if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
   outside_.clear();
   std::vector<std::uint32_t> touched;
+  size_t regrown = 0; // faces a regrowth added (and kept)
   for (std::uint32_t f : cut_) {
     alive[f] = 0;
     pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
@@ -331,11 +366,28 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
     for (const auto& loop : loops)
       for (std::uint32_t x : loop)
         if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
-    if (ok) {
+    if (ok && regrowFirst) {
+      // (The growth takes loops of any length: those of up to twice the longest closed.)
+      loops.clear();
+      m_.boundaryLoops(touched, 2 * maxLoopEdges, loops);
+      ok = !loops.empty() && regrow(loops, touched, regrown);
+      if (ok) {
+        loops.clear();
+        m_.boundaryLoops(touched, maxLoopEdges, loops);
+        for (const auto& loop : loops)
+          for (std::uint32_t x : loop)
+            if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
+        for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
+        ok = hs.closed == loops.size();
+      }
+    } else if (ok) {
       for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
       ok = !loops.empty() && hs.closed == loops.size();
         }
   }
+  // The new faces are indexed at once (dead ones are skipped if this is undone), so that the
+  // checks below see them.
+  indexNewFaces();
   // Every point of the region and of the loops with one fan (the hole pass keeps that; checked,
   // as a cut is undone otherwise).
   if (ok) {
@@ -362,11 +414,9 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
     for (std::uint32_t x : had) lost += pem.isolated(x);
   }
   if (ok) {
-    for (size_t f = oldFaces; f < tri.size(); ++f)
-      for (std::uint32_t x : tri[f]) added_[x].push_back(std::uint32_t(f));
     st.facesRemoved += cut_.size() + hs.facesReplaced;
     st.holesClosed += hs.closed;
-    st.holeFacesAdded += hs.facesAdded;
+    st.holeFacesAdded += hs.facesAdded + regrown;
     st.pointsLost += lost;
     return true;
   }
@@ -377,9 +427,11 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges) {
       alive[f] = 0;
       pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
     }
+  // (Only faces that were there before: a regrowth's faces at a loop's points beyond the region
+  // are in outside_ too.)
   outside_.insert(outside_.end(), region_.begin(), region_.end());
   for (std::uint32_t f : outside_)
-    if (!alive[f]) {
+    if (f < oldFaces && !alive[f]) {
       alive[f] = 1;
       pem.addTriangle(tri[f][0], tri[f][1], tri[f][2]);
     }
@@ -463,21 +515,240 @@ void Mesher::HandlePass::at(std::uint32_t v, HandleStat& st) {
   }
 }
 
+bool Mesher::HandlePass::regrow(const std::vector<std::vector<std::uint32_t>>& loops,
+                                std::vector<std::uint32_t>& touched, size_t& kept) {
+  const P3* pts = m_.pts_;
+  const std::vector<P3>& pos = m_.grid_.points();
+  const double sp = m_.spacing_;
+  P3 centre(0, 0, 0);
+  size_t n = 0;
+  for (const auto& loop : loops)
+    for (std::uint32_t x : loop) {
+      centre += pts[x];
+      ++n;
+    }
+  centre /= double(n);
+  double r = 0;
+  for (const auto& loop : loops)
+    for (std::uint32_t x : loop) r = std::max(r, (pts[x] - centre).Norm());
+  const double reach = r + kRegrowMargin * sp;
+  std::vector<std::uint32_t> ids;
+  m_.grid_.forEachInBall(centre, reach, [&](std::uint32_t i, double) { ids.push_back(i); });
+  if (ids.size() < 3 || ids.size() > kRegrowMaxPoints) return false;
+  std::sort(ids.begin(), ids.end());
+  // With the other points of their faces: every face at a point of the ball is known to the
+  // growth (fixed), so that it sees which of their edges are free.
+  const size_t inBall = ids.size();
+  for (size_t i = 0; i < inBall; ++i)
+    forEachFace(ids[i], [&](std::uint32_t f) {
+      for (std::uint32_t x : m_.tri_[f]) ids.push_back(x);
+    });
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  auto localOf = [&](std::uint32_t g) -> std::int64_t {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), g);
+    return it != ids.end() && *it == g ? std::int64_t(it - ids.begin()) : -1;
+  };
+  // The live faces with all three points among them are fixed.
+  std::vector<std::uint32_t> fixed;
+  for (std::uint32_t x : ids)
+    forEachFace(x, [&](std::uint32_t f) {
+      const Triangle& t = m_.tri_[f];
+      if (localOf(t[0]) >= 0 && localOf(t[1]) >= 0 && localOf(t[2]) >= 0) fixed.push_back(f);
+    });
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  std::vector<P3> lp(ids.size());
+  for (size_t i = 0; i < ids.size(); ++i) lp[i] = pts[ids[i]];
+  Mesher local(std::move(lp), m_.params_, sp);
+  const std::vector<std::uint32_t>& order = local.order();
+  std::vector<std::uint32_t> inv(ids.size(), ~0u);
+  for (size_t i = 0; i < order.size(); ++i) inv[order[i]] = std::uint32_t(i);
+  auto toLocal = [&](std::uint32_t g) { return inv[size_t(localOf(g))]; };
+  std::vector<Triangle> ft;
+  ft.reserve(fixed.size());
+  for (std::uint32_t f : fixed) {
+    const Triangle& t = m_.tri_[f];
+    const Triangle lt{toLocal(t[0]), toLocal(t[1]), toLocal(t[2])};
+    if (lt[0] == ~0u || lt[1] == ~0u || lt[2] == ~0u) return false; // (a point merged in a clump)
+    ft.push_back(lt);
+  }
+  if (!local.addFixedTriangles(ft)) return false;
+  for (const auto& loop : loops)
+    for (size_t i = 0; i < loop.size(); ++i) {
+      const std::uint32_t v = loop[i], w = loop[(i + 1) % loop.size()];
+      const std::int64_t f = faceWith(v, w);
+      if (f < 0) return false;
+      const Triangle& t = m_.tri_[size_t(f)];
+      const std::uint32_t x = t[0] != v && t[0] != w ? t[0] : t[1] != v && t[1] != w ? t[1] : t[2];
+      local.queueFrontEdge(toLocal(v), toLocal(w), toLocal(x));
+    }
+  local.setGrowBudget(kRegrowPopsPerPoint * ids.size());
+  local.grow();
+  if (local.growBudgetExhausted()) return false;
+  // The new triangles, back in the mesh's points: each must stay inside the region (its points
+  // with no face beyond the fixed ones), use no half-edge the mesh has, and cross no face.
+  std::vector<Triangle> grown;
+  for (size_t k = ft.size(); k < local.triangles().size(); ++k) {
+    const Triangle& lt = local.triangles()[k];
+    grown.push_back(Triangle{ids[order[lt[0]]], ids[order[lt[1]]], ids[order[lt[2]]]});
+  }
+  if (grown.empty()) return false;
+  PointEdgeMap& pem = m_.pem_;
+  for (const Triangle& t : grown) {
+    for (int k = 0; k < 3; ++k) {
+      if (pem.used(t[k], t[(k + 1) % 3])) return false;
+      if ((pts[t[k]] - centre).Norm() > reach - kRegrowInside * sp) return false;
+    }
+  }
+  auto box = [&](const Triangle& t, double lo[3], double hi[3]) {
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min({pts[t[0]][d], pts[t[1]][d], pts[t[2]][d]});
+      hi[d] = std::max({pts[t[0]][d], pts[t[1]][d], pts[t[2]][d]});
+    }
+  };
+  auto apart = [](const double alo[3], const double ahi[3], const double blo[3], const double bhi[3]) {
+    for (int d = 0; d < 3; ++d)
+      if (ahi[d] < blo[d] || bhi[d] < alo[d]) return true;
+    return false;
+  };
+  for (size_t i = 0; i < grown.size(); ++i) {
+    double lo[3], hi[3], lo2[3], hi2[3];
+    box(grown[i], lo, hi);
+    for (std::uint32_t f : fixed) {
+      if (!m_.alive_[f]) continue;
+      box(m_.tri_[f], lo2, hi2);
+      if (!apart(lo, hi, lo2, hi2) && facesIntersect(pos, grown[i], m_.tri_[f])) return false;
+    }
+    for (size_t j = 0; j < i; ++j) {
+      box(grown[j], lo2, hi2);
+      if (!apart(lo, hi, lo2, hi2) && facesIntersect(pos, grown[i], grown[j])) return false;
+    }
+  }
+  const size_t firstNew = m_.tri_.size();
+  for (const Triangle& t : grown) {
+    const auto f = static_cast<std::uint32_t>(m_.tri_.size());
+    m_.tri_.push_back(t);
+    m_.alive_.push_back(1);
+    pem.addTriangle(t[0], t[1], t[2]);
+    m_.holePass_->noteAdded(f);
+    for (std::uint32_t x : t) touched.push_back(x);
+  }
+  indexNewFaces();
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  // A point the growth joined by a vertex alone has two fans (sec. 4.2): the new faces of all but
+  // the fan with the most faces there before (then the largest) go; loops left are closed after.
+  std::vector<std::uint32_t> fan, part;
+  const auto none = [](std::uint32_t) { return false; };
+  for (int round = 0; round < 4; ++round) {
+    bool removed = false;
+    for (std::uint32_t x : touched) {
+      if (fansAt(x, none, fan, part) < 2) continue;
+      std::vector<size_t> old(fan.size(), 0), size(fan.size(), 0);
+      for (size_t i = 0; i < fan.size(); ++i) {
+        ++size[part[i]];
+        old[part[i]] += fan[i] < firstNew;
+      }
+      size_t keep = 0;
+      for (size_t i = 1; i < fan.size(); ++i)
+        if (old[i] > old[keep] || (old[i] == old[keep] && size[i] > size[keep])) keep = i;
+      for (size_t i = 0; i < fan.size(); ++i)
+        if (part[i] != keep && fan[i] >= firstNew) {
+          const Triangle& t = m_.tri_[fan[i]];
+          m_.alive_[fan[i]] = 0;
+          pem.removeTriangle(t[0], t[1], t[2]);
+          removed = true;
+        }
+    }
+    if (!removed) break;
+  }
+  kept = 0;
+  for (size_t f = firstNew; f < m_.tri_.size(); ++f) kept += m_.alive_[f] != 0;
+  return true;
+}
+
 bool Mesher::HandlePass::widen(const std::vector<std::uint32_t>& loop, HandleStat& st) {
+  if (loop.size() > size_t(maxHoleEdges_)) { // (a longer loop: the regrowth alone)
+    blockers_.clear();
+    return widenBy(loop, Widen::Regrow, st);
+  }
   if (widenBy(loop, Widen::Edges, st) || widenBy(loop, Widen::Stars, st)) return true;
   // The blockers, found once for both tries (an undone try leaves the mesh as it was). (The hole
   // pass finds them: its face index holds the faces added since this one's was made.)
   if (!m_.holePass_) m_.holePass_.reset(new HolePass(m_));
-  return m_.holePass_->blockers(loop, blockers_) &&
-         (widenBy(loop, Widen::Blockers, st) || widenBy(loop, Widen::BlockerStars, st));
+  const bool any = m_.holePass_->blockers(loop, blockers_);
+  if (any && (widenBy(loop, Widen::Blockers, st) || widenBy(loop, Widen::BlockerStars, st))) return true;
+  if (!any) blockers_.clear();
+  return widenBy(loop, Widen::Regrow, st);
+}
+
+template <class Skip>
+size_t Mesher::HandlePass::fansAt(std::uint32_t x, Skip&& skip, std::vector<std::uint32_t>& fan,
+                                 std::vector<std::uint32_t>& part) const {
+  fan.clear();
+  forEachFace(x, [&](std::uint32_t f) {
+    if (!skip(f)) fan.push_back(f);
+  });
+  // Fans by union over the edges at x (few faces: quadratic is fine); part[i]: the fan's first face.
+  part.resize(fan.size());
+  for (size_t i = 0; i < fan.size(); ++i) part[i] = std::uint32_t(i);
+  auto root = [&](std::uint32_t i) {
+    while (part[i] != i) i = part[i];
+    return i;
+  };
+  for (size_t i = 0; i < fan.size(); ++i)
+    for (size_t j = i + 1; j < fan.size(); ++j) {
+      int shared = 0;
+      for (std::uint32_t u : m_.tri_[fan[i]])
+        for (std::uint32_t w : m_.tri_[fan[j]]) shared += u == w;
+      if (shared >= 2) {
+        const std::uint32_t a = root(std::uint32_t(i)), b = root(std::uint32_t(j));
+        if (a != b) part[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  size_t fans = 0;
+  for (size_t i = 0; i < fan.size(); ++i) {
+    part[i] = root(std::uint32_t(i));
+    fans += part[i] == i;
+  }
+  return fans;
+}
+
+void Mesher::HandlePass::splitFans() {
+  // The points of the cut's faces whose other faces fall into more than one fan: the faces of all
+  // but the largest fan go with the cut (sec. 4.2's rule), until every such point has one fan.
+  std::vector<std::uint32_t> pts, fan, part;
+  for (int round = 0; round < 8; ++round) {
+    pts.clear();
+    for (std::uint32_t f : cut_)
+      for (std::uint32_t x : m_.tri_[f]) pts.push_back(x);
+    std::sort(pts.begin(), pts.end());
+    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+    const size_t before = cut_.size();
+    for (std::uint32_t x : pts) {
+      const auto inCut = [&](std::uint32_t f) { return std::binary_search(cut_.begin(), cut_.end(), f); };
+      if (fansAt(x, inCut, fan, part) < 2) continue;
+      std::vector<size_t> size(fan.size(), 0);
+      for (size_t i = 0; i < fan.size(); ++i) ++size[part[i]];
+      size_t keep = 0;
+      for (size_t i = 1; i < fan.size(); ++i)
+        if (size[i] > size[keep]) keep = i;
+      for (size_t i = 0; i < fan.size(); ++i)
+        if (part[i] != keep) cut_.push_back(fan[i]);
+    }
+    if (cut_.size() == before) return;
+    std::sort(cut_.begin(), cut_.end());
+    cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());
+  }
 }
 
 bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, Widen how, HandleStat& st) {
   const size_t m = loop.size();
   cut_.clear();
-  if (how == Widen::Blockers || how == Widen::BlockerStars) { // (blockers_: set by widen)
+  if (how == Widen::Blockers || how == Widen::BlockerStars || how == Widen::Regrow) { // (blockers_: set by widen)
     cut_.assign(blockers_.begin(), blockers_.end());
-    if (how == Widen::BlockerStars)
+    if (how != Widen::Blockers)
       for (std::uint32_t f : blockers_)
         for (std::uint32_t x : m_.tri_[f])
           if (std::find(loop.begin(), loop.end(), x) == loop.end()) forEachFace(x, [&](std::uint32_t g) { cut_.push_back(g); });
@@ -487,10 +758,16 @@ bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, Widen h
     if (f < 0) return false;
     cut_.push_back(std::uint32_t(f));
   }
-  if (how == Widen::Stars)
+  if (how == Widen::Regrow) {
+    const double band = kRegrowBand * m_.spacing_;
+    for (std::uint32_t x : loop)
+      m_.grid_.forEachInBall(m_.pts_[x], band, [&](std::uint32_t i, double) { forEachFace(i, [&](std::uint32_t f) { cut_.push_back(f); }); });
+  }
+  if (how == Widen::Stars || how == Widen::Regrow)
     for (std::uint32_t x : loop) forEachFace(x, [&](std::uint32_t f) { cut_.push_back(f); });
   std::sort(cut_.begin(), cut_.end());
   cut_.erase(std::unique(cut_.begin(), cut_.end()), cut_.end());
+  splitFans();
   ring_.clear();
   for (std::uint32_t f : cut_)
     for (std::uint32_t x : m_.tri_[f])
@@ -503,7 +780,8 @@ bool Mesher::HandlePass::widenBy(const std::vector<std::uint32_t>& loop, Widen h
   std::sort(region_.begin(), region_.end());
   region_.erase(std::unique(region_.begin(), region_.end()), region_.end());
   // (The wider loop runs through the faces' third points: up to twice as long.)
-  const bool closed = cutAndClose(st, 2 * maxHoleEdges_);
+  const bool closed = cutAndClose(st, 2 * maxHoleEdges_, how == Widen::Regrow);
+  st.regrown += closed && how == Widen::Regrow;
   for (std::uint32_t x : ring_) inRing_[x] = 0;
   return closed;
 }
@@ -515,7 +793,7 @@ size_t Mesher::widenHoles(int maxHoleEdges, HoleStat& hs) {
   boundarySuspects(seeds);
   if (seeds.empty()) return 0;
   std::vector<std::vector<std::uint32_t>> loops;
-  boundaryLoops(seeds, maxHoleEdges, loops);
+  boundaryLoops(seeds, 2 * maxHoleEdges, loops);
   if (loops.empty()) return 0;
   if (!handlePass_) handlePass_.reset(new HandlePass(*this, maxHoleEdges));
   HandlePass& pass = *handlePass_;
@@ -531,6 +809,7 @@ size_t Mesher::widenHoles(int maxHoleEdges, HoleStat& hs) {
   hs.closed += closed;
   hs.widened += closed;
   hs.widenedFaces += st.facesRemoved;
+  hs.regrown += st.regrown;
   hs.facesAdded += st.holeFacesAdded;
   hs.facesReplaced += st.facesRemoved;
   hs.spikes += st.pointsLost;

@@ -287,7 +287,10 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
       if (p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
       return ear >= 0;
     });
-    if (ear >= 0) {
+    // (The ear must pass the topology tests too, as every candidate does: else grow would
+    // requeue the edge, find the same ear and requeue it for ever. Counts at a point that are
+    // off would do that; the growth keeps them right, a regrowth's fixed faces are checked.)
+    if (ear >= 0 && topologyAllows(a, b, c, std::uint32_t(ear))) {
       const P3& E = pts_[ear];
       Candidate cand;
       cand.point = ear;
@@ -838,6 +841,12 @@ void Mesher::queueEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
 void Mesher::grow(Progress* progress) {
   size_t tick = 0;
   while (!queue_.empty()) {
+    if (popBudget_ == 0) { // (a regrowth's bound on its work)
+      queue_.clear();
+      budgetExhausted_ = true;
+      break;
+    }
+    --popBudget_;
     FrontEdge e = queue_.pop();
     // Closed from the other side since it was queued: no longer a free edge.
     if (pem_.used(e.b, e.a)) continue;

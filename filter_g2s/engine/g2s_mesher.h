@@ -122,6 +122,23 @@ public:
   // points have room for the new edges (PointEdgeMap::hasRoom).
   bool topologyAllows(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p) const;
 
+  // Local regrowth (Mesher::HandlePass::regrow): triangles that are already there, added without
+  // queueing their edges (false, with nothing more added, at a half-edge used twice: not a
+  // consistently oriented manifold); then the free edge a→b of triangle (a, b, c) queued for
+  // growth; grow stops after maxPops edges taken from the queue (growBudgetExhausted).
+  bool addFixedTriangles(const std::vector<Triangle>& t) {
+    for (const Triangle& x : t) {
+      if (pem_.used(x[0], x[1]) || pem_.used(x[1], x[2]) || pem_.used(x[2], x[0])) return false;
+      addTriangle(x[0], x[1], x[2]);
+    }
+    queue_.clear();
+    joinedAtVertex_.clear();
+    return true;
+  }
+  void queueFrontEdge(std::uint32_t a, std::uint32_t b, std::uint32_t c) { queueEdge(a, b, c); }
+  void setGrowBudget(size_t maxPops) { popBudget_ = maxPops; }
+  bool growBudgetExhausted() const { return budgetExhausted_; }
+
   // Sec. 4.2 on the grown triangles (updates the point–edge map); returns the counts. Only the
   // vertices where a triangle was ever joined by a vertex alone can have more than one fan, so
   // only those (and the vertices of removed triangles) are examined.
@@ -145,6 +162,7 @@ public:
     size_t spikes = 0;        // loop vertices taken out with their one or two faces (left unused)
     size_t widened = 0;       // of the loops closed, those closed wider (widenHoles)
     size_t widenedFaces = 0;  // the faces these took out (counted in facesReplaced too)
+    size_t regrown = 0;       // of the widened, those grown into again (G2S on the points around them)
   };
   // Closes the boundary loops of at most maxEdges edges by ear cutting on their vertices; every
   // new triangle keeps each edge at two triangles with consistent orientation, each vertex one fan,
@@ -166,6 +184,7 @@ public:
     size_t pointsLost = 0;          // points left with no face by a cut
     size_t undone = 0;              // cuts put back (a loop did not close)
     size_t twoFans = 0;             // of them, because a point had two fans after the closure
+    size_t regrown = 0;             // loops closed by a regrowth (widenHoles)
   };
   // Cuts the small handles (g2s_handles.cpp): where the mesh has a handle, each cycle of three
   // edges that bounds no face and does not separate the faces within two rings of its first point
@@ -441,6 +460,8 @@ private:
   std::vector<Triangle> loopFaces_;
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
+  size_t popBudget_ = ~size_t{0}; // grow's edges left to take from the queue (setGrowBudget)
+  bool budgetExhausted_ = false;
   size_t grownTriangles_ = 0; // triangles at the end of meshAll (the repairs add after them)
   // The hole pass's state, made by the first closeHoles and kept for the wider closures and the
   // handle pass (its face index is built once); and the handle pass's. Freed by releaseGrowthState.
