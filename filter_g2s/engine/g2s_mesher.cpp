@@ -883,7 +883,13 @@ void Mesher::grow(Progress* progress) {
         continue;
       }
     }
-    if (loop) loopFaces_.push_back(Triangle{e.b, e.a, e.p});
+    if (loop) {
+      loopFaces_.push_back(Triangle{e.b, e.a, e.p});
+      // An ear folded back over its front triangle (by more than 90 degrees) can lie across the
+      // faces at its points even where the surface closes: removeSelfIntersections then looks.
+      const P3 &A = pts_[e.a], &B = pts_[e.b];
+      foldedEars_ += ((B - A) ^ (pts_[e.c] - A)) * ((A - B) ^ (pts_[e.p] - B)) < 0;
+    }
     addTriangle(e.b, e.a, e.p);
     if (progress != nullptr && (++tick & 1023) == 0)
       progress->update(double(usedPoints_) / double(grid_.size()));

@@ -460,6 +460,7 @@ private:
   std::vector<Triangle> loopFaces_;
   BucketQueue<FrontEdge, HugeAllocator<FrontEdge>> queue_;
   size_t usedPoints_ = 0;
+  size_t foldedEars_ = 0; // loop-closing triangles folded back over their front triangle (grow)
   size_t popBudget_ = ~size_t{0}; // grow's edges left to take from the queue (setGrowBudget)
   bool budgetExhausted_ = false;
   size_t grownTriangles_ = 0; // triangles at the end of meshAll (the repairs add after them)

@@ -216,10 +216,12 @@ size_t Mesher::CrossingPass::removeInRegion(std::vector<std::uint32_t>& seeds) {
 Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   SelfIntersectionStat st;
   if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
-  // The vertices that can lie on a boundary: none on a closed mesh.
+  // The vertices that can lie on a boundary: none on a closed mesh. (Where the mesh closed, a
+  // loop-closing triangle folded back over its front triangle is the one way found for two faces
+  // to cross: step 1 below finds it; measured on noisy spheres, docs/g2s-hole-pass.md.)
   std::vector<std::uint32_t> seeds;
   boundarySuspects(seeds);
-  if (seeds.empty()) return st;
+  if (seeds.empty() && foldedEars_ == 0) return st;
   const size_t n = grid_.size(), faces = tri_.size();
   CrossingPass pass(*this);
   // 1. The loop-closing triangles that meet a face at their points.
