@@ -238,6 +238,33 @@ TEST(G2SBuild, LatitudeLongitudeSphereMeshesClosed) {
   EXPECT_TRUE(r->stat.warnings.empty());
 }
 
+// Scan-line sampling (audit of 2026-12-03): a LiDAR or structured-light scan samples densely along
+// lines that lie a few spacings apart. With the paper's seed search (the third point within
+// k = 2 edges of the seed edge's midpoint) only points of the seed point's own line are reached,
+// every triangle is a sliver, and a plane 3 spacings between lines gave no face at all (3,400
+// points), or 6 faces with noise (13,400 points). The seed sphere is searched once more, twice as
+// wide, when every point in it lies near the seed edge's line; the plane then meshes whole.
+TEST(G2SBuild, ScanLineSamplingIsSeededAndMeshed) {
+  for (double jitter : {0.0, 0.001}) {
+    SCOPED_TRACE(jitter);
+    std::vector<vcg::Point3d> pts;
+    growth::Random rng(7);
+    const double along = 0.01, across = 0.03;
+    for (int j = 0; j < 34; ++j)
+      for (int i = 0; i < 100; ++i) {
+        const double z = jitter * (2.0 * double(rng.next() % 1000001) / 1000000.0 - 1.0);
+        pts.emplace_back(i * along, j * across, z);
+      }
+    const Mesh cloud = pointsMesh(pts);
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    EXPECT_EQ(r->stat.unusedPoints, 0u);
+    EXPECT_GE(r->stat.faces, 2 * pts.size() - 2 * (100 + 34)); // a strip of a plane: 2V - 2 - B faces
+    EXPECT_EQ(r->stat.holes, 1u);                               // its border
+    EXPECT_LE(r->stat.seeds, 2u);
+  }
+}
+
 // Where a point is full (here the capacity is lowered to 64 neighbours, below the 120 each pole
 // needs), the growth goes on: the edges that would add a neighbour there stay open, counted,
 // and only around the poles; the rest of the sphere closes.

@@ -172,7 +172,7 @@ int main(int argc, char** argv) {
     std::printf("boundary_edges: %zu\n", st.boundaryEdges);
     std::printf("holes: %zu\n", st.holes);
     std::printf("seeds: %zu\n", st.seeds);
-    std::printf("seed_attempts: %zu\n", st.seedAttempts);
+    std::printf("seed_attempts: %zu\ncylinder_queries: %zu\n", st.seedAttempts, st.cylinderQueries);
     std::printf("points_visited: %llu\n", static_cast<unsigned long long>(st.pointsVisited));
     std::printf("candidate_searches: %llu\n", static_cast<unsigned long long>(st.candidateSearches));
     std::printf("non_manifold_vertices_removed: %zu\n", st.nonManifoldVerticesRemoved);

@@ -58,6 +58,7 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
   stat.workingBytes = mesher.memoryBytes();
   stat.seeds = mesher.seeds();
   stat.seedAttempts = mesher.seedAttempts();
+  stat.cylinderQueries = mesher.cylinderQueries();
   stat.pointsVisited = mesher.pointsVisited();
   stat.candidateSearches = mesher.candidateSearches();
   stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();

@@ -43,6 +43,7 @@ struct Stat {
   size_t holes = 0;                       // boundary loops
   size_t seeds = 0;                       // seed triangles (sec. 3.1), one or more per component
   size_t seedAttempts = 0;                // points tried as seed starts
+  size_t cylinderQueries = 0;             // ball queries of their cylinder tests (sec. 3.1; bounded)
   size_t nonManifoldVerticesRemoved = 0;  // sec. 4.2
   size_t facesRemoved = 0;                // faces of the extra fans removed by sec. 4.2
   size_t nonManifoldVertices = 0;         // left in the output (0 unless the removal is off)

@@ -17,6 +17,16 @@ namespace {
 // point whose tightest triangles all fail is not a good place for a seed anyway, and outliers
 // would otherwise test every point of a large ball.
 constexpr size_t kMaxSeedTriangles = 32;
+// findSeedTriangle: a third point is "near the line pq" within kSeedLineBand·|pq| of it; when all
+// are, the seed sphere is searched again kSeedWiden times as wide.
+constexpr double kSeedLineBand = 0.25;
+constexpr double kSeedWiden = 2.0;
+constexpr size_t kSeedLinePoints = 2; // (at least: two points of p's line besides q, not a chance one)
+// A seed triangle's circumradius is at most this many seed edges (not in the paper): a sliver's
+// ball and cylinder reach far (three points of one ring of a cylinder sampled in rings have the
+// ring as their circle, an empty ball and a cylinder through the whole cloud: each test scanned
+// half the cloud), and its growth dies at once.
+constexpr double kSeedMaxCircumradius = 3.0;
 
 // The cylinder test walks at most this many slabs (each two circumradii high) on each side of the
 // seed triangle: its reach is 2048 circumradii, about 1200 local spacings, so the whole cylinder
@@ -962,15 +972,28 @@ bool Mesher::findSeedTriangle(std::uint32_t p, std::array<std::uint32_t, 3>& tri
   if (!(edge > 0)) return false;
   const P3 &P = pts_[p], &Q = pts_[q];
   const P3 mid = (P + Q) * 0.5;
-  const double radius = params_.seedSearchFactor * edge;
-  gather(mid, radius);
-  scored_.clear();
-  for (size_t k = 0; k < near_.size; ++k) {
-    const std::uint32_t id = near_.id[k];
-    if (id == p || id == q || !isolated(id) || (pts_[id] - mid).SquaredNorm() > radius * radius) continue;
-    Ball ball;
-    if (!circumBall(P, Q, pts_[id], ball)) continue;
-    scored_.push_back(Scored{0, ball.radius2, id, 1});
+  double radius = params_.seedSearchFactor * edge;
+  // Scan-line sampling (a LiDAR or structured-light scan: points dense along lines that lie
+  // several spacings apart) puts only p's own line within k·|pq|: every third point is then near
+  // the line pq and every triangle a sliver. The sphere is searched once more, kSeedWiden times as
+  // wide (not in the paper; on a surface sampled alike in all directions the first sphere always
+  // holds points off the line).
+  for (int pass = 0; pass < 2; ++pass) {
+    gather(mid, radius);
+    scored_.clear();
+    bool offLine = false;
+    size_t inSphere = 0;
+    for (size_t k = 0; k < near_.size; ++k) {
+      const std::uint32_t id = near_.id[k];
+      if (id == p || id == q || !isolated(id) || (pts_[id] - mid).SquaredNorm() > radius * radius) continue;
+      ++inSphere;
+      offLine = offLine || ((pts_[id] - P) ^ (Q - P)).SquaredNorm() > kSeedLineBand * kSeedLineBand * d2 * d2;
+      Ball ball;
+      if (!circumBall(P, Q, pts_[id], ball)) continue;
+      scored_.push_back(Scored{0, ball.radius2, id, 1});
+    }
+    if (offLine || inSphere < kSeedLinePoints) break;
+    radius *= kSeedWiden;
   }
   std::sort(scored_.begin(), scored_.end(), [](const Scored& x, const Scored& y) {
     return x.radius2 != y.radius2 ? x.radius2 < y.radius2 : x.id < y.id;
@@ -978,6 +1001,8 @@ bool Mesher::findSeedTriangle(std::uint32_t p, std::array<std::uint32_t, 3>& tri
   const size_t tries = std::min(scored_.size(), kMaxSeedTriangles);
   for (size_t k = 0; k < tries; ++k) {
     const Scored s = scored_[k];
+    // (By increasing circumradius: the rest are slivers too.)
+    if (s.radius2 > kSeedMaxCircumradius * kSeedMaxCircumradius * d2) break;
     Ball ball;
     if (!circumBall(P, Q, pts_[s.id], ball)) continue;
     if (!emptyBall(ball, radius, mid, p, q, s.id)) continue;
