@@ -989,3 +989,78 @@ TEST(SpherePackerBadInput, OutputPastTheEstimateStopsWithAClearError) {
       << e;
   EXPECT_NE(e.find("larger sphere diameter"), std::string::npos) << e;
 }
+
+// Audit 2026-12-03, A: one stray point a million units away made the extent exceed the box grid's
+// 2^21 boxes of side d per axis, and the whole cloud was refused ("use a larger d"). The far point
+// is now left out of the packing, counted and warned about; the sphere is meshed closed.
+TEST(SpherePackerFarPoints, OneStrayPointFarAwayIsLeftOut) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.count = 20000;
+  growth::Cloud c = growth::generateCloud(spec);
+  c.points.insert(c.points.begin() + 777, Point3d(1e6, 0, 0));
+  c.normals.insert(c.normals.begin() + 777, Point3d(1, 0, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 1u);
+  EXPECT_GT(r->st.farPointsGap, 1e5);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_EQ(r->m.eulerCharacteristic, 2);
+  EXPECT_GE(r->m.edgeMin, r->st.sphereDiameter * (1 - 1e-5));
+  ASSERT_EQ(r->st.warnings.size(), 1u);
+  EXPECT_NE(r->st.warnings[0].find("1 point lies"), std::string::npos) << r->st.warnings[0];
+  EXPECT_NE(r->st.warnings[0].find("left out of the mesh"), std::string::npos) << r->st.warnings[0];
+}
+
+// Two separate spheres of 20,000 points each: 10^4 apart both are meshed (the grid reaches that
+// far at their d); 10^6 apart the cloud is refused with a message that says why and what to do
+// (the parts are the bulk of the cloud, not stray points: nothing is left out silently).
+TEST(SpherePackerFarPoints, TwoPartsFarApartAreBothMeshedOrRefusedClearly) {
+  growth::CloudSpec a = sphereSpec();
+  a.count = 20000;
+  growth::CloudSpec b = a;
+  b.seed = 2;
+  const growth::Cloud ca = growth::generateCloud(a), cb = growth::generateCloud(b);
+  growth::Cloud near = ca;
+  append(near, cb, Point3d(1e4, 0, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(near, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 0u);
+  EXPECT_EQ(r->m.components, 2u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  EXPECT_TRUE(r->m.manifold());
+  size_t onSecond = 0;
+  for (const auto& v : r->mesh.vert) onSecond += v.cP()[0] > 5e3 ? 1 : 0;
+  EXPECT_GT(onSecond, r->m.vertices / 3);
+
+  growth::Cloud far = ca;
+  append(far, cb, Point3d(1e6, 0, 0));
+  CMeshO cloud;
+  growth::toMesh(far, cloud);
+  const std::string e = errorOf(cloud, sp::Params());
+  EXPECT_NE(e.find("along x its bulk"), std::string::npos) << e;
+  EXPECT_NE(e.find("mesh them one at a time"), std::string::npos) << e;
+  EXPECT_NE(e.find("a d of at least"), std::string::npos) << e;
+}
+
+// A small separate part (0.5 % of the points) 10^6 away: beyond the grid's reach, left out and
+// named in the warning (a part that small is not the bulk of the cloud).
+TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::CloudSpec small = big;
+  small.count = 100;
+  small.sphereRadius = 0.07;
+  small.seed = 3;
+  growth::Cloud c = growth::generateCloud(big);
+  append(c, growth::generateCloud(small), Point3d(0, -1e6, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 100u);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  ASSERT_FALSE(r->st.warnings.empty());
+  EXPECT_NE(r->st.warnings[0].find("100 points lie"), std::string::npos) << r->st.warnings[0];
+  EXPECT_NE(r->st.warnings[0].find("mesh it on its own"), std::string::npos) << r->st.warnings[0];
+}

@@ -79,6 +79,10 @@ double defaultSplatSize(const CloudScale& scale, double d);
 struct Stat {
   size_t inputPoints = 0;         // live vertices of the layer (as g2s::Stat), duplicates included
   size_t duplicatesDropped = 0;  // exact repeats (the first copy is used)
+  size_t farPointsLeftOut = 0;   // points left out of the packing: beyond the box grid's reach
+                                 // (2^21 boxes of side d per axis) from the bulk of the cloud, and
+                                 // at least farPointsGap from every point kept
+  double farPointsGap = 0;       // the smallest gap, along an axis, between them and the points kept
   double sphereDiameter = 0;     // d actually used
   double splatSize = 0;          // s actually used
   CloudScale scale;              // the cloud's estimated sampling and noise
