@@ -171,11 +171,12 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: %zu piece%s with fewer than %d faces dropped (%zu faces): flaps on misregistered scan "
       "layers, bits of stray points", st.componentsDropped, st.componentsDropped == 1 ? "" : "s",
       p.minComponentFaces, st.componentFacesDropped);
-  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary loops: %zu "
-      "regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh without "
-      "intersections); %zu of %zu boxes where d looked too large", st.vertices,
-      st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved, st.boxesDTooLarge,
-      st.boxes);
+  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary "
+      "loops: %zu regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh "
+      "without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu boxes where d "
+      "looked too large",
+      st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved,
+      st.flatFacesRemoved, st.boxesDTooLarge, st.boxes);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "

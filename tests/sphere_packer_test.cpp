@@ -2,6 +2,7 @@
 // clouds): the guarantees on generated clouds, determinism, noise, open surfaces, bad input,
 // progress and cancel.
 #include "sphere_packer.h"
+#include "region_triangulation.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -1063,4 +1064,28 @@ TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
   ASSERT_FALSE(r->st.warnings.empty());
   EXPECT_NE(r->st.warnings[0].find("100 points lie"), std::string::npos) << r->st.warnings[0];
   EXPECT_NE(r->st.warnings[0].find("mesh it on its own"), std::string::npos) << r->st.warnings[0];
+}
+
+// Audit 2026-12-03, B: a vertex placed at the midpoint of an edge of length 2d gave a face with
+// three collinear vertices (edges d, d, 2d: zero area) on this torus with 10 % outliers. No face
+// with an angle above 179° is written; the mesh stays manifold, the three edges a hole.
+TEST(SpherePackerFlatFaces, NoFaceWithCollinearVertices) {
+  growth::CloudSpec s = torusSpec();
+  s.count = 5000;
+  s.outlierFraction = 0.1;
+  s.seed = 2;
+  auto r = mesh(growth::generateCloud(s), sp::Params());
+  EXPECT_EQ(r->m.degenerateFaces, 0u);
+  EXPECT_GE(r->st.flatFacesRemoved, 1u);
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_EQ(r->m.nonManifoldEdges, 0u);
+  EXPECT_EQ(r->m.nonManifoldVertices, 0u);
+  EXPECT_EQ(r->m.selfIntersectingPairs, 0u);
+  size_t flat = 0;
+  for (const auto& f : r->mesh.face)
+    flat += growth::nearlyCollinear(Point3d::Construct(f.cP(0)), Point3d::Construct(f.cP(1)),
+                                    Point3d::Construct(f.cP(2)))
+                ? 1
+                : 0;
+  EXPECT_EQ(flat, 0u);
 }

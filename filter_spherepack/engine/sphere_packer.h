@@ -94,6 +94,8 @@ struct Stat {
   size_t faces = 0;
   size_t holes = 0;              // regions left open (border longer than maxBorderLength, or not
                                  // triangulable)
+  size_t flatFacesRemoved = 0;   // faces of the regions left out because their vertices (as stored)
+                                 // lie (nearly) on a line: an angle above 179° (region_triangulation.h)
   size_t longestBorder = 0;      // border edges of the longest region
   double meanBorderLength = 0;   // mean border length of the regions (about 4, sec. 3.7)
   size_t boxes = 0;
