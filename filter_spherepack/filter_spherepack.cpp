@@ -171,7 +171,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: %zu piece%s with fewer than %d faces dropped (%zu faces): flaps on misregistered scan "
       "layers, bits of stray points", st.componentsDropped, st.componentsDropped == 1 ? "" : "s",
       p.minComponentFaces, st.componentFacesDropped);
-  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary "
+  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu holes (boundary "
       "loops: %zu regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh "
       "without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu boxes where d "
       "looked too large",

@@ -1089,3 +1089,28 @@ TEST(SpherePackerFlatFaces, NoFaceWithCollinearVertices) {
                 : 0;
   EXPECT_EQ(flat, 0u);
 }
+
+// Audit 2026-12-03, C: a torus 300 across, 10^6 from the origin. The engine keeps every edge at
+// least d in double, but MeshLab 2020.09 stores float, whose steps are 0.0625 there. The smallest
+// edge reported is the one of the stored mesh, and a warning says why it is below d.
+TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
+  growth::CloudSpec s = torusSpec();
+  s.count = 20000;
+  s.torusMajor = 100;
+  s.torusMinor = 50;
+  growth::Cloud c = growth::generateCloud(s);
+  for (auto& p : c.points) p += Point3d(1e6, 1e6, 1e6);
+  auto r = mesh(c, sp::Params());
+  const double d = r->st.sphereDiameter;
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_NEAR(r->st.smallestEdge, r->m.edgeMin, 1e-9 * d);
+  bool warned = false;
+  for (const auto& w : r->st.warnings) warned = warned || w.find("below d") != std::string::npos;
+  if (sizeof(CMeshO::ScalarType) == sizeof(float)) {
+    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // what the audit found (0.77 d on its horse)
+    EXPECT_TRUE(warned);
+  } else {
+    EXPECT_GE(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance));
+    EXPECT_FALSE(warned);
+  }
+}
