@@ -159,10 +159,14 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   outputs["seconds"] = double(st.seconds);
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
-  Log("Sphere Packing: %zu points (%zu duplicates dropped, %zu far points left out); spacing %g (robust mean, as "
-      "Robust G2S and the measures report it), median spacing %g, sqrt(area per point) %g, estimated noise %g",
-      st.inputPoints, st.duplicatesDropped, st.farPointsLeftOut, st.scale.meanSpacing, st.scale.spacing,
-      st.scale.areaSpacing, st.scale.noise);
+  Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "
+      "measures report it), median spacing %g, sqrt(area per point) %g, estimated noise %g", st.inputPoints,
+      st.duplicatesDropped, st.scale.meanSpacing, st.scale.spacing, st.scale.areaSpacing, st.scale.noise);
+  if (st.farPointsLeftOut > 0)
+    Log("Sphere Packing: %zu far point%s left out, %g or more from the bulk of the cloud (beyond the box grid's "
+        "reach at this d)", st.farPointsLeftOut, st.farPointsLeftOut == 1 ? "" : "s", st.farPointsGap);
+  else
+    Log("Sphere Packing: no far points left out");
   Log("Sphere Packing: sphere diameter d = %g, s = %g%s (mean splat radius %g); d %s", st.sphereDiameter, st.splatSize,
       p.localSplatSizes ? " with local splat sizes" : "", st.meanSplatRadius, st.diameterReason.c_str());
   Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d (%zu of them where a "
