@@ -1114,3 +1114,28 @@ TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
     EXPECT_FALSE(warned);
   }
 }
+
+// Only what the grid cannot reach is left out: a small part 2 units off the sphere (far more than
+// 8 d, but within reach) stays and is meshed when a stray point 10^6 away is left out.
+TEST(SpherePackerFarPoints, ANearSmallPartStaysWhenAFarPointIsLeftOut) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::CloudSpec small = big;
+  small.count = 200;
+  small.sphereRadius = 0.1;
+  small.seed = 2;
+  growth::Cloud c = growth::generateCloud(big);
+  append(c, growth::generateCloud(small), Point3d(0, 3, 0));
+  c.points.push_back(Point3d(1e6, 0, 0));
+  c.normals.push_back(Point3d(1, 0, 0));
+  sp::Params p;
+  p.sphereDiameter = 0.03;
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, p));
+  EXPECT_EQ(r->st.farPointsLeftOut, 1u);
+  EXPECT_EQ(r->m.components, 2u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  size_t onSmall = 0;
+  for (const auto& v : r->mesh.vert) onSmall += (Point3d::Construct(v.cP()) - Point3d(0, 3, 0)).Norm() < 0.2 ? 1 : 0;
+  EXPECT_GT(onSmall, 20u);
+}

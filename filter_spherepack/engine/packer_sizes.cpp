@@ -109,6 +109,31 @@ void leaveOutFarPoints(InputCloud& in, double d, Stat& st) {
                   "the cloud that far apart cannot be meshed in one run at this d: mesh them one at a time (split "
                   "the layer), or give a d of at least " + fmt((c[hi] - c[lo]) / (span / d)) + ".");
     }
+    // Then the further groups of points (split by gaps of kFarGapPerD·d or more), the nearest
+    // first, as long as the span still fits: only what the grid cannot reach is left out.
+    auto groupUp = [&](size_t h) {
+      size_t e = h + 1;
+      while (e + 1 < n && c[e + 1] - c[e] < gap) ++e;
+      return e;
+    };
+    auto groupDown = [&](size_t l) {
+      size_t e = l - 1;
+      while (e > 0 && c[e] - c[e - 1] < gap) --e;
+      return e;
+    };
+    size_t up = hi + 1 < n ? groupUp(hi) : hi, down = lo > 0 ? groupDown(lo) : lo;
+    for (;;) {
+      const bool fitsUp = hi + 1 < n && c[up] - c[lo] <= span, fitsDown = lo > 0 && c[hi] - c[down] <= span;
+      if (fitsUp && (!fitsDown || c[hi + 1] - c[hi] <= c[lo] - c[lo - 1])) {
+        hi = up;
+        if (hi + 1 < n) up = groupUp(hi);
+      } else if (fitsDown) {
+        lo = down;
+        if (lo > 0) down = groupDown(lo);
+      } else {
+        break;
+      }
+    }
     keepLo[a] = c[lo];
     keepHi[a] = c[hi];
     if (lo > 0) leftGap = std::min(leftGap, c[lo] - c[lo - 1]);
