@@ -162,6 +162,11 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "
       "measures report it), median spacing %g, sqrt(area per point) %g, estimated noise %g", st.inputPoints,
       st.duplicatesDropped, st.scale.meanSpacing, st.scale.spacing, st.scale.areaSpacing, st.scale.noise);
+  if (st.farPointsLeftOut > 0)
+    Log("Sphere Packing: %zu far point%s left out, %g or more from the bulk of the cloud (beyond the box grid's "
+        "reach at this d)", st.farPointsLeftOut, st.farPointsLeftOut == 1 ? "" : "s", st.farPointsGap);
+  else
+    Log("Sphere Packing: no far points left out");
   Log("Sphere Packing: sphere diameter d = %g, s = %g%s (mean splat radius %g); d %s", st.sphereDiameter, st.splatSize,
       p.localSplatSizes ? " with local splat sizes" : "", st.meanSplatRadius, st.diameterReason.c_str());
   Log("Sphere Packing: %zu component%s started, %zu points left with no vertex within d (%zu of them where a "
@@ -170,11 +175,12 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: %zu piece%s with fewer than %d faces dropped (%zu faces): flaps on misregistered scan "
       "layers, bits of stray points", st.componentsDropped, st.componentsDropped == 1 ? "" : "s",
       p.minComponentFaces, st.componentFacesDropped);
-  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g, Q_avg %.4f; %zu holes (boundary loops: %zu "
-      "regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh without "
-      "intersections); %zu of %zu boxes where d looked too large", st.vertices,
-      st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved, st.boxesDTooLarge,
-      st.boxes);
+  Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu holes (boundary "
+      "loops: %zu regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh "
+      "without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu boxes where d "
+      "looked too large",
+      st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved,
+      st.flatFacesRemoved, st.boxesDTooLarge, st.boxes);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "

@@ -2,6 +2,7 @@
 // clouds): the guarantees on generated clouds, determinism, noise, open surfaces, bad input,
 // progress and cancel.
 #include "sphere_packer.h"
+#include "region_triangulation.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -988,4 +989,153 @@ TEST(SpherePackerBadInput, OutputPastTheEstimateStopsWithAClearError) {
   EXPECT_NE(e.find("grew past the limit of " + std::to_string(p.maxOutputVertices) + " vertices"), std::string::npos)
       << e;
   EXPECT_NE(e.find("larger sphere diameter"), std::string::npos) << e;
+}
+
+// Audit 2026-12-03, A: one stray point a million units away made the extent exceed the box grid's
+// 2^21 boxes of side d per axis, and the whole cloud was refused ("use a larger d"). The far point
+// is now left out of the packing, counted and warned about; the sphere is meshed closed.
+TEST(SpherePackerFarPoints, OneStrayPointFarAwayIsLeftOut) {
+  growth::CloudSpec spec = sphereSpec();
+  spec.count = 20000;
+  growth::Cloud c = growth::generateCloud(spec);
+  c.points.insert(c.points.begin() + 777, Point3d(1e6, 0, 0));
+  c.normals.insert(c.normals.begin() + 777, Point3d(1, 0, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 1u);
+  EXPECT_GT(r->st.farPointsGap, 1e5);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_EQ(r->m.eulerCharacteristic, 2);
+  EXPECT_GE(r->m.edgeMin, r->st.sphereDiameter * (1 - 1e-5));
+  ASSERT_EQ(r->st.warnings.size(), 1u);
+  EXPECT_NE(r->st.warnings[0].find("1 point lies"), std::string::npos) << r->st.warnings[0];
+  EXPECT_NE(r->st.warnings[0].find("left out of the mesh"), std::string::npos) << r->st.warnings[0];
+}
+
+// Two separate spheres of 20,000 points each: 10^4 apart both are meshed (the grid reaches that
+// far at their d); 10^6 apart the cloud is refused with a message that says why and what to do
+// (the parts are the bulk of the cloud, not stray points: nothing is left out silently).
+TEST(SpherePackerFarPoints, TwoPartsFarApartAreBothMeshedOrRefusedClearly) {
+  growth::CloudSpec a = sphereSpec();
+  a.count = 20000;
+  growth::CloudSpec b = a;
+  b.seed = 2;
+  const growth::Cloud ca = growth::generateCloud(a), cb = growth::generateCloud(b);
+  growth::Cloud near = ca;
+  append(near, cb, Point3d(1e4, 0, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(near, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 0u);
+  EXPECT_EQ(r->m.components, 2u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  EXPECT_TRUE(r->m.manifold());
+  size_t onSecond = 0;
+  for (const auto& v : r->mesh.vert) onSecond += v.cP()[0] > 5e3 ? 1 : 0;
+  EXPECT_GT(onSecond, r->m.vertices / 3);
+
+  growth::Cloud far = ca;
+  append(far, cb, Point3d(1e6, 0, 0));
+  CMeshO cloud;
+  growth::toMesh(far, cloud);
+  const std::string e = errorOf(cloud, sp::Params());
+  EXPECT_NE(e.find("along x its bulk"), std::string::npos) << e;
+  EXPECT_NE(e.find("mesh them one at a time"), std::string::npos) << e;
+  EXPECT_NE(e.find("a d of at least"), std::string::npos) << e;
+}
+
+// A small separate part (0.5 % of the points) 10^6 away: beyond the grid's reach, left out and
+// named in the warning (a part that small is not the bulk of the cloud).
+TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::CloudSpec small = big;
+  small.count = 100;
+  small.sphereRadius = 0.07;
+  small.seed = 3;
+  growth::Cloud c = growth::generateCloud(big);
+  append(c, growth::generateCloud(small), Point3d(0, -1e6, 0));
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, sp::Params()));
+  EXPECT_EQ(r->st.farPointsLeftOut, 100u);
+  EXPECT_EQ(r->m.components, 1u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  ASSERT_FALSE(r->st.warnings.empty());
+  EXPECT_NE(r->st.warnings[0].find("100 points lie"), std::string::npos) << r->st.warnings[0];
+  EXPECT_NE(r->st.warnings[0].find("mesh it on its own"), std::string::npos) << r->st.warnings[0];
+}
+
+// Audit 2026-12-03, B: a vertex placed at the midpoint of an edge of length 2d gave a face with
+// three collinear vertices (edges d, d, 2d: zero area) on this torus with 10 % outliers. No face
+// with an angle above 179° is written; the mesh stays manifold, the three edges a hole.
+TEST(SpherePackerFlatFaces, NoFaceWithCollinearVertices) {
+  growth::CloudSpec s = torusSpec();
+  s.count = 5000;
+  s.outlierFraction = 0.1;
+  s.seed = 2;
+  auto r = mesh(growth::generateCloud(s), sp::Params());
+  EXPECT_EQ(r->m.degenerateFaces, 0u);
+  EXPECT_GE(r->st.flatFacesRemoved, 1u);
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_EQ(r->m.nonManifoldEdges, 0u);
+  EXPECT_EQ(r->m.nonManifoldVertices, 0u);
+  EXPECT_EQ(r->m.selfIntersectingPairs, 0u);
+  size_t flat = 0;
+  for (const auto& f : r->mesh.face)
+    flat += growth::nearlyCollinear(Point3d::Construct(f.cP(0)), Point3d::Construct(f.cP(1)),
+                                    Point3d::Construct(f.cP(2)))
+                ? 1
+                : 0;
+  EXPECT_EQ(flat, 0u);
+}
+
+// Audit 2026-12-03, C: a torus 300 across, 10^6 from the origin. The engine keeps every edge at
+// least d in double, but MeshLab 2020.09 stores float, whose steps are 0.0625 there. The smallest
+// edge reported is the one of the stored mesh, and a warning says why it is below d.
+TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
+  growth::CloudSpec s = torusSpec();
+  s.count = 20000;
+  s.torusMajor = 100;
+  s.torusMinor = 50;
+  growth::Cloud c = growth::generateCloud(s);
+  for (auto& p : c.points) p += Point3d(1e6, 1e6, 1e6);
+  auto r = mesh(c, sp::Params());
+  const double d = r->st.sphereDiameter;
+  EXPECT_TRUE(r->m.manifold());
+  EXPECT_NEAR(r->st.smallestEdge, r->m.edgeMin, 1e-9 * d);
+  bool warned = false;
+  for (const auto& w : r->st.warnings) warned = warned || w.find("below d") != std::string::npos;
+  if (sizeof(CMeshO::ScalarType) == sizeof(float)) {
+    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // what the audit found (0.77 d on its horse)
+    EXPECT_TRUE(warned);
+  } else {
+    EXPECT_GE(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance));
+    EXPECT_FALSE(warned);
+  }
+}
+
+// Only what the grid cannot reach is left out: a small part 2 units off the sphere (far more than
+// 8 d, but within reach) stays and is meshed when a stray point 10^6 away is left out.
+TEST(SpherePackerFarPoints, ANearSmallPartStaysWhenAFarPointIsLeftOut) {
+  growth::CloudSpec big = sphereSpec();
+  big.count = 20000;
+  growth::CloudSpec small = big;
+  small.count = 200;
+  small.sphereRadius = 0.1;
+  small.seed = 2;
+  growth::Cloud c = growth::generateCloud(big);
+  append(c, growth::generateCloud(small), Point3d(0, 3, 0));
+  c.points.push_back(Point3d(1e6, 0, 0));
+  c.normals.push_back(Point3d(1, 0, 0));
+  sp::Params p;
+  p.sphereDiameter = 0.03;
+  std::unique_ptr<Meshed> r;
+  ASSERT_NO_THROW(r = mesh(c, p));
+  EXPECT_EQ(r->st.farPointsLeftOut, 1u);
+  EXPECT_EQ(r->m.components, 2u);
+  EXPECT_EQ(r->m.boundaryEdges, 0u);
+  size_t onSmall = 0;
+  for (const auto& v : r->mesh.vert) onSmall += (Point3d::Construct(v.cP()) - Point3d(0, 3, 0)).Norm() < 0.2 ? 1 : 0;
+  EXPECT_GT(onSmall, 20u);
 }

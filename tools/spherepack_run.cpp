@@ -132,6 +132,8 @@ int main(int argc, char** argv) {
                 st.scale.areaSpacing, st.scale.noise, st.diameterReason.c_str());
     std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",
                 st.inputPoints, st.sphereDiameter, st.splatSize, st.meanSplatRadius, st.splatsUnbounded, st.splatsClamped);
+    std::printf("far_points_left_out: %zu\nflat_faces_removed: %zu\n", st.farPointsLeftOut, st.flatFacesRemoved);
+    if (st.farPointsLeftOut > 0) std::printf("far_points_gap: %.6g\n", st.farPointsGap);
     std::printf("boundary_loops_output: %zu\n", st.boundaryLoops);
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);

@@ -439,10 +439,13 @@ void BoxGrid::Builder::placeIndex() {
   for (const auto& p : pts_)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
-  if (extent / side_ + 2 * (kMaxExtraReach + 4) > double(BoxIndexer::kMax)) {
+  if (extent > maxExtent(side_)) {
+    // The sphere packer leaves far points out before (leaveOutFarPoints), so only a direct caller
+    // gets here.
     std::ostringstream s;
-    s << "The sphere diameter d = " << side_ << " is too small for a cloud of extent " << extent
-      << ": use a larger d.";
+    s << "The sphere diameter d = " << side_ << " is too small for points spread over " << extent
+      << ": the box grid indexes at most " << BoxIndexer::kMax << " boxes of side d per axis (this needs "
+      << extent / side_ << "); d must be at least " << extent / (maxExtent(side_) / side_) << " here.";
     throw Error(s.str());
   }
   // A margin of whole boxes below the points: the farthest reach (side + kMaxExtraReach·side)

@@ -247,6 +247,9 @@ public:
   // the boxes its splat (a disk of that radius) comes within d of, so that a vertex anywhere within
   // d of the disk finds it (sec. 4.4), also where the splats are larger than d.
   static constexpr double kMaxExtraReach = 6;
+  // The largest extent of the points (per axis) that build() can index with boxes of this side:
+  // 2^21 − 1 boxes per axis (BoxIndexer), less the margins of the farthest reach on both sides.
+  static double maxExtent(double side) { return (double(BoxIndexer::kMax) - 2 * (kMaxExtraReach + 4) - 1) * side; }
   void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
              Progress* progress = nullptr, int threads = 0, bool deferNormals = false,
              const std::vector<std::uint32_t>* listOrder = nullptr, const std::vector<float>* extraReach = nullptr);

@@ -90,7 +90,11 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
       const double q = (l1 + l2 + l3) > 0 ? 2 * std::sqrt(3.0) * area2 / (l1 + l2 + l3) : 0;
       fi->Q() = static_cast<CMeshO::ScalarType>(q);
       qsum += q;
-      minEdge = std::min(minEdge, std::sqrt(std::min(l1, std::min(l2, l3))));
+      // The smallest edge as the layer stores it (rounded to CMeshO's scalar), not as computed.
+      const vcg::Point3d sa = vcg::Point3d::Construct(fi->V(0)->cP()), sb = vcg::Point3d::Construct(fi->V(1)->cP()),
+                         sc = vcg::Point3d::Construct(fi->V(2)->cP());
+      minEdge = std::min(minEdge, std::sqrt(std::min((sb - sa).SquaredNorm(),
+                                                     std::min((sc - sb).SquaredNorm(), (sa - sc).SquaredNorm()))));
     }
     // Face and vertex normals of the mesh itself (angle-weighted), so that it shades as it comes
     // out; the box normals stay the growth's.
@@ -104,6 +108,25 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
     });
     st.qualityAvg = qsum / double(faces.size());
     st.smallestEdge = minEdge;
+    const double d = st.sphereDiameter;
+    if (minEdge < d * (1 - kSmallestEdgeTolerance)) {
+      double magnitude = 0;
+      for (const auto& v : out.vert)
+        for (int a = 0; a < 3; ++a) magnitude = std::max(magnitude, std::abs(double(v.cP()[a])));
+      using Scalar = CMeshO::ScalarType;
+      const Scalar big = static_cast<Scalar>(magnitude);
+      const double step = double(std::nextafter(big, std::numeric_limits<Scalar>::max()) - big);
+      const int digits = std::numeric_limits<Scalar>::digits;
+      st.warnings.push_back(
+          "The smallest edge of the mesh as stored is " + fmt(minEdge) + ", below d = " + fmt(d) + " (by " +
+          fmt(100 * (1 - minEdge / d)) + " %): every edge is at least d in the engine's double precision, but "
+          "the layer stores " + std::string(digits > 24 ? "double" : "float") + " coordinates, and at "
+          "coordinates up to " + fmt(magnitude) + " they are rounded to steps of " + fmt(step) + " (a vertex "
+          "moves by up to half a step on each axis). To keep the guarantee, mesh and keep the cloud near the "
+          "origin (Filters > Normals, Curvatures and Orientation > Transform: Translate, Center, set Origin), "
+          "or use a double-precision build (MeshLab 2025.07d, PyMeshLab): moved back to these coordinates in "
+          "float, the mesh is rounded the same way.");
+    }
     st.nonManifoldVertices = topo.nonManifoldVertices;
     st.nonManifoldEdges = topo.nonManifoldEdges;
     st.boundaryLoops = topo.boundaryLoops;

@@ -27,6 +27,18 @@ std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, St
   st.holes = rs.holes;
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
+  // No face with (nearly) collinear vertices is output (region_triangulation.h, nearlyCollinear),
+  // judged on the positions as the layer stores them: the three edges stay a hole of no area.
+  // makeManifold() then takes care of a vertex whose fan this splits.
+  size_t w = 0;
+  for (const Triangle& f : faces) {
+    const vcg::Point3d a = asStored<CMeshO::ScalarType>(g.position(f[0])),
+                       b = asStored<CMeshO::ScalarType>(g.position(f[1])),
+                       c = asStored<CMeshO::ScalarType>(g.position(f[2]));
+    if (nearlyCollinear(a, b, c)) ++st.flatFacesRemoved;
+    else faces[w++] = f;
+  }
+  faces.resize(w);
   return faces;
 }
 

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace growth {
 namespace spherepack {
@@ -83,6 +84,89 @@ Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st) {
   z.s = s;
   z.expected = expected;
   return z;
+}
+
+void leaveOutFarPoints(InputCloud& in, double d, Stat& st) {
+  const double span = BoxGrid::maxExtent(d);
+  const vcg::Point3d dim = in.box.Dim();
+  if (std::max(dim[0], std::max(dim[1], dim[2])) <= span) return;
+  const size_t n = in.points.size();
+  const double gap = kFarGapPerD * d;
+  double keepLo[3], keepHi[3], leftGap = std::numeric_limits<double>::infinity();
+  std::vector<double> c(n);
+  for (int a = 0; a < 3; ++a) {
+    for (size_t i = 0; i < n; ++i) c[i] = in.points[i][a];
+    std::sort(c.begin(), c.end());
+    size_t lo = size_t(0.01 * double(n - 1) + 0.5), hi = size_t(0.99 * double(n - 1) + 0.5);
+    while (lo > 0 && c[lo] - c[lo - 1] < gap) --lo;
+    while (hi + 1 < n && c[hi + 1] - c[hi] < gap) ++hi;
+    if (c[hi] - c[lo] > span) {
+      const char* axis = a == 0 ? "x" : a == 1 ? "y" : "z";
+      throw Error("The sphere diameter d = " + fmt(d) + " is too small for the extent of this cloud: along " + axis +
+                  " its bulk (the 1-99 % quantiles of the points, and the points joined to them by gaps shorter "
+                  "than 8 d) spans " + fmt(c[hi] - c[lo]) + ", " + fmt((c[hi] - c[lo]) / d) + " boxes of side d, "
+                  "more than the " + std::to_string(BoxIndexer::kMax) + " per axis the box grid indexes. Parts of "
+                  "the cloud that far apart cannot be meshed in one run at this d: mesh them one at a time (split "
+                  "the layer), or give a d of at least " + fmt((c[hi] - c[lo]) / (span / d)) + ".");
+    }
+    // Then the further groups of points (split by gaps of kFarGapPerD·d or more), the nearest
+    // first, as long as the span still fits: only what the grid cannot reach is left out.
+    auto groupUp = [&](size_t h) {
+      size_t e = h + 1;
+      while (e + 1 < n && c[e + 1] - c[e] < gap) ++e;
+      return e;
+    };
+    auto groupDown = [&](size_t l) {
+      size_t e = l - 1;
+      while (e > 0 && c[e] - c[e - 1] < gap) --e;
+      return e;
+    };
+    size_t up = hi + 1 < n ? groupUp(hi) : hi, down = lo > 0 ? groupDown(lo) : lo;
+    for (;;) {
+      const bool fitsUp = hi + 1 < n && c[up] - c[lo] <= span, fitsDown = lo > 0 && c[hi] - c[down] <= span;
+      if (fitsUp && (!fitsDown || c[hi + 1] - c[hi] <= c[lo] - c[lo - 1])) {
+        hi = up;
+        if (hi + 1 < n) up = groupUp(hi);
+      } else if (fitsDown) {
+        lo = down;
+        if (lo > 0) down = groupDown(lo);
+      } else {
+        break;
+      }
+    }
+    keepLo[a] = c[lo];
+    keepHi[a] = c[hi];
+    if (lo > 0) leftGap = std::min(leftGap, c[lo] - c[lo - 1]);
+    if (hi + 1 < n) leftGap = std::min(leftGap, c[hi + 1] - c[hi]);
+  }
+  std::vector<double>().swap(c);
+  size_t kept = 0;
+  const bool withIndex = in.vertexIndex.size() == n;
+  vcg::Box3d box;
+  for (size_t i = 0; i < n; ++i) {
+    const vcg::Point3d& p = in.points[i];
+    bool inside = true;
+    for (int a = 0; a < 3; ++a) inside = inside && p[a] >= keepLo[a] && p[a] <= keepHi[a];
+    if (!inside) continue;
+    in.points[kept] = p;
+    in.normals[kept] = in.normals[i];
+    if (withIndex) in.vertexIndex[kept] = in.vertexIndex[i];
+    box.Add(p);
+    ++kept;
+  }
+  in.points.resize(kept);
+  in.normals.resize(kept);
+  if (withIndex) in.vertexIndex.resize(kept);
+  in.box = box;
+  st.farPointsLeftOut = n - kept;
+  st.farPointsGap = leftGap;
+  st.warnings.push_back(std::to_string(n - kept) + (n - kept == 1 ? " point lies " : " points lie ") + fmt(leftGap) +
+                        " or more (" + fmt(leftGap / d) + " d) from the bulk of the cloud, which spans " +
+                        fmt(std::max(box.Dim()[0], std::max(box.Dim()[1], box.Dim()[2]))) + ": with them the cloud "
+                        "spans " + fmt(std::max(dim[0], std::max(dim[1], dim[2]))) + ", more than the box grid "
+                        "indexes at d = " + fmt(d) + " (" + std::to_string(BoxIndexer::kMax) + " boxes per axis). "
+                        "They were left out of the mesh: a point that far shares no sphere of diameter d with "
+                        "the bulk. If they are a separate part, mesh it on its own.");
 }
 
 Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {

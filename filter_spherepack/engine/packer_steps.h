@@ -69,6 +69,18 @@ struct Sizes {
 InputCloud readInput(const CMeshO& cloud, Stat& st);
 Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st);
 Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints);
+// Points this many d (along an axis) from the bulk of the cloud or more can be left out when the
+// cloud does not fit in the box grid: far beyond the reach of any box, splat or sphere of diameter d
+// around a point kept (BoxGrid::kMaxExtraReach + 2).
+constexpr double kFarGapPerD = 8.0;
+// When the points span more than the box grid can index at d (BoxGrid::maxExtent), the points far
+// from the bulk of the cloud are left out (Stat::farPointsLeftOut, a warning): per axis, the bulk
+// is the 1 %–99 % quantiles of the coordinates, widened by every point joined to it by steps
+// shorter than kFarGapPerD·d, then by the further groups of points (split by gaps of at least that)
+// nearest first while the span fits; a point outside it on any axis is left out. Throws
+// growth::Error when the bulk itself does not fit (parts of the cloud too far apart for d). A
+// cloud that fits is left as it is.
+void leaveOutFarPoints(InputCloud& in, double d, Stat& st);
 
 // packer_prepare.cpp, sec. 4.3 and 4.1: the splat radii and the box grid.
 std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params& params, const Renumbering& order,

@@ -36,6 +36,18 @@ double innerAngle(const vcg::Point3d& u, const vcg::Point3d& v, const vcg::Point
   return t;
 }
 
+bool nearlyCollinear(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+  static const double cosMax = std::cos(kMaxFaceAngleDeg * kPi / 180.0);
+  const vcg::Point3d p[3] = {a, b, c};
+  for (int k = 0; k < 3; ++k) {
+    const vcg::Point3d e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+    const double l1 = e1.Norm(), l2 = e2.Norm();
+    if (!(l1 > 0) || !(l2 > 0)) return true;
+    if ((e1 * e2) / (l1 * l2) < cosMax) return true;
+  }
+  return false;
+}
+
 std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vector<std::uint32_t>& border) {
   std::vector<std::vector<std::uint32_t>> loops;
   std::vector<std::uint32_t> stack;

@@ -63,6 +63,14 @@ std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vecto
 bool triangulateLoop(const std::vector<std::uint32_t>& loop, const std::vector<vcg::Point3d>& pos,
                      const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces);
 
+// A face whose vertices (nearly) lie on a line: its largest angle exceeds kMaxFaceAngleDeg, or two
+// of its vertices coincide. Such a face has (about) zero area and no usable normal; the packer
+// leaves it out (a hole of three edges and no area) instead of writing it. It arises where the
+// growth placed a vertex at the midpoint of an edge of length 2d (both spheres of radius d around
+// its ends meet only there), and the three edges then bound a region of their own.
+constexpr double kMaxFaceAngleDeg = 179.0;
+bool nearlyCollinear(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c);
+
 struct RegionStats {
   size_t borders = 0;        // borders with at least one half-edge
   size_t triangulated = 0;   // borders closed completely

@@ -93,6 +93,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   progress.phase("Sphere packing: reading the cloud", 0, 2);
   InputCloud in = readInput(cloud, st);
   const Sizes sizes = chooseSizes(in, params, st);
+  leaveOutFarPoints(in, sizes.d, st);
   const CloudScale& scale = sizes.scale;
   const double d = sizes.d, s = sizes.s, expected = sizes.expected;
   std::vector<int>().swap(in.vertexIndex); // not needed here
