@@ -265,6 +265,60 @@ TEST(G2SBuild, ScanLineSamplingIsSeededAndMeshed) {
   }
 }
 
+// An open piece (a sheet: a scan's open surface, a LiDAR tile's ground) has no inside for the
+// orientation to go by. Where the layer has normals (most points with a non-zero one), the piece
+// faces the way they point on the whole; where they are flipped on a third of the points (normals
+// estimated without a consistent orientation), the majority still decides; without normals the
+// mesh is the same but for its orientation.
+TEST(G2SBuild, OpenPiecesFaceTheWayTheLayersNormalsPoint) {
+  std::vector<vcg::Point3d> pts;
+  growth::Random rng(11);
+  for (int j = 0; j < 60; ++j)
+    for (int i = 0; i < 60; ++i) {
+      const double dx = 0.3 * (double(rng.next() % 1001) / 1000.0 - 0.5), dy = 0.3 * (double(rng.next() % 1001) / 1000.0 - 0.5);
+      pts.emplace_back(0.01 * (i + dx), 0.01 * (j + dy), 0.002 * std::sin(0.3 * i) * std::cos(0.2 * j));
+    }
+  auto withNormals = [&](double up, double flippedFraction) {
+    growth::Cloud c;
+    c.points = pts;
+    growth::Random flip(3);
+    for (size_t i = 0; i < pts.size(); ++i) {
+      const bool flipped = double(flip.next() % 1000) < 1000.0 * flippedFraction;
+      c.normals.push_back(vcg::Point3d(0, 0, flipped ? -up : up));
+    }
+    Mesh m(new CMeshO);
+    growth::toMesh(c, *m);
+    return m;
+  };
+  auto facing = [](const CMeshO& mesh, size_t& up, size_t& down) {
+    up = down = 0;
+    for (const auto& f : mesh.face) {
+      const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
+                         d = vcg::Point3d::Construct(f.cP(2));
+      (((b - a) ^ (d - a))[2] > 0 ? up : down) += 1;
+    }
+  };
+  size_t faces = 0;
+  for (double sign : {1.0, -1.0})
+    for (double flipped : {0.0, 0.33}) {
+      SCOPED_TRACE(testing::Message() << "normals " << sign << ", flipped " << flipped);
+      const Mesh cloud = withNormals(sign, flipped);
+      const auto r = run(cloud);
+      expectValidOutput(cloud, r);
+      ASSERT_GT(r->stat.faces, 6500u);
+      size_t up = 0, down = 0;
+      facing(r->mesh, up, down);
+      EXPECT_EQ(sign > 0 ? down : up, 0u);
+      if (faces == 0) faces = r->stat.faces;
+      EXPECT_EQ(r->stat.faces, faces); // the same mesh, turned
+    }
+  for (const Mesh& cloud : {pointsMesh(pts), withNormals(0.0, 0.0)}) { // ((0, 0, 1) each; then all zero)
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    EXPECT_EQ(r->stat.faces, faces);
+  }
+}
+
 // Where a point is full (here the capacity is lowered to 64 neighbours, below the 120 each pole
 // needs), the growth goes on: the edges that would add a neighbour there stay open, counted,
 // and only around the poles; the rest of the sphere closes.

@@ -71,7 +71,27 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
 
 // Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
 // small holes closed; then the boundary counts and the orientation of every component.
-void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
+// The layer's vertex normals in the mesher's point order, where most points have a usable one
+// (finite, not zero); empty otherwise. Robust G2S needs none; orientComponents uses them for the
+// pieces that do not close.
+std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const Mesher& mesher) {
+  std::vector<P3> normals;
+  const std::vector<std::uint32_t>& order = mesher.order();
+  if (input.vertexIndex.empty()) return normals;
+  normals.resize(order.size());
+  size_t usable = 0;
+  for (size_t i = 0; i < order.size(); ++i) {
+    const auto& n = cloud.vert[size_t(input.vertexIndex[order[i]])].cN();
+    const P3 v = P3(static_cast<double>(n[0]), static_cast<double>(n[1]), static_cast<double>(n[2]));
+    const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && v.SquaredNorm() > 0;
+    normals[i] = ok ? v : P3(0, 0, 0);
+    usable += ok;
+  }
+  if (2 * usable < order.size()) normals.clear();
+  return normals;
+}
+
+void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const std::vector<P3>& normals) {
   if (p.removeNonManifoldVertices) {
     const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
     stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
@@ -123,7 +143,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat) {
   mesher.releaseGrowthState();
   stat.boundaryEdges = boundary.edges;
   stat.holes = boundary.loops;
-  mesher.orientComponents();
+  mesher.orientComponents(normals.empty() ? nullptr : &normals);
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   mesher.releaseWorkingState();
   releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
@@ -228,7 +248,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     grow(mesher, stat, progress); // sec. 3
     stat.secondsGrowth = watch.lap();
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
-    cleanUp(mesher, p, stat); // sec. 4.2 and the repairs after it
+    cleanUp(mesher, p, stat, layerNormals(cloud, input, mesher)); // sec. 4.2 and the repairs after it
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
     writeMesh(cloud, input, mesher, out, stat, progress);

@@ -17,6 +17,9 @@ namespace {
 // point whose tightest triangles all fail is not a good place for a seed anyway, and outliers
 // would otherwise test every point of a large ball.
 constexpr size_t kMaxSeedTriangles = 32;
+// orientComponents: a piece with a free edge is a sheet, oriented by the layer's normals where it
+// has them, when it encloses less than this fraction of the volume of a sphere of its area.
+constexpr double kSheetEnclosure = 0.2;
 // findSeedTriangle: a third point is "near the line pq" within kSeedLineBand·|pq| of it; when all
 // are, the seed sphere is searched again kSeedWiden times as wide.
 constexpr double kSeedLineBand = 0.25;
@@ -1131,7 +1134,7 @@ size_t Mesher::componentVolumes(std::vector<std::uint32_t>& parent, std::vector<
   return components;
 }
 
-void Mesher::orientComponents() {
+void Mesher::orientComponents(const std::vector<P3>* normals) {
   const size_t n = grid_.size();
   if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
   // 1. Union–find over the vertices of the live triangles, in the per-point scratch array. After
@@ -1149,9 +1152,36 @@ void Mesher::orientComponents() {
   std::vector<signed char> wanted(components, 1);
   nestedShellSigns(component, components, wanted);
   std::vector<char> flip(components, 0);
+  // 3b. The sheets (pieces with a free edge that enclose little volume: a scan's open surface, a
+  //     LiDAR tile's ground), where normals are given: the way the normals point on the whole. A
+  //     piece that nearly closes (a scan with holes) keeps the rule of its volume, which estimated
+  //     normals oriented the wrong way round could not overturn.
+  std::vector<double> agree;
+  if (normals != nullptr && normals->size() == n) {
+    std::vector<char> open(components, 0);
+    for (std::uint32_t v = 0; v < n; ++v)
+      if (pem_.degree(v) > 0 && pem_.hasFreeEdge(v)) open[component(v)] = 1;
+    agree.assign(components, 0.0);
+    std::vector<double> area(components, 0.0);
+    for (size_t f = 0; f < tri_.size(); ++f) {
+      if (!alive_[f]) continue;
+      const Triangle& t = tri_[f];
+      const std::uint32_t k = component(t[0]);
+      if (!open[k]) continue;
+      const P3 fn = (pts_[t[1]] - pts_[t[0]]) ^ (pts_[t[2]] - pts_[t[0]]);
+      agree[k] += fn * ((*normals)[t[0]] + (*normals)[t[1]] + (*normals)[t[2]]);
+      area[k] += 0.5 * fn.Norm();
+    }
+    // Enclosed volume against that of a sphere of the same area (1 for a sphere; volume[] is six
+    // times the signed volume).
+    for (size_t k = 0; k < components; ++k) {
+      const double sphere = std::pow(area[k], 1.5) / (6.0 * std::sqrt(3.14159265358979323846));
+      if (!(std::abs(volume[k]) / 6.0 < kSheetEnclosure * sphere)) agree[k] = 0;
+    }
+  }
   bool any = false;
   for (size_t k = 0; k < components; ++k) {
-    flip[k] = volume[k] * double(wanted[k]) < 0;
+    flip[k] = !agree.empty() && agree[k] != 0 ? agree[k] < 0 : volume[k] * double(wanted[k]) < 0;
     any = any || flip[k];
   }
   if (!any) return;

@@ -212,8 +212,12 @@ public:
   // except a closed shell inside an odd number of other closed shells (found by the parity of a
   // ray's crossings), which bounds a cavity and faces into it (the inner wall of a hollow ball).
   // Each component was grown with one consistent orientation from its seed; flipping whole
-  // components keeps every edge consistent. G2S has no normals: nesting is all it can go by.
-  void orientComponents();
+  // components keeps every edge consistent. G2S needs no normals: nesting is all it can go by for
+  // a closed shell. A piece that does not close (a sheet: a scan's open surface, a LiDAR tile's
+  // ground) has no inside; where the caller gives the layer's normals (in this mesher's point
+  // order, zero where a point has none), it faces the way they point on the whole (the sum over
+  // its faces of the face normal against its corners' normals), else as its own volume says.
+  void orientComponents(const std::vector<P3>* normals = nullptr);
 
   // Frees what only the growth uses: the grid's search structure, the per-point edge counters,
   // the queue and the search scratch. No search (seeds, growth, candidates) may follow; the
