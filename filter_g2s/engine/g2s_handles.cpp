@@ -612,18 +612,33 @@ bool Mesher::HandlePass::regrow(const std::vector<std::vector<std::uint32_t>>& l
       if (ahi[d] < blo[d] || bhi[d] < alo[d]) return true;
     return false;
   };
+  // (Boxes made once; the fixed faces apart from all the new ones' box are not looked at.)
+  struct Boxed {
+    double lo[3], hi[3];
+    std::uint32_t f;
+  };
+  std::vector<Boxed> newBoxes(grown.size()), near;
+  Boxed all;
   for (size_t i = 0; i < grown.size(); ++i) {
-    double lo[3], hi[3], lo2[3], hi2[3];
-    box(grown[i], lo, hi);
-    for (std::uint32_t f : fixed) {
-      if (!m_.alive_[f]) continue;
-      box(m_.tri_[f], lo2, hi2);
-      if (!apart(lo, hi, lo2, hi2) && facesIntersect(pos, grown[i], m_.tri_[f])) return false;
+    box(grown[i], newBoxes[i].lo, newBoxes[i].hi);
+    for (int d = 0; d < 3; ++d) {
+      all.lo[d] = i == 0 ? newBoxes[i].lo[d] : std::min(all.lo[d], newBoxes[i].lo[d]);
+      all.hi[d] = i == 0 ? newBoxes[i].hi[d] : std::max(all.hi[d], newBoxes[i].hi[d]);
     }
-    for (size_t j = 0; j < i; ++j) {
-      box(grown[j], lo2, hi2);
-      if (!apart(lo, hi, lo2, hi2) && facesIntersect(pos, grown[i], grown[j])) return false;
-    }
+  }
+  for (std::uint32_t f : fixed) {
+    if (!m_.alive_[f]) continue;
+    Boxed b;
+    box(m_.tri_[f], b.lo, b.hi);
+    b.f = f;
+    if (!apart(all.lo, all.hi, b.lo, b.hi)) near.push_back(b);
+  }
+  for (size_t i = 0; i < grown.size(); ++i) {
+    const Boxed& a = newBoxes[i];
+    for (const Boxed& b : near)
+      if (!apart(a.lo, a.hi, b.lo, b.hi) && facesIntersect(pos, grown[i], m_.tri_[b.f])) return false;
+    for (size_t j = 0; j < i; ++j)
+      if (!apart(a.lo, a.hi, newBoxes[j].lo, newBoxes[j].hi) && facesIntersect(pos, grown[i], grown[j])) return false;
   }
   const size_t firstNew = m_.tri_.size();
   for (const Triangle& t : grown) {
