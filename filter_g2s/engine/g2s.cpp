@@ -91,7 +91,7 @@ std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const
   return normals;
 }
 
-void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const std::vector<P3>& normals) {
+void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, const InputCloud& input) {
   if (p.removeNonManifoldVertices) {
     const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
     stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
@@ -143,6 +143,8 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const std::vector<P3>&
   mesher.releaseGrowthState();
   stat.boundaryEdges = boundary.edges;
   stat.holes = boundary.loops;
+  // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
+  const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(cloud, input, mesher) : std::vector<P3>();
   mesher.orientComponents(normals.empty() ? nullptr : &normals);
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   mesher.releaseWorkingState();
@@ -248,7 +250,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     grow(mesher, stat, progress); // sec. 3
     stat.secondsGrowth = watch.lap();
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
-    cleanUp(mesher, p, stat, layerNormals(cloud, input, mesher)); // sec. 4.2 and the repairs after it
+    cleanUp(mesher, p, stat, cloud, input); // sec. 4.2 and the repairs after it
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
     writeMesh(cloud, input, mesher, out, stat, progress);
