@@ -685,13 +685,7 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     // 3 and 12 intersecting pairs; about 1-2 s per mesh, so not on every sampling).
     const bool checkCrossings = (c.seed == 1 && c.points == 30000) || c.seed == 7;
     if (!checkCrossings) continue;
-    std::vector<vcg::Point3d> pos;
-    std::vector<growth::Triangle> faces;
-    for (const auto& v : r->mesh.vert) pos.push_back(vcg::Point3d::Construct(v.cP()));
-    for (const auto& f : r->mesh.face)
-      faces.push_back({std::uint32_t(vcg::tri::Index(r->mesh, f.cV(0))), std::uint32_t(vcg::tri::Index(r->mesh, f.cV(1))),
-                       std::uint32_t(vcg::tri::Index(r->mesh, f.cV(2)))});
-    EXPECT_TRUE(growth::findSelfIntersections(pos, faces).empty());
+    EXPECT_EQ(growth::countSelfIntersections(r->mesh), 0u);
   }
 }
 
@@ -778,13 +772,7 @@ TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
     // A cut keeps the cycle's points (their faces on the other side); at most a few points go.
     EXPECT_LE(r->stat.unusedPoints, before->stat.unusedPoints + 2);
     if (c.seed != 5) continue; // (the exact crossing test takes 1-2 s)
-    std::vector<vcg::Point3d> pos;
-    std::vector<growth::Triangle> faces;
-    for (const auto& v : r->mesh.vert) pos.push_back(vcg::Point3d::Construct(v.cP()));
-    for (const auto& f : r->mesh.face)
-      faces.push_back({std::uint32_t(vcg::tri::Index(r->mesh, f.cV(0))), std::uint32_t(vcg::tri::Index(r->mesh, f.cV(1))),
-                       std::uint32_t(vcg::tri::Index(r->mesh, f.cV(2)))});
-    EXPECT_TRUE(growth::findSelfIntersections(pos, faces).empty());
+    EXPECT_EQ(growth::countSelfIntersections(r->mesh), 0u);
   }
 }
 
@@ -831,13 +819,7 @@ TEST(G2SBuild, RimHolesThatNoClosureClosesAreGrownIntoAgain) {
     EXPECT_LE(r->stat.unusedPoints, 3u);
     // The regrown faces cross nothing (checked on one; the exact test takes 1-2 s per mesh).
     if (c.seed != 41) continue;
-    std::vector<vcg::Point3d> pos;
-    std::vector<growth::Triangle> faces;
-    for (const auto& v : r->mesh.vert) pos.push_back(vcg::Point3d::Construct(v.cP()));
-    for (const auto& f : r->mesh.face)
-      faces.push_back({std::uint32_t(vcg::tri::Index(r->mesh, f.cV(0))), std::uint32_t(vcg::tri::Index(r->mesh, f.cV(1))),
-                       std::uint32_t(vcg::tri::Index(r->mesh, f.cV(2)))});
-    EXPECT_TRUE(growth::findSelfIntersections(pos, faces).empty());
+    EXPECT_EQ(growth::countSelfIntersections(r->mesh), 0u);
     // The same mesh on a rerun (the regrowth is deterministic).
     const auto again = run(cloud);
     ASSERT_EQ(again->mesh.fn, r->mesh.fn);

@@ -1045,17 +1045,23 @@ TEST(SpherePackerFarPoints, TwoPartsFarApartAreBothMeshedOrRefusedClearly) {
   EXPECT_NE(e.find("a d of at least"), std::string::npos) << e;
 }
 
-// A small separate part (0.5 % of the points) 10^6 away: beyond the grid's reach, left out and
-// named in the warning (a part that small is not the bulk of the cloud).
-TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
+// A sphere of 20,000 points and a small one (`count` points, `radius`, `seed`) moved by `offset`.
+growth::Cloud sphereAndSmallPart(size_t count, double radius, std::uint64_t seed, const Point3d& offset) {
   growth::CloudSpec big = sphereSpec();
   big.count = 20000;
   growth::CloudSpec small = big;
-  small.count = 100;
-  small.sphereRadius = 0.07;
-  small.seed = 3;
+  small.count = count;
+  small.sphereRadius = radius;
+  small.seed = seed;
   growth::Cloud c = growth::generateCloud(big);
-  append(c, growth::generateCloud(small), Point3d(0, -1e6, 0));
+  append(c, growth::generateCloud(small), offset);
+  return c;
+}
+
+// A small separate part (0.5 % of the points) 10^6 away: beyond the grid's reach, left out and
+// named in the warning (a part that small is not the bulk of the cloud).
+TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
+  growth::Cloud c = sphereAndSmallPart(100, 0.07, 3, Point3d(0, -1e6, 0));
   std::unique_ptr<Meshed> r;
   ASSERT_NO_THROW(r = mesh(c, sp::Params()));
   EXPECT_EQ(r->st.farPointsLeftOut, 100u);
@@ -1118,14 +1124,7 @@ TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
 // Only what the grid cannot reach is left out: a small part 2 units off the sphere (far more than
 // 8 d, but within reach) stays and is meshed when a stray point 10^6 away is left out.
 TEST(SpherePackerFarPoints, ANearSmallPartStaysWhenAFarPointIsLeftOut) {
-  growth::CloudSpec big = sphereSpec();
-  big.count = 20000;
-  growth::CloudSpec small = big;
-  small.count = 200;
-  small.sphereRadius = 0.1;
-  small.seed = 2;
-  growth::Cloud c = growth::generateCloud(big);
-  append(c, growth::generateCloud(small), Point3d(0, 3, 0));
+  growth::Cloud c = sphereAndSmallPart(200, 0.1, 2, Point3d(0, 3, 0));
   c.points.push_back(Point3d(1e6, 0, 0));
   c.normals.push_back(Point3d(1, 0, 0));
   sp::Params p;
