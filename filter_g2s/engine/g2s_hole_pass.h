@@ -22,7 +22,8 @@ public:
   // The live faces that the loop's least-area triangulation (with the ears' tests but the
   // crossing test) meets, into out (sorted); false when there is none (or no such triangulation).
   bool blockers(const std::vector<std::uint32_t>& original, std::vector<std::uint32_t>& out);
-  // Face f (live, appended to the mesh by another pass) is known to the later closures' tests.
+  // Face f (live, appended to the mesh: by commit, or by another pass) is known to the later
+  // closures' tests.
   void noteAdded(std::uint32_t f) {
     for (std::uint32_t v : m_.tri_[f]) {
       added_[v].push_back(f);

@@ -647,11 +647,7 @@ void Mesher::HolePass::commit(HoleStat& st) {
     const auto f = static_cast<std::uint32_t>(m_.tri_.size());
     m_.tri_.push_back(t);
     m_.alive_.push_back(1);
-    for (std::uint32_t v : t) {
-      added_[v].push_back(f);
-      hasAdded_[v] = 1;
-    }
-    addIfLong(f);
+    noteAdded(f);
   }
   ++st.closed;
   st.facesAdded += pending_.size();
