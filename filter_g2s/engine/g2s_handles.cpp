@@ -214,6 +214,9 @@ public:
   // of the first face of fan[i]'s fan. Returns the number of fans.
   template <class Skip>
   size_t fansAt(std::uint32_t x, Skip&& skip, std::vector<std::uint32_t>& fan, std::vector<std::uint32_t>& part) const;
+  // Of fansAt's fans, the one kept (its first face's index in fan): the most faces older than
+  // firstNew, then the most faces, then the first.
+  static size_t keptFan(const std::vector<std::uint32_t>& fan, const std::vector<std::uint32_t>& part, size_t firstNew);
 
 private:
   template <class F> void forEachFace(std::uint32_t v, F&& f) const {
@@ -360,30 +363,29 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges, bool regr
   HoleStat hs;
   if (ok) {
     std::vector<std::vector<std::uint32_t>> loops;
-    m_.boundaryLoops(touched, maxLoopEdges, loops);
     // A loop can run on through a hole that was there before: the faces at its points beyond
     // the region are kept too, in case the closure is undone.
-    for (const auto& loop : loops)
-      for (std::uint32_t x : loop)
-        if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
-    if (ok && regrowFirst) {
-      // (The growth takes loops of any length: those of up to twice the longest closed.)
-      loops.clear();
-      m_.boundaryLoops(touched, 2 * maxLoopEdges, loops);
-      ok = !loops.empty() && regrow(loops, touched, regrown);
-      if (ok) {
+    auto keepBeyond = [&]() {
+      for (const auto& loop : loops)
+        for (std::uint32_t x : loop)
+          if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
+    };
+    // (A regrowth takes loops of any length: those of up to twice the longest closed.)
+    m_.boundaryLoops(touched, regrowFirst ? 2 * maxLoopEdges : maxLoopEdges, loops);
+    keepBeyond();
+    const bool any = !loops.empty();
+    if (regrowFirst && any) {
+      ok = regrow(loops, touched, regrown);
+      if (ok) { // (the loops it left)
         loops.clear();
         m_.boundaryLoops(touched, maxLoopEdges, loops);
-        for (const auto& loop : loops)
-          for (std::uint32_t x : loop)
-            if (!inRing_[x]) forEachFace(x, [&](std::uint32_t f) { outside_.push_back(f); });
-        for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
-        ok = hs.closed == loops.size();
+        keepBeyond();
       }
-    } else if (ok) {
+    }
+    if (ok) {
       for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
-      ok = !loops.empty() && hs.closed == loops.size();
-        }
+      ok = any && hs.closed == loops.size();
+    }
   }
   // The new faces are indexed at once (dead ones are skipped if this is undone), so that the
   // checks below see them.
@@ -660,14 +662,7 @@ bool Mesher::HandlePass::regrow(const std::vector<std::vector<std::uint32_t>>& l
     bool removed = false;
     for (std::uint32_t x : touched) {
       if (fansAt(x, none, fan, part) < 2) continue;
-      std::vector<size_t> old(fan.size(), 0), size(fan.size(), 0);
-      for (size_t i = 0; i < fan.size(); ++i) {
-        ++size[part[i]];
-        old[part[i]] += fan[i] < firstNew;
-      }
-      size_t keep = 0;
-      for (size_t i = 1; i < fan.size(); ++i)
-        if (old[i] > old[keep] || (old[i] == old[keep] && size[i] > size[keep])) keep = i;
+      const size_t keep = keptFan(fan, part, firstNew);
       for (size_t i = 0; i < fan.size(); ++i)
         if (part[i] != keep && fan[i] >= firstNew) {
           const Triangle& t = m_.tri_[fan[i]];
@@ -730,6 +725,19 @@ size_t Mesher::HandlePass::fansAt(std::uint32_t x, Skip&& skip, std::vector<std:
   return fans;
 }
 
+size_t Mesher::HandlePass::keptFan(const std::vector<std::uint32_t>& fan, const std::vector<std::uint32_t>& part,
+                                   size_t firstNew) {
+  std::vector<size_t> old(fan.size(), 0), size(fan.size(), 0);
+  for (size_t i = 0; i < fan.size(); ++i) {
+    ++size[part[i]];
+    old[part[i]] += fan[i] < firstNew;
+  }
+  size_t keep = 0;
+  for (size_t i = 1; i < fan.size(); ++i)
+    if (old[i] > old[keep] || (old[i] == old[keep] && size[i] > size[keep])) keep = i;
+  return keep;
+}
+
 void Mesher::HandlePass::splitFans() {
   // The points of the cut's faces whose other faces fall into more than one fan: the faces of all
   // but the largest fan go with the cut (sec. 4.2's rule), until every such point has one fan.
@@ -744,11 +752,7 @@ void Mesher::HandlePass::splitFans() {
     for (std::uint32_t x : pts) {
       const auto inCut = [&](std::uint32_t f) { return std::binary_search(cut_.begin(), cut_.end(), f); };
       if (fansAt(x, inCut, fan, part) < 2) continue;
-      std::vector<size_t> size(fan.size(), 0);
-      for (size_t i = 0; i < fan.size(); ++i) ++size[part[i]];
-      size_t keep = 0;
-      for (size_t i = 1; i < fan.size(); ++i)
-        if (size[i] > size[keep]) keep = i;
+      const size_t keep = keptFan(fan, part, ~size_t{0});
       for (size_t i = 0; i < fan.size(); ++i)
         if (part[i] != keep) cut_.push_back(fan[i]);
     }
