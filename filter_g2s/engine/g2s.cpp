@@ -69,8 +69,6 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
                             " neighbours (the most one point can hold): the mesh has holes there.");
 }
 
-// Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
-// small holes closed; then the boundary counts and the orientation of every component.
 // The layer's vertex normals in the mesher's point order, where most points have a usable one
 // (finite, not zero); empty otherwise. Robust G2S needs none; orientComponents uses them for the
 // pieces that do not close.
@@ -91,6 +89,9 @@ std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const
   return normals;
 }
 
+// Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
+// small holes closed; then the boundary counts and the orientation of every component (by the
+// layer's normals for the sheets, where it has them).
 void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, const InputCloud& input) {
   if (p.removeNonManifoldVertices) {
     const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
@@ -214,7 +215,9 @@ void writeMesh(const CMeshO& cloud, InputCloud& input, Mesher& mesher, CMeshO& o
     progress.update(1.0);
   } else {
     stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
-                            "few or too scattered to lie on a surface (try a larger seed search factor k).");
+                            "few or too scattered to lie on a surface (try a larger seed search factor k), or sampled far "
+                            "more coarsely in one direction than in another (rings or lines many spacings "
+                            "apart), which Robust G2S does not mesh.");
   }
 }
 
