@@ -38,7 +38,9 @@ QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
       "Needs per-vertex normals: compute them with <i>Filters &gt; Normals, Curvatures and "
       "Orientation &gt; Compute normals for point sets</i>.<br><br>"
       "<b>Parameters.</b> <i>Sphere diameter d</i>: 0 chooses max(1.8 &times; &radic;(area per point), "
-      "3 &times; the estimated noise): the scan's resolution, at least twice the noise. <i>Splat "
+      "3 &times; the estimated noise): the scan's resolution, at least twice the noise; where a tenth of "
+      "the surface or more lies on thin parts (two sheets with opposed normals closer than 1.2 d), "
+      "their thickness / 1.2, so that both sides are meshed. <i>Splat "
       "radius s</i>: the disks on the points must cover the surface; 0 chooses 2.5 &times; &radic;(area "
       "per point). <i>Local splat sizes</i>: each point gets the radius of its tangent-plane "
       "Delaunay/Voronoi neighbourhood, bounded by s (s is the radius at open boundaries); off uses s "
@@ -178,9 +180,9 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu holes (boundary "
       "loops: %zu regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh "
       "without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu boxes where d "
-      "looked too large",
+      "looked too large (%zu of them saw two sides and kept both, as two layers)",
       st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved,
-      st.flatFacesRemoved, st.boxesDTooLarge, st.boxes);
+      st.flatFacesRemoved, st.boxesDTooLarge, st.boxes, st.boxesTwoSided);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "

@@ -273,6 +273,55 @@ TEST(BoxGrid, ThinPlateWithTwoToOneSidesIsFlagged) {
   EXPECT_EQ(fine.dTooLargeCount(), 0u);
 }
 
+// Two-sided boxes (beyond the paper, where its filter drops the smaller side): a box that sees
+// both sheets of a thin plate keeps both, as two layers; boxOf() with a normal gives the layer of
+// that side, whose points all face it and whose box normal is positive on all of them. The same
+// when the sides hold equal shares and the normals cancel (|Σ n| < 0.1: split along their axis).
+TEST(BoxGrid, ThinPlateBoxesKeepBothSidesAsLayers) {
+  for (const bool equal : {false, true}) {
+    SCOPED_TRACE(equal ? "sides of equal size" : "sides 2:1");
+    std::vector<Point3d> p, n;
+    growth::Random rnd(4);
+    if (equal) {
+      for (int i = 0; i < 20; ++i)
+        for (int j = 0; j < 20; ++j)
+          for (const int s : {1, -1}) {
+            p.emplace_back(i * 0.02 + 0.001, j * 0.02 + 0.001, s * 0.01);
+            n.emplace_back(0, 0, s);
+          }
+    } else {
+      for (int i = 0; i < 6000; ++i) {
+        const bool top = i % 3 != 0;
+        p.emplace_back(rnd.uniform(0, 1), rnd.uniform(0, 1), top ? 0.02 : -0.02);
+        n.emplace_back(0, 0, top ? 1 : -1);
+      }
+    }
+    BoxGrid g;
+    g.build(p, n, 0.1);
+    EXPECT_GT(g.twoSidedBoxes(), g.boxCount() / 2);
+    EXPECT_EQ(g.layerCount(), g.boxCount() + g.twoSidedBoxes());
+    size_t checked = 0;
+    for (const size_t i : {size_t(0), size_t(1), p.size() / 2, p.size() - 1}) {
+      for (const double side : {1.0, -1.0}) {
+        const int b = g.boxOf(p[i], Point3d(0, 0, side));
+        ASSERT_GE(b, 0);
+        ASSERT_GT(g.pointCount(b), 0u);
+        for (auto it = g.pointsBegin(b); it != g.pointsEnd(b); ++it) EXPECT_EQ(n[*it][2], side);
+        EXPECT_GT(g.boxNormal(b)[2] * side, 0.99);
+        EXPECT_GT(g.boxMinDot(b), 0.99);
+        ++checked;
+      }
+      // The layers of one box are two: the other side's layer is not the same box.
+      EXPECT_NE(g.boxOf(p[i], Point3d(0, 0, 1)), g.boxOf(p[i], Point3d(0, 0, -1)));
+    }
+    EXPECT_EQ(checked, 8u);
+    // Boxes that see one sheet only (d below the thickness) have one layer.
+    BoxGrid fine;
+    fine.build(p, n, equal ? 0.005 : 0.01);
+    EXPECT_EQ(fine.twoSidedBoxes(), 0u);
+  }
+}
+
 TEST(BoxGrid, FilterDropsFlippedNormalsOnAPlane) {
   std::vector<Point3d> p, n;
   growth::Random rnd(2);

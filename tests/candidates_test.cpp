@@ -131,7 +131,7 @@ TEST(EnumerateCandidates, MatchesBruteForceOverAllSplats) {
   using Cand = std::tuple<std::uint32_t, std::uint32_t, int>;
   for (std::uint32_t v = 0; v < verts.size(); ++v) {
     std::vector<Cand> got, want;
-    growth::enumerateCandidates(v, verts, d, grid, splats, lists, [&](std::uint32_t u, std::uint32_t s, int root, const Point3d& x) {
+    growth::enumerateCandidates(v, verts, Point3d(0, 0, 0), d, grid, splats, lists, [&](std::uint32_t u, std::uint32_t s, int root, const Point3d& x) {
       got.emplace_back(u, s, root);
       EXPECT_NEAR((x - verts[v]).Norm(), d, 1e-12);
       EXPECT_NEAR((x - verts[u]).Norm(), d, 1e-12);

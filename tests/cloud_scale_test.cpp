@@ -268,3 +268,45 @@ TEST(CloudScale, NonUniformDensity) {
   EXPECT_EQ(e.isolated, 0u);
   EXPECT_LT(e.noise, 0.15 * e.spacing);
 }
+
+// With the normals (SamplingOptions::normals), a closed plate 2.6 median spacings thick reads as
+// two sheets, not as one noisy surface sampled twice as densely: the plate's area per point, the
+// noise of one sheet (that of a plate 20 times thicker), and the thickness as the sheets' gap. The
+// neighbours whose normals are flipped but lie along the tangent plane (inconsistently oriented
+// normals on one sheet) are kept: a plane with every other normal flipped measures as a plane.
+TEST(CloudScale, NormalsSeparateTheSheetsOfAThinPlate) {
+  CloudSpec thin = spec(Shape::Slab, 50000, 3), thick = thin;
+  thin.slabThickness = 0.0165;
+  thick.slabThickness = 0.33;
+  const growth::Cloud a = growth::generateCloud(thin), b = growth::generateCloud(thick);
+  growth::SamplingOptions withNormals;
+  withNormals.normals = &a.normals;
+  const SamplingEstimate blind = growth::estimateSampling(a.points), sheets = growth::estimateSampling(a.points, withNormals);
+  withNormals.normals = &b.normals;
+  const SamplingEstimate reference = growth::estimateSampling(b.points, withNormals);
+  EXPECT_LT(thin.slabThickness / sheets.spacing, 3.0);
+  const double areaPerPoint = growth::shapeArea(thin) / double(thin.count);
+  // Without the normals: about half the area per point, and the gap read as noise.
+  EXPECT_LT(blind.areaPerPoint, 0.7 * areaPerPoint);
+  EXPECT_GT(blind.noise, 0.2 * thin.slabThickness);
+  // With them: the plate's, and one sheet's noise.
+  EXPECT_NEAR(sheets.areaPerPoint, areaPerPoint, 0.05 * areaPerPoint);
+  EXPECT_LT(sheets.noise, 0.02 * thin.slabThickness);
+  EXPECT_LE(sheets.noise, reference.noise + 0.002 * thin.slabThickness);
+  EXPECT_GT(sheets.sheetGaps.size(), sheets.samples * 9 / 10);
+  std::vector<float> gaps = sheets.sheetGaps;
+  std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(gaps.size() / 2), gaps.end());
+  EXPECT_NEAR(gaps[gaps.size() / 2], thin.slabThickness, 0.02 * thin.slabThickness);
+  EXPECT_LT(reference.sheetGaps.size(), reference.samples / 50); // the thick plate's rims only
+
+  // One sheet, every other normal flipped: all neighbours kept.
+  const growth::Cloud plane = growth::generateCloud(spec(Shape::Patch, 20000, 5));
+  std::vector<Point3d> flipped = plane.normals;
+  for (size_t i = 0; i < flipped.size(); i += 2) flipped[i] = -flipped[i];
+  growth::SamplingOptions mixed;
+  mixed.normals = &flipped;
+  const SamplingEstimate p0 = growth::estimateSampling(plane.points), p1 = growth::estimateSampling(plane.points, mixed);
+  EXPECT_EQ(p1.areaPerPoint, p0.areaPerPoint);
+  EXPECT_EQ(p1.noise, p0.noise);
+  EXPECT_TRUE(p1.sheetGaps.empty());
+}

@@ -13,7 +13,7 @@ static void usage() {
   std::fprintf(stderr,
                "usage: make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S]\n"
                "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA]\n"
-               "                  [--outliers FRACTION] -o out.ply\n");
+               "                  [--outliers FRACTION] [--thickness T (slab)] -o out.ply\n");
 }
 
 int main(int argc, char** argv) {
@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
       else if (a == "--cluster") spec.clusterFraction = std::atof(value());
       else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
+      else if (a == "--thickness") spec.slabThickness = std::atof(value());
       else if (a == "-o") out = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else throw growth::Error("unknown argument " + a);

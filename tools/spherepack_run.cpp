@@ -2,7 +2,7 @@
 //
 //   spherepack_run cloud.ply [options]                  a PLY point cloud with normals
 //   spherepack_run --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform] [--noise NU]
-//                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [options]      a generated cloud
+//                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [--thickness T (slab)] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
 //          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
 //          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
@@ -31,7 +31,7 @@
 static void usage() {
   std::fprintf(stderr,
                "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]\n"
-               "                      [--noise NU] [--outliers FRACTION]\n"
+               "                      [--noise NU] [--outliers FRACTION] [--thickness T]\n"
                "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B] [--threads T]\n"
                "       [--min-component-faces F]\n"
                "       [--spatial-order-min N]\n"
@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
       else if (a == "--outliers") spec.outlierFraction = std::atof(value());
       else if (a == "--cluster") spec.clusterFraction = std::atof(value());
       else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
+      else if (a == "--thickness") spec.slabThickness = std::atof(value());
       else if (a == "--d") params.sphereDiameter = std::atof(value());
       else if (a == "--d-spacings") dSpacings = std::atof(value());
       else if (a == "--s") params.splatSize = std::atof(value());
@@ -130,6 +131,7 @@ int main(int argc, char** argv) {
     std::printf("spacing: %.6g\n", st.scale.meanSpacing);
     std::printf("median_spacing: %.6g\narea_spacing: %.6g\nnoise: %.6g\nd_reason: %s\n", st.scale.spacing,
                 st.scale.areaSpacing, st.scale.noise, st.diameterReason.c_str());
+    std::printf("thin_share: %.4f\nsheet_gap: %.6g\n", st.scale.thinShare, st.scale.sheetGap);
     std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",
                 st.inputPoints, st.sphereDiameter, st.splatSize, st.meanSplatRadius, st.splatsUnbounded, st.splatsClamped);
     std::printf("far_points_left_out: %zu\nflat_faces_removed: %zu\n", st.farPointsLeftOut, st.flatFacesRemoved);
@@ -137,6 +139,7 @@ int main(int argc, char** argv) {
     std::printf("boundary_loops_output: %zu\n", st.boundaryLoops);
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
+    std::printf("boxes_two_sided: %zu\n", st.boxesTwoSided);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
                 "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,

@@ -60,8 +60,19 @@ double occupancy(const std::vector<Point>& pts, const Point& origin, double h, s
 // Neighbour search with a bounded radius and a bounded number of visited points.
 struct Search {
   const PointGrid* grid = nullptr;
-  double start = 0, cap = 0; // first and largest radius
+  double start = 0, cap = 0;      // first and largest radius
+  const Point* points = nullptr;  // with normals: the grid's points and their normals, for
+  const Point* normals = nullptr; // leaving out the points on another sheet (SamplingOptions::normals)
 };
+
+// q lies on another sheet than p (SamplingOptions::normals): the squared distance from q to p's
+// tangent plane, or -1 when q is on p's sheet.
+double otherSheet(const Search& s, std::uint32_t p, std::uint32_t q, double d2) {
+  const Point& np = s.normals[p];
+  if (np * s.normals[q] >= 0) return -1;
+  const double across = (s.points[q] - s.points[p]) * np, across2 = across * across;
+  return across2 > kOtherSheetSine * kOtherSheetSine * d2 ? across2 : -1;
+}
 
 using Neighbour = std::pair<double, std::uint32_t>; // squared distance, index
 
@@ -71,14 +82,24 @@ using Neighbour = std::pair<double, std::uint32_t>; // squared distance, index
 // the visit stops there and the radius shrinks to the want-th distance among those visited (the
 // want nearest lie within it); when that does not shrink it (duplicates), the nearest of those
 // visited are taken.
-bool nearestOthers(const Search& s, const Point& c, std::uint32_t self, size_t want, std::vector<Neighbour>& out) {
+bool nearestOthers(const Search& s, const Point& c, std::uint32_t self, size_t want, std::vector<Neighbour>& out,
+                   double* gap2 = nullptr) {
   double r = s.start;
   for (;;) {
     out.clear();
+    size_t visited = 0;
+    if (gap2 != nullptr) *gap2 = -1;
     const bool complete = s.grid->forEachInBallWhile(c, r, [&](int i, double d2) {
-      if (std::uint32_t(i) != self) out.emplace_back(d2, std::uint32_t(i));
-      return out.size() < kSamplingVisitLimit;
+      ++visited;
+      const double across2 = s.normals != nullptr && std::uint32_t(i) != self ? otherSheet(s, self, std::uint32_t(i), d2) : -1;
+      if (across2 >= 0) {
+        if (gap2 != nullptr && (*gap2 < 0 || across2 < *gap2)) *gap2 = across2;
+      } else if (std::uint32_t(i) != self) {
+        out.emplace_back(d2, std::uint32_t(i));
+      }
+      return out.size() < kSamplingVisitLimit && visited < 4 * kSamplingVisitLimit;
     });
+    if (!complete && out.size() < want) return false; // thousands of points, all on other sheets
     if (!complete) {
       std::nth_element(out.begin(), out.begin() + std::ptrdiff_t(want - 1), out.end());
       const double shrunk = std::sqrt(out[want - 1].first);
@@ -158,6 +179,7 @@ struct Local {
   double nearest2 = -1; // squared distance to the nearest other point; -1: isolated
   double kth2 = -1;     // squared distance to the k-th nearest other point
   double noise2 = -1;   // local offset variance; -1: not measured
+  double gap2 = -1;     // squared distance to the nearest point of another sheet seen; -1: none
 };
 
 // Measures the samples (indices into pts) against `grid` over pts, on `threads` threads. They are
@@ -184,7 +206,7 @@ std::vector<Local> measureSamples(const std::vector<Point>& pts, const std::vect
     for (size_t o = b; o < e; ++o) {
       const size_t s = order[o].second;
       const Point& p = pts[samples[s]];
-      if (!nearestOthers(search, p, samples[s], k, nb)) continue;
+      if (!nearestOthers(search, p, samples[s], k, nb, &out[s].gap2)) continue;
       out[s].nearest2 = nb.front().first;
       out[s].kth2 = nb.back().first;
       if (noiseStride > 0 && s % noiseStride == 0) out[s].noise2 = localNoiseVariance(p, pts, nb, scratch);
@@ -248,7 +270,8 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
   // those inside), and the samples' indices among them.
   size_t inside = 0;
   for (const Point& p : points) inside += inBox(p);
-  std::vector<Point> copy;
+  const bool withNormals = options.normals != nullptr && options.normals->size() == n;
+  std::vector<Point> copy, copyNormals;
   std::vector<std::uint32_t> samples;
   if (inside < n) {
     copy.reserve(inside);
@@ -256,11 +279,13 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
       if (!inBox(points[i])) continue;
       if (i % stride == 0) samples.push_back(std::uint32_t(copy.size()));
       copy.push_back(points[i]);
+      if (withNormals) copyNormals.push_back((*options.normals)[i]);
     }
   } else {
     for (size_t i : sampled) samples.push_back(std::uint32_t(i));
   }
   const std::vector<Point>& kept = inside < n ? copy : points;
+  const Point* keptNormals = !withNormals ? nullptr : inside < n ? copyNormals.data() : options.normals->data();
   const size_t outside = sampled.size() - samples.size();
   if (kept.size() < 2) {
     est.isolated = sampled.size();
@@ -319,6 +344,8 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
     search.grid = &grid;
     search.start = 1.3 * kth;
     search.cap = 4 * kth;
+    search.points = kept.data();
+    search.normals = keptNormals;
     const size_t maxNoise = std::max<size_t>(options.maxNoiseSamples, 1);
     const size_t noiseStride = std::max<size_t>(1, (samples.size() + maxNoise - 1) / maxNoise);
     local = measureSamples(kept, samples, search, lo, kth, k, noiseStride, threads);
@@ -337,6 +364,7 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
     nearest.push_back(l.nearest2);
     kth2.push_back(l.kth2);
     if (l.noise2 >= 0) noise2.push_back(l.noise2);
+    if (l.gap2 >= 0) est.sheetGaps.push_back(float(std::sqrt(l.gap2)));
   }
   est.samples = kth2.size();
   est.isolated = outside + (samples.size() - kth2.size());

@@ -281,6 +281,53 @@ size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t*
   return w;
 }
 
+BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+                           std::vector<std::uint32_t>& scratch, double threshold) {
+  BoxLayers r;
+  r.firstEnd = count;
+  vcg::Point3d sum(0, 0, 0);
+  for (size_t k = 0; k < count; ++k) sum += normals[idx[k]];
+  vcg::Point3d dir = sum;
+  const bool cancel = sum.Norm() < threshold;
+  if (cancel) {
+    // The normals cancel: the axis they spread along most (power iteration on Σ n nᵀ, from the
+    // coordinate axis of its largest diagonal entry).
+    double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    for (size_t k = 0; k < count; ++k) {
+      const vcg::Point3d& n = normals[idx[k]];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m[i][j] += n[i] * n[j];
+    }
+    int a = 0;
+    for (int i = 1; i < 3; ++i)
+      if (m[i][i] > m[a][a]) a = i;
+    dir = vcg::Point3d(0, 0, 0);
+    dir[a] = 1;
+    for (int it = 0; it < 16; ++it) {
+      vcg::Point3d next(0, 0, 0);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) next[i] += m[i][j] * dir[j];
+      const double len = next.Norm();
+      if (!(len > 0)) return r; // no normals: all kept
+      dir = next / len;
+    }
+  }
+  size_t other = 0;
+  for (size_t k = 0; k < count; ++k) other += normals[idx[k]] * dir < 0 ? 1 : 0;
+  r.twoSided = other >= kTwoSidedMinPoints && double(other) >= BoxGrid::kOpposedShare * double(count);
+  if (other == 0 || (cancel && !r.twoSided)) return r; // nothing to drop, or the paper keeps all
+  scratch.clear();
+  size_t w = 0;
+  for (size_t k = 0; k < count; ++k) {
+    if (normals[idx[k]] * dir >= 0) idx[w++] = idx[k];
+    else if (r.twoSided) scratch.push_back(idx[k]);
+  }
+  std::copy(scratch.begin(), scratch.end(), idx + w);
+  r.firstEnd = w;
+  r.split = dir;
+  return r;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Box grid
 
@@ -296,7 +343,8 @@ const SphereSampling& boxNormalSampling() {
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
          points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
-         boxMinDot_.capacity() * sizeof(double) + boxNormal_.size() * 2 + pending_.capacity() * sizeof(std::uint32_t);
+         boxMinDot_.capacity() * sizeof(double) + boxNormal_.size() * 2 + pending_.capacity() * sizeof(std::uint32_t) +
+         twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(vcg::Point3d);
 }
 
 void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
@@ -650,26 +698,38 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
     char pad[64]; // no cache line shared with the next thread's scratch
   };
   std::vector<Worker> samplings(size_t(workers), Worker{g_.sampling_, {}}); // own scratch each
+  struct Split { // a two-sided box, the end of its first layer, its splitting direction
+    std::uint32_t box, firstEnd;
+    vcg::Point3d dir;
+  };
+  std::vector<std::vector<Split>> splits(static_cast<size_t>(workers));
   parallelChunks(boxes, workers, 32, [&](size_t b0, size_t b1, int worker) {
     const SphereSampling& sampling = samplings[size_t(worker)].sampling;
     size_t dropped = 0, tooLarge = 0;
+    std::vector<std::uint32_t> scratch;
     for (size_t b = b0; b < b1; ++b) {
       const size_t begin = start[b], n = start[b + 1] - begin;
       std::uint32_t* idx = &points[begin];
-      const size_t k = filterBoxNormals(normals, idx, n);
-      kept[b] = static_cast<std::uint32_t>(k);
-      dropped += n - k;
-      // Sec. 4.1's check is on every point registered in the box: a point the filter dropped has
-      // a normal against the box's summed normal, hence (the box normal is taken from the points
+      // Sec. 4.1's check is on every point registered in the box: a point the filter drops has a
+      // normal against the box's summed normal, hence (the box normal is taken from the points
       // kept) almost surely against the box normal too. When they are a real share of the box
-      // (kOpposedShare, at least four points), the box sees two sides of the surface: d is too
-      // large there (thin parts, folds, a region of flipped normals), counted once here. A lone
-      // flipped normal among many, which estimated normals of real scans show in most boxes
-      // somewhere, is what the filter is for and does not count.
-      if (n - k >= 4 && double(n - k) >= kOpposedShare * double(n)) {
+      // (kOpposedShare, at least kTwoSidedMinPoints points), or when the normals cancel and split
+      // into two such groups along their main axis, the box sees two sides of the surface: d is
+      // too large there for one box normal (thin parts, folds, a region of flipped normals),
+      // counted once here. Where the paper drops the smaller side, both are kept, as two layers
+      // of the box (BoxGrid::boxOf with a normal): a vertex on either side finds its own side's
+      // splats and normal. A lone flipped normal among many, which estimated normals of real scans
+      // show in most boxes somewhere, is what the filter is for and is dropped.
+      const BoxLayers layers = filterOrSplitBox(normals, idx, n, scratch);
+      const size_t k = layers.firstEnd;
+      if (layers.twoSided) {
+        splits[size_t(worker)].push_back(Split{std::uint32_t(b), std::uint32_t(k), layers.split});
         g_.opposed_[b] = 1;
         ++tooLarge;
+      } else {
+        dropped += n - k;
       }
+      kept[b] = static_cast<std::uint32_t>(k);
       // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
       // maxMinDirection is at least that (up to rounding, hence the margin).
       if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
@@ -687,6 +747,18 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
   if (progress != nullptr) progress->advanceTo(1.0);
   for (int k = 0; k < workers; ++k)
     g_.dropped_ += workerDropped[size_t(k)], g_.dTooLargeCount_ += workerTooLarge[size_t(k)];
+  // The second layers of the two-sided boxes, in box order, before the compaction overwrites them.
+  std::vector<Split> split;
+  for (auto& part : splits) split.insert(split.end(), part.begin(), part.end());
+  std::sort(split.begin(), split.end(), [](const Split& a, const Split& b) { return a.box < b.box; });
+  std::vector<std::uint32_t> twinOf, twinPoints, twinStart(1, 0);
+  for (const auto& e : split) {
+    const size_t b = e.box;
+    twinOf.push_back(std::uint32_t(b));
+    twinPoints.insert(twinPoints.end(), points.begin() + std::ptrdiff_t(start[b] + e.firstEnd),
+                      points.begin() + std::ptrdiff_t(start[b + 1]));
+    twinStart.push_back(std::uint32_t(twinPoints.size()));
+  }
   size_t w = 0;
   for (size_t b = 0; b < boxes; ++b) {
     const size_t begin = start[b];
@@ -698,6 +770,29 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
   start[boxes] = static_cast<std::uint32_t>(w);
   points.resize(w); // (no shrink_to_fit: it would copy, doubling the peak, to save the few
                      // references the filter dropped)
+  if (twinOf.empty()) return;
+  // The second layers get the ids from boxCount() on (reached through boxOf with a normal);
+  // their normals are computed on first use.
+  const size_t twins = twinOf.size(), all = boxes + twins;
+  points.insert(points.end(), twinPoints.begin(), twinPoints.end());
+  start.resize(all + 1);
+  for (size_t t = 0; t < twins; ++t) start[boxes + t + 1] = static_cast<std::uint32_t>(w + twinStart[t + 1]);
+  g_.twin_.assign(all, -1);
+  g_.split_.assign(boxes, vcg::Point3d(0, 0, 0));
+  for (size_t t = 0; t < twins; ++t) {
+    g_.twin_[twinOf[t]] = static_cast<std::int32_t>(boxes + t);
+    g_.twin_[boxes + t] = static_cast<std::int32_t>(twinOf[t]);
+    g_.split_[twinOf[t]] = split[t].dir;
+  }
+  g_.boxNormal_.resize(all, vcg::Point3d(0, 0, 0));
+  g_.boxMinDot_.resize(all, std::numeric_limits<double>::quiet_NaN());
+  std::unique_ptr<std::atomic<std::uint8_t>[]> state(new std::atomic<std::uint8_t>[all]);
+  for (size_t b = 0; b < all; ++b)
+    state[b].store(b < boxes ? g_.state_[b].load(std::memory_order_relaxed) : kNone, std::memory_order_relaxed);
+  g_.state_.swap(state);
+  g_.counted_.resize(all, 0);
+  g_.opposed_.resize(all, 0);
+  g_.layerBoxes_ = boxes;
 }
 
 void BoxGrid::Builder::deferOwnBoxes() {
@@ -723,6 +818,9 @@ void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg:
   state_.reset();
   counted_.clear();
   opposed_.clear();
+  twin_.clear();
+  split_.clear();
+  layerBoxes_ = 0;
   pending_.clear();
   pendingCorner_.clear();
   normals_ = &normals;

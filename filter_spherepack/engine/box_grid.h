@@ -229,6 +229,25 @@ private:
 size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
                         double threshold = 0.1);
 
+// Sec. 4.1's normal filter, and two-sided boxes (beyond the paper). The box's normals split into
+// two groups: by the sign of <n_p, n̄> (n̄ the summed normal), or, when |n̄| < threshold (the
+// normals cancel), by the sign along the axis they spread along most. When the second group
+// holds at least BoxGrid::kOpposedShare of the points and kTwoSidedMinPoints points, the box is
+// two-sided: idx is reordered to the first group, then the second, each in its order, and both
+// are kept as the box's two layers (the paper's filter would drop the second). Otherwise the
+// paper's filter: with |n̄| >= threshold the points of the second group are dropped (the others
+// kept in order at the front of idx), else all are kept.
+// (Putting the points that face sideways, a plate's rim, in both layers was tried: more holes
+// along the rim.)
+constexpr size_t kTwoSidedMinPoints = 4;
+struct BoxLayers {
+  size_t firstEnd = 0;        // points kept (not two-sided), or the first layer's end (two-sided)
+  bool twoSided = false;
+  vcg::Point3d split{0, 0, 0}; // two-sided: <n, split> >= 0 for the first layer's normals
+};
+BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+                           std::vector<std::uint32_t>& scratch, double threshold = 0.1);
+
 class Progress;
 
 class BoxGrid {
@@ -271,11 +290,25 @@ public:
 
   double side() const { return index_.side(); }
   const BoxIndexer& indexer() const { return index_; }
-  size_t boxCount() const { return boxNormal_.size(); }
-  // Id of the box containing p, or -1 when that box refers to no point.
+  // Boxes of the partition that refer to a point (ids 0 .. boxCount() − 1); the second layers of
+  // the two-sided boxes have the ids after them (up to layerCount()).
+  size_t boxCount() const { return layerBoxes_ > 0 ? layerBoxes_ : boxNormal_.size(); }
+  size_t layerCount() const { return boxNormal_.size(); }
+  size_t twoSidedBoxes() const { return layerCount() - boxCount(); }
+  // Id of the box containing p, or -1 when that box refers to no point. In a two-sided box, the
+  // layer of the points whose normals the paper's filter keeps.
   int boxOf(const vcg::Point3d& p) const {
     KeyHash::Key k;
     return index_.keyOf(p, k) ? hash_.find(k) : -1;
+  }
+  // The same, but in a two-sided box the layer of the side `normal` faces (the normal of the
+  // splat or vertex that asks; a zero normal gets the first layer). Its points, box normal and
+  // checks are that side's alone, so both sides of a plate thinner than the box's reach are
+  // meshed (the paper's filter drops one of them).
+  int boxOf(const vcg::Point3d& p, const vcg::Point3d& normal) const {
+    const int b = boxOf(p);
+    if (b < 0 || twin_.empty() || twin_[size_t(b)] < 0 || !(normal * split_[size_t(b)] < 0)) return b;
+    return twin_[size_t(b)];
   }
   // Points of a box (after the normal filter), in increasing index order (or build()'s listOrder).
   const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
@@ -323,6 +356,10 @@ private:
   void ensureNormal(int box) const { computeNormal(box, sampling_); }
   void stopNormals();
 
+  std::vector<std::int32_t> twin_;     // per layer: the other layer of a two-sided box, or -1
+                                       // (empty when no box is two-sided)
+  std::vector<vcg::Point3d> split_;    // per box: the direction that splits a two-sided box
+  size_t layerBoxes_ = 0;              // boxCount() when some box is two-sided, else 0
   mutable std::vector<vcg::Point3d> boxNormal_;
   mutable std::vector<double> boxMinDot_;
   std::unique_ptr<std::atomic<std::uint8_t>[]> state_; // per box: kNone, kBusy, kDone

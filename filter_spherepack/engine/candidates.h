@@ -162,17 +162,19 @@ struct SplatSet {
   const std::vector<float>* radius = nullptr;
 };
 
-// For the new vertex `v` at x = vertexPos[v]: visits the splats of the box containing x that are
-// within distance d of x (in box order); for each, calls
+// For the new vertex `v` at x = vertexPos[v] with normal nv: visits the splats of the box
+// containing x (of its layer facing nv, when the box is two-sided) that are within distance d of x
+// (in box order); for each, calls
 //     emit(partner, splat, root, position)
 // for every candidate with parents (v, partner), partner taken from the splat's list (vertices
 // within d of the splat, added before v), then adds v to the list. Returns the number of splats
 // within d of x.
 template <class Emit>
-size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& vertexPos, double d, const BoxGrid& grid,
-                           const SplatSet& splats, SplatVertexLists& lists, Emit&& emit) {
+size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& vertexPos, const vcg::Point3d& nv,
+                           double d, const BoxGrid& grid, const SplatSet& splats, SplatVertexLists& lists,
+                           Emit&& emit) {
   const vcg::Point3d& x = vertexPos[v];
-  const int box = grid.boxOf(x);
+  const int box = grid.boxOf(x, nv);
   if (box < 0) return 0;
   size_t near = 0;
   const double d2 = d * d;

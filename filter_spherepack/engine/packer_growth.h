@@ -128,9 +128,10 @@ public:
 
 private:
   // Vertex normal: the box normal of the box containing x (sec. 4.1: "used as vertex normal for
-  // all vertices lying in b_j"), or the splat normal when that box refers to no point.
+  // all vertices lying in b_j"; in a two-sided box, of the layer the splat's side is in), or the
+  // splat normal when that box refers to no point.
   vcg::Point3d normalAt(const vcg::Point3d& x, std::uint32_t splat) const {
-    const int box = grid_.boxOf(x);
+    const int box = grid_.boxOf(x, in_.normals[splat]);
     return box >= 0 ? grid_.boxNormal(box) : in_.normals[splat];
   }
 
@@ -180,7 +181,7 @@ private:
     // queue does not carry the others only to drop them as too close when popped.
     found_.clear();
     const vcg::Point3d& nv = graph_.normal(v);
-    enumerateCandidates(v, pos, d_, grid_, splats_, lists_,
+    enumerateCandidates(v, pos, nv, d_, grid_, splats_, lists_,
                         [&](std::uint32_t u, std::uint32_t s, int root, const vcg::Point3d& y) {
                           // A candidate already closer than d to a vertex can never be inserted
                           // (vertices are never removed): drop it now instead of when popped.

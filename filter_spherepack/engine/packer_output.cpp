@@ -154,8 +154,13 @@ void report(const InputCloud& in, const CloudScale& scale, double d, double s, c
     st.warnings.push_back("In " + std::to_string(st.boxesDTooLarge) + " of " + std::to_string(st.boxes) +
                           " boxes the point normals within d disagree (the box sees two sides of the surface): "
                           "d = " + fmt(d) + " is too large there for the paper's manifold guarantee (section 4.1): "
-                          "thin parts, folds, or normals not consistently oriented. Try a smaller d, or "
-                          "re-orient the normals.");
+                          "thin parts, folds, or normals not consistently oriented. " +
+                          (st.boxesTwoSided > 0 ? std::to_string(st.boxesTwoSided) + " of them kept both sides "
+                                                  "apart (two layers), so both are meshed where the part is at "
+                                                  "least d thick; a part thinner than d gets one side only (no two "
+                                                  "vertices are closer than d). "
+                                                : std::string()) +
+                          "Try a smaller d, or re-orient the normals.");
   if (st.facesRemoved > 0)
     st.warnings.push_back("The packing was not manifold at " + std::to_string(st.nonManifoldVerticesRemoved) +
                           " vertices and had " + std::to_string(st.selfIntersectionFacesRemoved) +

@@ -39,7 +39,7 @@ Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st) {
   if (params.maxBorderLength < 3)
     throw Error("The border limit must be at least 3 (a triangle); the paper uses 40.");
   Sizes z;
-  z.scale = cloudScale(in.points, params.threads);
+  z.scale = cloudScale(in.points, params.threads, &in.normals);
   const CloudScale& scale = z.scale;
   const double diag = in.box.Diag();
   st.scale = scale;

@@ -12,16 +12,16 @@ namespace detail {
 // Closest splat to x (smallest distance to its disk) and the projection of x onto it (sec. 3.3).
 // The splats of the box containing x (all points within d of it) are searched; when x is farther
 // than d from every point, all splats are when `searchAll` (user-given points), none otherwise.
-bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
-                             const BoxGrid& grid, const Renumbering& order, bool searchAll, vcg::Point3d& proj,
-                             std::uint32_t& splat) {
+bool projectOntoClosestSplat(const vcg::Point3d& x, const vcg::Point3d& side, const InputCloud& in,
+                             const std::vector<float>& radius, const BoxGrid& grid, const Renumbering& order,
+                             bool searchAll, vcg::Point3d& proj, std::uint32_t& splat) {
   double best = std::numeric_limits<double>::infinity();
   std::int64_t bestIdx = -1;
   auto consider = [&](std::uint32_t i) {
     const double dd = squaredDistanceToDisk(x, in.points[i], in.normals[i], radius[i]);
     if (dd < best) best = dd, bestIdx = i;
   };
-  const int box = grid.boxOf(x);
+  const int box = grid.boxOf(x, side);
   if (box >= 0) {
     for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) consider(*it);
   }
@@ -48,8 +48,9 @@ StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius,
     for (const auto& q : params.startPoint)
       if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
         throw Error("The starting points must have finite coordinates.");
-    projectOntoClosestSplat(params.startPoint[0], in, radius, grid, order, true, first.s1, first.splat1);
-    projectOntoClosestSplat(params.startPoint[1], in, radius, grid, order, true, first.s2, first.splat2);
+    const vcg::Point3d anySide(0, 0, 0);
+    projectOntoClosestSplat(params.startPoint[0], anySide, in, radius, grid, order, true, first.s1, first.splat1);
+    projectOntoClosestSplat(params.startPoint[1], anySide, in, radius, grid, order, true, first.s2, first.splat2);
     const double dist = (first.s1 - first.s2).Norm();
     if (dist < d || dist > 2 * d)
       throw Error("The two starting points, projected onto their closest splats, are " + fmt(dist) +

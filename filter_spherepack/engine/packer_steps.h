@@ -89,9 +89,11 @@ void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>&
                   const Params& params, const Renumbering& order, Stat& st, Progress& progress);
 
 // packer_start.cpp, sec. 3.3: the starting pairs.
-bool projectOntoClosestSplat(const vcg::Point3d& x, const InputCloud& in, const std::vector<float>& radius,
-                             const BoxGrid& grid, const Renumbering& order, bool searchAll, vcg::Point3d& proj,
-                             std::uint32_t& splat);
+// side: the normal of the side asked for (the box's layer facing it, in a two-sided box; zero:
+// the first layer).
+bool projectOntoClosestSplat(const vcg::Point3d& x, const vcg::Point3d& side, const InputCloud& in,
+                             const std::vector<float>& radius, const BoxGrid& grid, const Renumbering& order,
+                             bool searchAll, vcg::Point3d& proj, std::uint32_t& splat);
 StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                          const Renumbering& order, double d, double s, const Params& params);
 
@@ -103,7 +105,7 @@ template <class Free>
 bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                  const Renumbering& order, double d, Free&& free, StartPair& out) {
   const vcg::Point3d& p = in.points[i];
-  const int box = grid.boxOf(p);
+  const int box = grid.boxOf(p, in.normals[i]);
   if (box < 0) return false;
   int around = 0;
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box) && around < 4; ++it)
@@ -116,7 +118,7 @@ bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>
     const vcg::Point3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
     vcg::Point3d q;
     std::uint32_t sq = 0;
-    if (!projectOntoClosestSplat(target, in, radius, grid, order, false, q, sq)) continue;
+    if (!projectOntoClosestSplat(target, in.normals[i], in, radius, grid, order, false, q, sq)) continue;
     const double dist = (q - p).Norm();
     if (dist >= d && dist <= 2 * d && free(q)) {
       out = StartPair{p, q, i, sq};

@@ -30,13 +30,14 @@ std::string fmt(double v) {
 
 using namespace detail;
 
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads, const std::vector<vcg::Point3d>* normals) {
   CloudScale sc;
   // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
   // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
   SamplingOptions options;
   options.maxSamples = 8000;
   options.maxNoiseSamples = 3000;
+  options.normals = normals;
   const SamplingEstimate e = estimateSampling(points, options, threads);
   if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
   sc.spacing = e.spacing;
@@ -44,14 +45,49 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads) {
   sc.areaSpacing = std::sqrt(e.areaPerPoint);
   sc.area = e.areaPerPoint * double(points.size());
   sc.noise = std::isfinite(e.noise) ? e.noise : 0.0;
+  if (!e.sheetGaps.empty() && e.samples > 0) {
+    const double reach = kThinGapPerD * samplingDiameter(sc);
+    std::vector<double> thin;
+    for (const float g : e.sheetGaps)
+      if (double(g) < reach) thin.push_back(double(g));
+    if (!thin.empty()) {
+      sc.thinShare = double(thin.size()) / double(e.samples);
+      std::nth_element(thin.begin(), thin.begin() + std::ptrdiff_t(thin.size() / 2), thin.end());
+      sc.sheetGap = thin[thin.size() / 2];
+    }
+  }
   return sc;
 }
 
-double defaultDiameter(const CloudScale& scale) {
+double samplingDiameter(const CloudScale& scale) {
   return std::max(kDefaultDiameterPerAreaSpacing * scale.areaSpacing, kDefaultDiameterPerNoise * scale.noise);
 }
 
+namespace {
+bool thinPartsLowerD(const CloudScale& scale) {
+  return scale.thinShare >= kThinShareForSmallerD && scale.sheetGap > 0 &&
+         scale.sheetGap / kThinGapPerD < samplingDiameter(scale);
+}
+double thinFloor(const CloudScale& scale) {
+  return std::max(kMinThinDiameterPerAreaSpacing * scale.areaSpacing, 2.0 * scale.noise);
+}
+} // namespace
+
+double defaultDiameter(const CloudScale& scale) {
+  const double d = samplingDiameter(scale);
+  if (!thinPartsLowerD(scale)) return d;
+  return std::min(d, std::max(scale.sheetGap / kThinGapPerD, thinFloor(scale)));
+}
+
 std::string defaultDiameterReason(const CloudScale& scale) {
+  if (thinPartsLowerD(scale)) {
+    const bool floored = scale.sheetGap / kThinGapPerD < thinFloor(scale);
+    return "from thin parts: " + fmt(100 * scale.thinShare) + " % of the surface lies on parts about " +
+           fmt(scale.sheetGap) + " thick (two sheets with opposed normals), so d = thickness / 1.2" +
+           (floored ? std::string(", but not below 0.7 x sqrt(area per point) or 2x the noise: the thinnest parts "
+                                  "get one side only") : std::string()) +
+           " (the sampling alone gives " + fmt(samplingDiameter(scale)) + ")";
+  }
   if (kDefaultDiameterPerNoise * scale.noise > kDefaultDiameterPerAreaSpacing * scale.areaSpacing)
     return "from the noise: 3 x the estimated noise bound (at least 2x, sec. 5.3; larger than the sampling's " +
            fmt(kDefaultDiameterPerAreaSpacing * scale.areaSpacing) + ")";
@@ -71,7 +107,14 @@ Params suggestParams(const CMeshO& cloud) {
     check.needNormals = false;
     check.allowFaces = true;
     InputCloud in = readCloud(cloud, check);
-    const CloudScale sc = cloudScale(in.points);
+    // The normals as build() reads them (zero where missing: such a point has no other sheet).
+    std::vector<vcg::Point3d> normals(in.points.size());
+    for (size_t i = 0; i < normals.size(); ++i) {
+      const vcg::Point3d n = vcg::Point3d::Construct(cloud.vert[size_t(in.vertexIndex[i])].cN());
+      const double len = n.Norm();
+      normals[i] = std::isfinite(len) && len > 1e-12 ? n / len : vcg::Point3d(0, 0, 0);
+    }
+    const CloudScale sc = cloudScale(in.points, 0, &normals);
     if (sc.areaSpacing > 0 && std::isfinite(sc.areaSpacing)) {
       p.sphereDiameter = defaultDiameter(sc);
       p.splatSize = defaultSplatSize(sc, p.sphereDiameter);
@@ -126,6 +169,7 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
   const BorderGraph& g = growth.graph();
   grid.finishNormals();
   st.boxesDTooLarge = grid.dTooLargeCount();
+  st.boxesTwoSided = grid.twoSidedBoxes();
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: region triangulation.

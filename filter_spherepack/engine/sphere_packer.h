@@ -57,9 +57,16 @@ struct CloudScale {
                              // a random sample, all of it that of a square lattice)
   double area = 0;           // estimated surface area: area per point × points
   double noise = 0;          // ν, the estimated bound of the points' offsets from the surface
+  // Thin parts (with the normals): the share of the samples that see another sheet (opposed
+  // normals, across the tangent plane) closer than kThinGapPerD × the sampling's d, and the median
+  // of those distances (the parts' thickness); 0 without normals or thin parts.
+  double thinShare = 0;
+  double sheetGap = 0;
 };
-// `threads`: for the estimates (0 = automatic); the scale is the same for any number.
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0);
+// `threads`: for the estimates (0 = automatic); the scale is the same for any number. With the
+// normals, neighbours on another sheet of a thin part are left out (SamplingOptions::normals).
+CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0,
+                      const std::vector<vcg::Point3d>* normals = nullptr);
 
 // Defaults.
 // d = max(1.8 × sqrt(area per point), 3ν): at the sampling's resolution (a packing of spheres of
@@ -70,6 +77,18 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0);
 // the largest local radius (sec. 4.3; the local radii cover the surface, sec. 5.2).
 constexpr double kDefaultDiameterPerAreaSpacing = 1.8;
 constexpr double kDefaultDiameterPerNoise = 3.0;
+// Thin parts: when at least kThinShareForSmallerD of the surface lies on parts thinner than
+// kThinGapPerD × that d (two sheets with opposed normals, such as a closed plate), d is lowered to
+// their median thickness / kThinGapPerD, so that both sheets hold vertices (every vertex is at
+// least d from every other, so sheets closer than d cannot both be meshed, and the boxes see both
+// within about d, BoxGrid's two-sided boxes); not below kMinThinDiameterPerAreaSpacing ×
+// sqrt(area per point) (0.7: about 1.5 median spacings of a random sample, about 6 times the
+// vertices of the usual d) nor below 2ν (sec. 5.3).
+constexpr double kThinGapPerD = 1.2;
+constexpr double kThinShareForSmallerD = 0.1;
+constexpr double kMinThinDiameterPerAreaSpacing = 0.7;
+// The d from the sampling and the noise alone.
+double samplingDiameter(const CloudScale& scale);
 constexpr double kDefaultSplatPerAreaSpacing = 2.5;
 double defaultDiameter(const CloudScale& scale);
 // Why defaultDiameter chose its value, for the log.
@@ -106,6 +125,8 @@ struct Stat {
   double meanBorderLength = 0;   // mean border length of the regions (about 4, sec. 3.7)
   size_t boxes = 0;
   size_t boxesDTooLarge = 0;     // boxes whose box normal has a negative product with a point normal
+  size_t boxesTwoSided = 0;      // of those, the boxes that see two sides and keep both, as two
+                                 // layers (BoxGrid, filterOrSplitBox; the paper drops one)
   size_t candidates = 0;         // candidates queued (including re-queued ones)
   size_t requeued = 0;           // stale candidates moved to their new level (sec. 3.6)
   size_t rejectedTooClose = 0;   // candidates closer than d to a vertex (sec. 3.6)

@@ -49,7 +49,16 @@ struct SamplingOptions {
                                  // 20000 made the whole estimate 45 % slower)
   int neighbours = 16;           // k: the k-th neighbour distance gives the area, p and k neighbours
                                  // the fit (12 and 20 measured: docs/sampling-estimate.md)
+  // The points' normals (same size as the points; null or another size: not used). With them, a
+  // neighbour q of a sample p is left out when it lies on another sheet of a thin part: its normal
+  // opposes p's (n_p·n_q < 0) and it lies across p's tangent plane rather than along it
+  // (|(q − p)·n_p| > kOtherSheetSine |q − p|). Without this, the two sheets of a closed plate a few
+  // spacings thick read as one noisy surface sampled twice as densely. A neighbour on p's own sheet
+  // whose normal is flipped (inconsistent orientation) lies along the plane and is kept.
+  const std::vector<vcg::Point3d>* normals = nullptr;
 };
+
+constexpr double kOtherSheetSine = 0.5; // 30 degrees out of the tangent plane
 
 struct SamplingEstimate {
   double spacing = 0;      // median nearest-neighbour distance over the samples
@@ -62,6 +71,10 @@ struct SamplingEstimate {
   size_t samples = 0;      // samples that had k neighbours within the search cap (the statistics')
   size_t isolated = 0;     // samples without k neighbours within the cap, or outside the robust box
   size_t noiseSamples = 0; // samples whose local fit was not degenerate (the noise statistics')
+  std::vector<float> sheetGaps; // with SamplingOptions::normals: of the samples that saw another
+                                // sheet of a thin part among the points searched around them, the
+                                // distance from their tangent plane to its nearest point (the
+                                // part's thickness there), in sample order
 };
 
 constexpr size_t kSamplingVisitLimit = 1024;
