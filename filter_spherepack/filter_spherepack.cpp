@@ -40,7 +40,7 @@ QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
       "<b>Parameters.</b> <i>Sphere diameter d</i>: 0 chooses max(1.8 &times; &radic;(area per point), "
       "3 &times; the estimated noise): the scan's resolution, at least twice the noise; where a tenth of "
       "the surface or more lies on thin parts (two sheets with opposed normals closer than 1.2 d), "
-      "their thickness / 1.2, so that both sides are meshed. <i>Splat "
+      "their thickness / 1.2, so that both sides are meshed (and s 0.9 &times; it). <i>Splat "
       "radius s</i>: the disks on the points must cover the surface; 0 chooses 2.5 &times; &radic;(area "
       "per point). <i>Local splat sizes</i>: each point gets the radius of its tangent-plane "
       "Delaunay/Voronoi neighbourhood, bounded by s (s is the radius at open boundaries); off uses s "

@@ -218,7 +218,8 @@ TEST(SpherePacker, HollowBallAndThinSlabFaceOutOfTheMaterial) {
 // sees both: 9-33 % of each side was meshed. Now the estimate leaves out the neighbours on the
 // other sheet, d follows the plate's thickness (thickness / 1.2), and the boxes that see both
 // sides keep both as two layers: 96-99 % of each side is meshed (measured), facing out of the
-// plate. The rims keep holes (40-52 loops here, where two 90-degree edges lie 1.2 d apart).
+// plate. The rims keep holes where two 90-degree edges lie 1.2 d apart: 41 and 52 loops with the
+// usual splat size, whose overhangs past the rim met; 10 and 14 with s = 0.9 × the thickness.
 TEST(SpherePacker, ThinPlatesAboutThreeSpacingsThickAreMeshedOnBothSides) {
   for (const auto& c : {std::make_pair(0.025, 30000), std::make_pair(0.02, 50000)}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.first << ", " << c.second << " points");
@@ -237,6 +238,8 @@ TEST(SpherePacker, ThinPlatesAboutThreeSpacingsThickAreMeshedOnBothSides) {
     EXPECT_NEAR(s->stat.scale.sheetGap, c.first, 0.05 * c.first);
     EXPECT_NEAR(s->stat.sphereDiameter, c.first / sp::kThinGapPerD, 0.05 * c.first);
     EXPECT_NE(s->stat.diameterReason.find("thin parts"), std::string::npos) << s->stat.diameterReason;
+    EXPECT_NEAR(s->stat.splatSize, sp::kThinSplatPerGap * c.first, 0.05 * c.first);
+    EXPECT_LE(s->stat.holes, 20u);
     double top = 0, bottom = 0, wrong = 0;
     for (const auto& f : s->mesh.face) {
       const Point3d a = Point3d::Construct(f.cP(0)), b = Point3d::Construct(f.cP(1)), e = Point3d::Construct(f.cP(2));

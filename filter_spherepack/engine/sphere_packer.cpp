@@ -96,7 +96,9 @@ std::string defaultDiameterReason(const CloudScale& scale) {
 }
 
 double defaultSplatSize(const CloudScale& scale, double d) {
-  const double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
+  double s = kDefaultSplatPerAreaSpacing * scale.areaSpacing;
+  if (thinPartsLowerD(scale))
+    s = std::min(s, std::max(kThinSplatPerGap * scale.sheetGap, kMinThinSplatPerAreaSpacing * scale.areaSpacing));
   return s > 0 ? s : d;
 }
 

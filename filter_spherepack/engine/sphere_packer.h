@@ -87,6 +87,11 @@ constexpr double kDefaultDiameterPerNoise = 3.0;
 constexpr double kThinGapPerD = 1.2;
 constexpr double kThinShareForSmallerD = 0.1;
 constexpr double kMinThinDiameterPerAreaSpacing = 0.7;
+// And s = min(2.5, max(kThinSplatPerGap × gap / sqrt(area per point), 1.25)) × sqrt(area per
+// point) there: the splats of the points at a rim (an open fan) take s, and both sheets' growths
+// run past the rim by up to s; overhangs longer than the gap meet and leave holes there.
+constexpr double kThinSplatPerGap = 0.9;
+constexpr double kMinThinSplatPerAreaSpacing = 1.25;
 // The d from the sampling and the noise alone.
 double samplingDiameter(const CloudScale& scale);
 constexpr double kDefaultSplatPerAreaSpacing = 2.5;

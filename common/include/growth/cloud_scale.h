@@ -72,9 +72,10 @@ struct SamplingEstimate {
   size_t isolated = 0;     // samples without k neighbours within the cap, or outside the robust box
   size_t noiseSamples = 0; // samples whose local fit was not degenerate (the noise statistics')
   std::vector<float> sheetGaps; // with SamplingOptions::normals: of the samples that saw another
-                                // sheet of a thin part among the points searched around them, the
-                                // distance from their tangent plane to its nearest point (the
-                                // part's thickness there), in sample order
+                                // sheet of a thin part (at least 3 of its points) among the points
+                                // searched around them, the distance from their tangent plane to
+                                // its third nearest point (about the part's thickness there), in
+                                // sample order
 };
 
 constexpr size_t kSamplingVisitLimit = 1024;
