@@ -218,8 +218,9 @@ TEST(SpherePacker, HollowBallAndThinSlabFaceOutOfTheMaterial) {
 // sees both: 9-33 % of each side was meshed. Now the estimate leaves out the neighbours on the
 // other sheet, d follows the plate's thickness (thickness / 1.2), and the boxes that see both
 // sides keep both as two layers: 96-99 % of each side is meshed (measured), facing out of the
-// plate. The rims keep holes where two 90-degree edges lie 1.2 d apart: 41 and 52 loops with the
-// usual splat size, whose overhangs past the rim met; 10 and 14 with s = 0.9 × the thickness.
+// plate. The rims keep holes where two 90-degree edges lie 1.2 d apart: 41 and 52 regions left
+// open with the usual splat size, whose overhangs past the rim met; 10 and 14 with s = 0.9 × the
+// thickness (18 and 27 boundary loops with those of the faces the clean-up removed).
 TEST(SpherePacker, ThinPlatesAboutThreeSpacingsThickAreMeshedOnBothSides) {
   for (const auto& c : {std::make_pair(0.025, 30000), std::make_pair(0.02, 50000)}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.first << ", " << c.second << " points");
