@@ -86,7 +86,10 @@ using Neighbour = std::pair<double, std::uint32_t>; // squared distance, index
 // while too few points lie within it. When more than kSamplingVisitLimit do (a dense cluster),
 // the visit stops there and the radius shrinks to the want-th distance among those visited (the
 // want nearest lie within it); when that does not shrink it (duplicates), the nearest of those
-// visited are taken.
+// visited are taken. With s.normals, the points on another sheet (otherSheet) are left out, and
+// gap2 (when given) receives the squared distance across to the kSheetPoints-th nearest of them
+// (-1 when fewer were seen); a search that visits 4 kSamplingVisitLimit points without finding
+// `want` on the sample's own sheet fails.
 bool nearestOthers(const Search& s, const Point& c, std::uint32_t self, size_t want, std::vector<Neighbour>& out,
                    double* gap2 = nullptr) {
   double r = s.start;

@@ -64,7 +64,8 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   size_t nonFinite = 0, huge = 0, badNormals = 0;
   reserveHuge(c.points, static_cast<size_t>(mesh.vn), true);
   reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn), true);
-  if (check.needNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn), true);
+  const bool withNormals = check.needNormals || check.readNormals;
+  if (withNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn), true);
   for (size_t i = 0; i < mesh.vert.size(); ++i) {
     const auto& v = mesh.vert[i];
     if (v.IsD()) continue;
@@ -75,7 +76,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     }
     if (std::abs(p[0]) > kMaxAbsCoordinate || std::abs(p[1]) > kMaxAbsCoordinate || std::abs(p[2]) > kMaxAbsCoordinate)
       ++huge;
-    if (check.needNormals) {
+    if (withNormals) {
       vcg::Point3d n = vcg::Point3d::Construct(v.cN());
       const double len = n.Norm();
       if (!finite3(n) || !(len > 1e-12)) {
@@ -148,14 +149,14 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
       }
       if (duplicate) continue;
       c.points[w] = p;
-      if (check.needNormals) c.normals[w] = c.normals[i];
+      if (withNormals) c.normals[w] = c.normals[i];
       c.vertexIndex[w] = c.vertexIndex[i];
       table[slot] = static_cast<std::uint32_t>(w + 1);
       ++w;
     }
     c.duplicatesDropped = n - w;
     c.points.resize(w);
-    if (check.needNormals) c.normals.resize(w);
+    if (withNormals) c.normals.resize(w);
     c.vertexIndex.resize(w);
   }
 

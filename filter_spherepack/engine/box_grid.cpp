@@ -270,15 +270,28 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
 // ---------------------------------------------------------------------------------------------
 // Normal filter (sec. 4.1)
 
+namespace {
+// The points whose normals face `dir` (<n_p, dir> >= 0) moved to the front of idx, in order;
+// the others after them, in order, when `rest` is given (else dropped). Returns how many face it.
+size_t keepFacing(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count, const vcg::Point3d& dir,
+                  std::vector<std::uint32_t>* rest) {
+  if (rest != nullptr) rest->clear();
+  size_t w = 0;
+  for (size_t k = 0; k < count; ++k) {
+    if (normals[idx[k]] * dir >= 0) idx[w++] = idx[k];
+    else if (rest != nullptr) rest->push_back(idx[k]);
+  }
+  if (rest != nullptr) std::copy(rest->begin(), rest->end(), idx + w);
+  return w;
+}
+} // namespace
+
 size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
                         double threshold) {
   vcg::Point3d sum(0, 0, 0);
   for (size_t k = 0; k < count; ++k) sum += normals[idx[k]];
   if (sum.Norm() < threshold) return count;
-  size_t w = 0;
-  for (size_t k = 0; k < count; ++k)
-    if (normals[idx[k]] * sum >= 0) idx[w++] = idx[k];
-  return w;
+  return keepFacing(normals, idx, count, sum, nullptr);
 }
 
 BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
@@ -316,14 +329,7 @@ BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32
   for (size_t k = 0; k < count; ++k) other += normals[idx[k]] * dir < 0 ? 1 : 0;
   r.twoSided = other >= kTwoSidedMinPoints && double(other) >= BoxGrid::kOpposedShare * double(count);
   if (other == 0 || (cancel && !r.twoSided)) return r; // nothing to drop, or the paper keeps all
-  scratch.clear();
-  size_t w = 0;
-  for (size_t k = 0; k < count; ++k) {
-    if (normals[idx[k]] * dir >= 0) idx[w++] = idx[k];
-    else if (r.twoSided) scratch.push_back(idx[k]);
-  }
-  std::copy(scratch.begin(), scratch.end(), idx + w);
-  r.firstEnd = w;
+  r.firstEnd = keepFacing(normals, idx, count, dir, r.twoSided ? &scratch : nullptr);
   r.split = dir;
   return r;
 }
@@ -778,11 +784,11 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
   start.resize(all + 1);
   for (size_t t = 0; t < twins; ++t) start[boxes + t + 1] = static_cast<std::uint32_t>(w + twinStart[t + 1]);
   g_.twin_.assign(all, -1);
-  g_.split_.assign(boxes, vcg::Point3d(0, 0, 0));
+  g_.split_.resize(twins);
   for (size_t t = 0; t < twins; ++t) {
     g_.twin_[twinOf[t]] = static_cast<std::int32_t>(boxes + t);
     g_.twin_[boxes + t] = static_cast<std::int32_t>(twinOf[t]);
-    g_.split_[twinOf[t]] = split[t].dir;
+    g_.split_[t] = split[t].dir;
   }
   g_.boxNormal_.resize(all, vcg::Point3d(0, 0, 0));
   g_.boxMinDot_.resize(all, std::numeric_limits<double>::quiet_NaN());

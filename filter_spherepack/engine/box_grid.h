@@ -307,8 +307,9 @@ public:
   // meshed (the paper's filter drops one of them).
   int boxOf(const vcg::Point3d& p, const vcg::Point3d& normal) const {
     const int b = boxOf(p);
-    if (b < 0 || twin_.empty() || twin_[size_t(b)] < 0 || !(normal * split_[size_t(b)] < 0)) return b;
-    return twin_[size_t(b)];
+    if (b < 0 || twin_.empty() || twin_[size_t(b)] < 0) return b;
+    const int second = twin_[size_t(b)];
+    return normal * split_[size_t(second) - layerBoxes_] < 0 ? second : b;
   }
   // Points of a box (after the normal filter), in increasing index order (or build()'s listOrder).
   const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
@@ -358,7 +359,8 @@ private:
 
   std::vector<std::int32_t> twin_;     // per layer: the other layer of a two-sided box, or -1
                                        // (empty when no box is two-sided)
-  std::vector<vcg::Point3d> split_;    // per box: the direction that splits a two-sided box
+  std::vector<vcg::Point3d> split_;    // per second layer (id − boxCount()): the direction that
+                                       // splits its box (its side: <n, split> < 0)
   size_t layerBoxes_ = 0;              // boxCount() when some box is two-sided, else 0
   mutable std::vector<vcg::Point3d> boxNormal_;
   mutable std::vector<double> boxMinDot_;

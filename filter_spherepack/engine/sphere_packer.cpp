@@ -107,16 +107,10 @@ Params suggestParams(const CMeshO& cloud) {
   try {
     CloudCheck check;
     check.needNormals = false;
+    check.readNormals = true; // as build() reads them (zero where missing: no other sheet there)
     check.allowFaces = true;
     InputCloud in = readCloud(cloud, check);
-    // The normals as build() reads them (zero where missing: such a point has no other sheet).
-    std::vector<vcg::Point3d> normals(in.points.size());
-    for (size_t i = 0; i < normals.size(); ++i) {
-      const vcg::Point3d n = vcg::Point3d::Construct(cloud.vert[size_t(in.vertexIndex[i])].cN());
-      const double len = n.Norm();
-      normals[i] = std::isfinite(len) && len > 1e-12 ? n / len : vcg::Point3d(0, 0, 0);
-    }
-    const CloudScale sc = cloudScale(in.points, 0, &normals);
+    const CloudScale sc = cloudScale(in.points, 0, &in.normals);
     if (sc.areaSpacing > 0 && std::isfinite(sc.areaSpacing)) {
       p.sphereDiameter = defaultDiameter(sc);
       p.splatSize = defaultSplatSize(sc, p.sphereDiameter);

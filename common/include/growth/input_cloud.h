@@ -16,7 +16,8 @@ namespace growth {
 
 struct InputCloud {
   std::vector<vcg::Point3d> points;
-  std::vector<vcg::Point3d> normals;   // unit length; empty when normals were not asked for
+  std::vector<vcg::Point3d> normals;   // unit length (zero where unusable, with readNormals); empty
+                                       // when normals were not asked for
   std::vector<int> vertexIndex;        // index of each point in the layer's vertex vector
   vcg::Box3d box;
   size_t duplicatesDropped = 0;        // exact repeats of an earlier point (first one kept)
@@ -25,6 +26,8 @@ struct InputCloud {
 
 struct CloudCheck {
   bool needNormals = false;            // refuse points without a usable normal
+  bool readNormals = false;            // read the normals without needing them (zero where a
+                                       // vertex has no usable one); needNormals reads them too
   bool allowFaces = false;             // refuse a layer that is already a mesh
   size_t minPoints = 3;
 };
