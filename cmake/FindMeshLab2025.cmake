@@ -1,64 +1,102 @@
-# FindMeshLab2025.cmake — the MeshLab 2025.07 SDK that scripts/setup.sh builds from Debian's source
-# package: src/common and vcglib unpacked into MESHLAB2025_DIR, libmeshlab-common built there in
-# double precision (build-double/: the SDK of PyMeshLab 2025.7 and of MeshLab 2025.07d) and in
-# single precision (build-float/: the SDK of the plain MeshLab 2025.07 GUI).
+# FindMeshLab2025.cmake — what a plugin for MeshLab 2025.07 builds and links against.
 #
 #   find_package(MeshLab2025 REQUIRED COMPONENTS d f)     # d: double, f: float (single)
 #
-# Defines, for each component P of d and f asked for:
+# The headers (src/common, vcglib) are those of the checksum-pinned MeshLab 2025.07 sources
+# (MeshLab2025Sources.cmake: MESHLAB2025_DIR, a local tarball, or a download). The libmeshlab-common
+# a plugin links against is the host's own:
+#   d  the one of the PyMeshLab 2025.7 wheel (double precision), in GROWTH_PYMESHLAB_DIR/lib/ (the
+#      installed `pymeshlab` package folder); the plugin links the wheel's Qt libraries too, so that
+#      every symbol it needs is checked against the wheel at link time;
+#   f  a single-precision build of it from the same sources, in MESHLAB2025_DIR/build-float/
+#      (scripts/setup.sh --meshlab-2025), the precision of Debian's MeshLab 2025.07 GUI.
+#
+# Defines, for each component P asked for:
 #   MeshLab2025P::vcglib  INTERFACE: vcglib + Eigen + MeshLab 2025.07's src (+ our forwarding header
-#                         common/ml_mesh_type.h), MESHLAB_SCALAR=double or float, MESHLAB_VERSION
-#                         (2025.07d or 2025.07), GROWTH_MESHLAB_2025. No Qt.
+#                         meshlab_compat/meshlab2025/common/ml_mesh_type.h), MESHLAB_SCALAR=double or
+#                         float, MESHLAB_VERSION (2025.07d or 2025.07), GROWTH_MESHLAB_2025. No Qt.
 #   MeshLab2025P::plylib  vcglib's PLY reader/writer for it
-#   MeshLab2025P::common  IMPORTED: that libmeshlab-common.so with the Qt5/GLEW usage a plugin needs
+#   MeshLab2025P::common  IMPORTED: that libmeshlab-common.so with the Qt5 usage a plugin needs
 #   MeshLab2025_P_VERSION the version string a plugin reports (ML_VERSION, + "d" for double)
+#   MeshLab2025_P_LIBDIR  the folder of that libmeshlab-common (a host's run-time library path)
 #   MeshLab2025_P_FOUND, MeshLab2025_FOUND
 
+include(MeshLab2025Sources)
 set(MESHLAB2025_DIR "${PROJECT_SOURCE_DIR}/third_party/meshlab-2025.07" CACHE PATH
-    "MeshLab 2025.07 sources and its libmeshlab-common builds (scripts/setup.sh)")
+    "MeshLab 2025.07 sources (scripts/setup.sh); fetched into the build tree when they are not there")
+set(GROWTH_PYMESHLAB_DIR "" CACHE PATH
+    "The installed pymeshlab 2025.7 package folder (site-packages/pymeshlab): the double-precision host")
 
-find_path(MeshLab2025_INCLUDE_DIR common/plugins/interfaces/filter_plugin.h
-          PATHS "${MESHLAB2025_DIR}/src" NO_DEFAULT_PATH)
-find_path(MeshLab2025_VCGLIB_DIR vcg/complex/complex.h PATHS "${MESHLAB2025_DIR}/src/vcglib" NO_DEFAULT_PATH)
-find_path(MeshLab2025_EIGEN_DIR Eigen/Core PATHS /usr/include/eigen3 /usr/local/include/eigen3)
-set(_ml2025_version "")
-if(EXISTS "${MESHLAB2025_DIR}/ML_VERSION")
-  file(READ "${MESHLAB2025_DIR}/ML_VERSION" _ml2025_version)
-  string(STRIP "${_ml2025_version}" _ml2025_version)
+# Without GROWTH_PYMESHLAB_DIR, the double build asks the Python interpreter (the one pip builds
+# with, or the first on PATH) where its pymeshlab is, without importing it.
+if("d" IN_LIST MeshLab2025_FIND_COMPONENTS AND NOT GROWTH_PYMESHLAB_DIR)
+  find_package(Python COMPONENTS Interpreter QUIET)
+  if(Python_EXECUTABLE)
+    execute_process(COMMAND "${Python_EXECUTABLE}" -c
+        "import importlib.util, importlib.metadata, os; s = importlib.util.find_spec('pymeshlab'); print(os.path.dirname(s.origin) + ';' + importlib.metadata.version('pymeshlab'))"
+        OUTPUT_VARIABLE _pml OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE _pml_rc)
+    if(_pml_rc EQUAL 0)
+      list(GET _pml 0 _pml_dir)
+      list(GET _pml 1 _pml_version)
+      if(NOT _pml_version MATCHES "^2025\\.7")
+        message(FATAL_ERROR "pymeshlab ${_pml_version} found by ${Python_EXECUTABLE} in ${_pml_dir}: "
+                "these plugins are built for pymeshlab 2025.7 (pip install pymeshlab==2025.7.post1)")
+      endif()
+      set(GROWTH_PYMESHLAB_DIR "${_pml_dir}" CACHE PATH "" FORCE)
+      message(STATUS "pymeshlab ${_pml_version}: ${_pml_dir}")
+    endif()
+  endif()
 endif()
 
+growth_meshlab2025_sources(_ml2025_src)
+set(MeshLab2025_INCLUDE_DIR "${_ml2025_src}/src")
+set(MeshLab2025_VCGLIB_DIR "${_ml2025_src}/src/vcglib")
+find_path(MeshLab2025_EIGEN_DIR Eigen/Core PATHS /usr/include/eigen3 /usr/local/include/eigen3)
+find_path(MeshLab2025_GLEW_INCLUDE_DIR GL/glew.h) # MeshLab's plugin headers include it (no GLEW call is linked)
+file(READ "${_ml2025_src}/ML_VERSION" _ml2025_version)
+string(STRIP "${_ml2025_version}" _ml2025_version)
+# vcglib includes Eigen as "../../eigenlib/Eigen/..."; Debian's sources leave the bundled copy out.
+if(MeshLab2025_EIGEN_DIR AND NOT EXISTS "${MeshLab2025_VCGLIB_DIR}/eigenlib/Eigen/Core")
+  file(CREATE_LINK "${MeshLab2025_EIGEN_DIR}" "${MeshLab2025_VCGLIB_DIR}/eigenlib" SYMBOLIC)
+endif()
+
+set(_ml2025_qt Core Gui Widgets OpenGL Xml)
 foreach(_p IN LISTS MeshLab2025_FIND_COMPONENTS)
+  set(MeshLab2025_${_p}_FOUND FALSE)
+  set(MeshLab2025_${_p}_COMMON_LIBRARY "")
   if(_p STREQUAL "d")
-    set(_build build-double)
-    set(_scalar double)
-    set(_suffix d)
+    set(MeshLab2025_d_SCALAR double)
+    set(MeshLab2025_d_VERSION "${_ml2025_version}d")
+    if(GROWTH_PYMESHLAB_DIR AND EXISTS "${GROWTH_PYMESHLAB_DIR}/lib/libmeshlab-common.so")
+      set(MeshLab2025_d_COMMON_LIBRARY "${GROWTH_PYMESHLAB_DIR}/lib/libmeshlab-common.so")
+    endif()
   elseif(_p STREQUAL "f")
-    set(_build build-float)
-    set(_scalar float)
-    set(_suffix "")
+    set(MeshLab2025_f_SCALAR float)
+    set(MeshLab2025_f_VERSION "${_ml2025_version}")
+    if(EXISTS "${MESHLAB2025_DIR}/build-float/src/distrib/libmeshlab-common.so")
+      set(MeshLab2025_f_COMMON_LIBRARY "${MESHLAB2025_DIR}/build-float/src/distrib/libmeshlab-common.so")
+    endif()
   else()
     message(FATAL_ERROR "FindMeshLab2025: unknown component '${_p}' (d: double, f: float)")
   endif()
-  find_library(MeshLab2025_${_p}_COMMON_LIBRARY NAMES meshlab-common
-               PATHS "${MESHLAB2025_DIR}/${_build}/src/distrib" NO_DEFAULT_PATH)
-  set(MeshLab2025_${_p}_FOUND FALSE)
-  if(MeshLab2025_${_p}_COMMON_LIBRARY AND _ml2025_version)
+  if(MeshLab2025_${_p}_COMMON_LIBRARY)
     set(MeshLab2025_${_p}_FOUND TRUE)
-    set(MeshLab2025_${_p}_VERSION "${_ml2025_version}${_suffix}")
-    set(MeshLab2025_${_p}_SCALAR ${_scalar})
+    get_filename_component(MeshLab2025_${_p}_LIBDIR "${MeshLab2025_${_p}_COMMON_LIBRARY}" DIRECTORY)
   endif()
 endforeach()
 
 include(FindPackageHandleStandardArgs)
 find_package_handle_standard_args(MeshLab2025
-  REQUIRED_VARS MeshLab2025_INCLUDE_DIR MeshLab2025_VCGLIB_DIR MeshLab2025_EIGEN_DIR
+  REQUIRED_VARS MeshLab2025_INCLUDE_DIR MeshLab2025_VCGLIB_DIR MeshLab2025_EIGEN_DIR MeshLab2025_GLEW_INCLUDE_DIR
   HANDLE_COMPONENTS
-  FAIL_MESSAGE "MeshLab 2025.07 SDK not found in ${MESHLAB2025_DIR}: run scripts/setup.sh")
+  FAIL_MESSAGE "MeshLab 2025.07 not found. Headers: Eigen (libeigen3-dev) and GLEW (libglew-dev) are needed. \
+Libraries: the double build (d) links the PyMeshLab 2025.7 wheel's libmeshlab-common, so set \
+GROWTH_PYMESHLAB_DIR to the installed pymeshlab package folder (pip install pymeshlab==2025.7.post1). \
+the float build (f) needs scripts/setup.sh --meshlab-2025")
 
 if(MeshLab2025_FOUND)
-  find_package(Qt5 REQUIRED COMPONENTS Core Gui Widgets OpenGL Xml Network)
-  find_package(GLEW REQUIRED)
-  set(_dirs "${PROJECT_SOURCE_DIR}/meshlab_compat/meshlab2025;${MeshLab2025_VCGLIB_DIR};${MeshLab2025_EIGEN_DIR};${MeshLab2025_INCLUDE_DIR}")
+  find_package(Qt5 REQUIRED COMPONENTS ${_ml2025_qt})
+  set(_dirs "${PROJECT_SOURCE_DIR}/meshlab_compat/meshlab2025;${MeshLab2025_VCGLIB_DIR};${MeshLab2025_EIGEN_DIR};${MeshLab2025_INCLUDE_DIR};${MeshLab2025_GLEW_INCLUDE_DIR}")
   foreach(_p IN LISTS MeshLab2025_FIND_COMPONENTS)
     if(NOT MeshLab2025_${_p}_FOUND OR TARGET MeshLab2025${_p}::vcglib)
       continue()
@@ -75,10 +113,29 @@ if(MeshLab2025_FOUND)
     target_compile_options(vcg_plylib_2025${_p} PRIVATE -w)
     add_library(MeshLab2025${_p}::plylib ALIAS vcg_plylib_2025${_p})
 
+    # Qt: the headers of the system's Qt 5 (moc too), the libraries of the host where it ships its
+    # own (the wheel's Qt 5.15.2; Qt keeps 5.15's binary interface across patch releases).
+    set(_qt_libs "")
+    foreach(_m IN LISTS _ml2025_qt)
+      if(_p STREQUAL "d" AND EXISTS "${MeshLab2025_d_LIBDIR}/libQt5${_m}.so.5")
+        set(_t MeshLab2025d::Qt5${_m})
+        add_library(${_t} SHARED IMPORTED)
+        get_target_property(_inc Qt5::${_m} INTERFACE_INCLUDE_DIRECTORIES)
+        get_target_property(_def Qt5::${_m} INTERFACE_COMPILE_DEFINITIONS)
+        set_target_properties(${_t} PROPERTIES IMPORTED_LOCATION "${MeshLab2025_d_LIBDIR}/libQt5${_m}.so.5"
+          IMPORTED_SONAME "libQt5${_m}.so.5" INTERFACE_INCLUDE_DIRECTORIES "${_inc}"
+          INTERFACE_COMPILE_DEFINITIONS "${_def}")
+        list(APPEND _qt_libs ${_t})
+      else()
+        list(APPEND _qt_libs Qt5::${_m})
+      endif()
+    endforeach()
+
     add_library(MeshLab2025${_p}::common SHARED IMPORTED)
     set_target_properties(MeshLab2025${_p}::common PROPERTIES
       IMPORTED_LOCATION "${MeshLab2025_${_p}_COMMON_LIBRARY}" IMPORTED_SONAME "libmeshlab-common.so")
-    target_link_libraries(MeshLab2025${_p}::common INTERFACE
-      MeshLab2025${_p}::vcglib Qt5::Core Qt5::Gui Qt5::Widgets Qt5::OpenGL Qt5::Xml Qt5::Network GLEW::GLEW)
+    # The host library's own dependencies (the wheel's libexternal-glew.so, ...) are found beside it.
+    target_link_libraries(MeshLab2025${_p}::common INTERFACE MeshLab2025${_p}::vcglib ${_qt_libs}
+                          "-Wl,-rpath-link,${MeshLab2025_${_p}_LIBDIR}")
   endforeach()
 endif()

@@ -1,20 +1,22 @@
 # growth_add_filter(NAME ENGINE): the filter's engine (every .cpp of the current directory's engine/
 # folder, whose headers are included by their plain names) as the static library ENGINE, and the
 # MeshLab plugin NAME from the glue NAME.cpp at the folder's top, for
-# MeshLab 2020.09 into build/plugins/ and, for each precision P (d, f) of GROWTH_2025_PRECISIONS,
+# MeshLab 2020.09 into build/plugins/ (with GROWTH_MESHLAB_2020) and, for each precision P (d, f) of GROWTH_2025_PRECISIONS,
 # the same sources again as ENGINE_2025P and NAME_2025P for MeshLab 2025.07 into
 # ${GROWTH_2025P_DIR}/plugins (build/meshlab-2025.07d/plugins, build/meshlab-2025.07/plugins).
 #
 # Install components: meshlab-2020.09 (into the installed MeshLab's plugin folder, an absolute path),
 # meshlab-2025.07d and meshlab-2025.07 (into PREFIX/lib/meshlab-2025.07d/plugins and
-# PREFIX/lib/meshlab-2025.07/plugins).
+# PREFIX/lib/meshlab-2025.07/plugins), and python (the Python package's growth_meshers/plugins/).
 #
 # The 2025.07 plugins carry no RUNPATH and name libmeshlab-common and Qt by soname only (linked
 # --as-needed), so in PyMeshLab or the GUI they bind to the host's own, already loaded libraries.
 function(growth_add_filter name engine)
   file(GLOB sources CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/engine/*.cpp")
   set(variants "")
-  list(APPEND variants "|growth|MeshLab::common|${PROJECT_BINARY_DIR}/plugins")
+  if(GROWTH_MESHLAB_2020)
+    list(APPEND variants "|growth|MeshLab::common|${PROJECT_BINARY_DIR}/plugins")
+  endif()
   foreach(p IN LISTS GROWTH_2025_PRECISIONS)
     string(TOUPPER ${p} P)
     list(APPEND variants "_2025${p}|growth_2025${p}|MeshLab2025${p}::common|${GROWTH_2025${P}_DIR}/plugins")
@@ -39,9 +41,13 @@ function(growth_add_filter name engine)
         get_filename_component(layout "${outdir}" DIRECTORY)
         get_filename_component(layout "${layout}" NAME) # meshlab-2025.07d or meshlab-2025.07
         set_target_properties(${name}${suffix} PROPERTIES SKIP_BUILD_RPATH ON INSTALL_RPATH "")
-        target_link_options(${name}${suffix} PRIVATE "LINKER:--as-needed")
+        # Every symbol the plugin needs must be in the host's libraries it is linked against.
+        target_link_options(${name}${suffix} PRIVATE "LINKER:--as-needed" "LINKER:--no-undefined")
         install(TARGETS ${name}${suffix} LIBRARY DESTINATION "lib/${layout}/plugins"
                 COMPONENT ${layout})
+        if(GROWTH_PYTHON_PACKAGE)
+          install(TARGETS ${name}${suffix} LIBRARY DESTINATION growth_meshers/plugins COMPONENT python)
+        endif()
       endif()
     endif()
   endforeach()

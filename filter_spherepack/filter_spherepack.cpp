@@ -24,38 +24,21 @@ QString FilterSpherePackPlugin::pythonName(FilterID filter) const {
   return filter == FP_SPHERE_PACKING ? QString("generate_surface_reconstruction_sphere_packing") : QString();
 }
 
+// Shown at the top of the filter's dialog and as the menu's tooltip: a few sentences, so that the
+// dialog fits a screen 1000 px tall. The parameters are explained by their help texts and the docs.
 QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_SPHERE_PACKING) return QString("Error!");
   return QString(
       "Reconstructs a triangle mesh from a point cloud <b>with normals</b> by packing touching "
-      "spheres of diameter <i>d</i> on the splats (small disks) of the points. Every edge of the "
-      "result is at least <i>d</i> long, edge lengths are close to uniform, triangles are close to "
-      "equilateral, and the output is manifold when <i>d</i> is small with respect to the reach of "
-      "the surface and larger than twice the noise. The result goes to a new layer, with per-face "
-      "quality Q<sub>t</sub> = 4&radic;3A/(l<sub>1</sub>&sup2;+l<sub>2</sub>&sup2;+l<sub>3</sub>&sup2;) "
-      "(see <i>Colorize by face quality</i>); the input layer is left unchanged. Regions whose border "
-      "is longer than the border limit stay open, so scans with holes keep them.<br>"
-      "Needs per-vertex normals: compute them with <i>Filters &gt; Normals, Curvatures and "
-      "Orientation &gt; Compute normals for point sets</i>.<br><br>"
-      "<b>Parameters.</b> <i>Sphere diameter d</i>: 0 chooses max(1.8 &times; &radic;(area per point), "
-      "3 &times; the estimated noise): the scan's resolution, at least twice the noise; where a tenth of "
-      "the surface or more lies on thin parts (two sheets with opposed normals closer than 1.2 d), "
-      "their thickness / 1.2, so that both sides are meshed (and s 0.9 &times; it). <i>Splat "
-      "radius s</i>: the disks on the points must cover the surface; 0 chooses 2.5 &times; &radic;(area "
-      "per point). <i>Local splat sizes</i>: each point gets the radius of its tangent-plane "
-      "Delaunay/Voronoi neighbourhood, bounded by s (s is the radius at open boundaries); off uses s "
-      "everywhere. <i>Window size w</i>: how far (in border edges, each way) the growth looks along a "
-      "border to tell a split from a join when ranking candidates; 0 gives breadth-first growth with "
-      "seams, 8 or more all give the same quality. <i>Border limit</i>: regions bounded by more border "
-      "edges stay open instead of being triangulated, so the boundaries of open scans are kept. "
-      "<i>Smallest piece kept</i>: connected pieces with fewer faces are dropped (the largest always "
-      "stays) and counted in the log: on merged scans, flaps grown onto a misregistered second layer "
-      "and cut off by the regions left open between the layers; bits of stray points. "
-      "<i>Starting points</i>: projected onto the closest splats; the second must lie between d and "
-      "2d from the first.<br><br>"
+      "spheres of diameter <i>d</i> on small disks (splats) around the points; the centres of the "
+      "spheres become the vertices. Every edge is at least <i>d</i> long, the triangles are close to "
+      "equilateral and the mesh is manifold. Lengths left at 0 are chosen from the cloud. The mesh "
+      "goes to a new layer with per-face quality; the cloud is left unchanged.<br>"
+      "Needs per-vertex normals: <i>Filters &gt; Normals, Curvatures and Orientation &gt; Compute "
+      "normals for point sets</i>.<br><br>"
       "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
-      "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b><br>"
-      "Sections 3 and 4 of the paper.");
+      "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b>, sections 3 "
+      "and 4.");
 }
 
 FilterSpherePackPlugin::FilterClass FilterSpherePackPlugin::filterClass(FilterID) const { return Remeshing; }

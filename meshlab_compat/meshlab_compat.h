@@ -81,6 +81,8 @@ public:
   QString errorMessage;
 
   // --- FilterPlugin (MeshLab 2022.02 and later) -----------------------------------------------------
+  /// Shown in Help > Plugin Info (MeshLab's default names its own lab).
+  QString vendor() const override { return "growth-meshers"; }
   using FilterBase::pythonFilterName;
   QString pythonFilterName(FilterID f) const override {
     const QString name = pythonName(f);
