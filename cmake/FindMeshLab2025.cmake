@@ -125,6 +125,14 @@ if(MeshLab2025_FOUND)
         set_target_properties(${_t} PROPERTIES IMPORTED_LOCATION "${MeshLab2025_d_LIBDIR}/libQt5${_m}.so.5"
           IMPORTED_SONAME "libQt5${_m}.so.5" INTERFACE_INCLUDE_DIRECTORIES "${_inc}"
           INTERFACE_COMPILE_DEFINITIONS "${_def}")
+        # Qt built with -reduce-relocations needs position-independent code in executables too
+        # (ml_apply), which Qt5::Core asks for through these two properties.
+        foreach(_prop INTERFACE_COMPILE_OPTIONS INTERFACE_POSITION_INDEPENDENT_CODE INTERFACE_COMPILE_FEATURES)
+          get_target_property(_v Qt5::${_m} ${_prop})
+          if(_v)
+            set_target_properties(${_t} PROPERTIES ${_prop} "${_v}")
+          endif()
+        endforeach()
         list(APPEND _qt_libs ${_t})
       else()
         list(APPEND _qt_libs Qt5::${_m})

@@ -34,7 +34,13 @@ function(growth_add_filter name engine)
       add_library(${name}${suffix} MODULE ${name}.cpp ${name}.h)
       set_target_properties(${name}${suffix} PROPERTIES AUTOMOC ON PREFIX "lib" OUTPUT_NAME ${name}
                             LIBRARY_OUTPUT_DIRECTORY "${outdir}")
-      target_link_libraries(${name}${suffix} PRIVATE ${engine}${suffix} ${common} meshlab_compat growth_warnings)
+      # For 2025.07 the C++ runtime comes first: the wheel's libQt5Core also exports operator
+      # delete(void*, size_t), and a plugin bound to that copy would load in no other host.
+      set(runtime "")
+      if(NOT suffix STREQUAL "")
+        set(runtime stdc++)
+      endif()
+      target_link_libraries(${name}${suffix} PRIVATE ${runtime} ${engine}${suffix} ${common} meshlab_compat growth_warnings)
       if(suffix STREQUAL "")
         install(TARGETS ${name} LIBRARY DESTINATION "${MeshLab_PLUGIN_DIR}" COMPONENT meshlab-2020.09)
       else()

@@ -20,17 +20,16 @@ QString FilterG2SPlugin::pythonName(FilterID filter) const {
   return filter == FP_ROBUST_G2S ? QString("generate_surface_reconstruction_robust_g2s") : QString();
 }
 
+// Shown at the top of the filter's dialog and as the menu's tooltip: a few sentences, so that the
+// dialog fits a screen 1000 px tall. The parameters are explained by their help texts and the docs.
 QString FilterG2SPlugin::filterInfo(FilterID filter) const {
   if (filter != FP_ROBUST_G2S) return QString("Error!");
   return QString(
       "Interpolating mesh growing by the <b>Gabriel 2-simplex</b> criterion: from a seed triangle, "
       "a front of free edges grows, each edge taking the point whose smallest sphere through the "
-      "edge is empty of other points. A priority queue grows the flattest, tightest triangles first, "
-      "and non-manifold vertices and faces through other faces are removed at the end, so the output "
-      "is never non-manifold and never self-intersecting; small holes are then closed. The "
-      "vertices of the result are the input points; <b>no normals are needed</b>. Several components "
-      "are seeded one after the other. The result goes to a new layer with per-face quality "
-      "Q<sub>t</sub>; the input layer is left unchanged.<br><br>"
+      "edge is empty, the flattest and tightest triangles first. The vertices are the input points; "
+      "<b>no normals are needed</b>. The mesh is manifold and free of self-intersections, with small "
+      "holes closed. It goes to a new layer with per-face quality; the cloud is left unchanged.<br><br>"
       "<i>L. Di Angelo, P. Di Stefano, L. Giaccari</i><br>"
       "<b>\"A Fast Mesh-Growing Algorithm for Manifold Surface Reconstruction\"</b><br>"
       "Computer-Aided Design &amp; Applications 10(2), 2013, 197-220.");

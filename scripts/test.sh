@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
-# Sets up a fresh machine, builds everything and runs every test (unit + meshlabserver integration),
-# then the unit tests under AddressSanitizer and UndefinedBehaviorSanitizer (scripts/sanitize.sh)
-# and each fuzz target for a minute (scripts/fuzz.sh). This is the README's test command; .ci/run
-# calls it. GROWTH_FUZZ_SECONDS sets the fuzzing time per target (0: no fuzzing).
-# The sanitizer part, measured on the 2-core development machine under load from other work
-# (2026-12-02): a clean build of build-asan/ (unit tests and fuzzers) 11-12 min wall, 6 min CPU;
-# the sanitized unit tests 10 min wall with ctest -j2, most of it one sphere-packer coverage test
-# (2.6 min CPU); the fuzzers 2 min plus their link.
+# The README's test command (.ci/run calls it): sets up a fresh machine (scripts/setup.sh --all),
+# builds everything, runs every test (unit, and integration through meshlabserver 2020.09 and the
+# MeshLab 2025.07 hosts), then the Python package from its sdist in the real PyMeshLab wheel
+# (scripts/test_python.sh), the unit tests under AddressSanitizer and UndefinedBehaviorSanitizer
+# (scripts/sanitize.sh) and each fuzz target on a fixed sequence of inputs (scripts/fuzz.sh).
+# GROWTH_FUZZ_SECONDS sets the fuzzing time per target (0: no fuzzing).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-scripts/setup.sh
-# Also the MeshLab 2025.07d / PyMeshLab 2025.7 (double) and the MeshLab 2025.07 (float) plugins.
-cmake -S . -B build -DGROWTH_MESHLAB_2025D=ON -DGROWTH_MESHLAB_2025F=ON
+scripts/setup.sh --all
+# Also the PyMeshLab 2025.7 plugins (double, linked against the wheel in third_party/venv) and the
+# MeshLab 2025.07 GUI plugins (float).
+pymeshlab_dir=$(third_party/venv/bin/python -c 'import importlib.util, os; print(os.path.dirname(importlib.util.find_spec("pymeshlab").origin))')
+cmake -S . -B build -DGROWTH_MESHLAB_2025D=ON -DGROWTH_MESHLAB_2025F=ON -DGROWTH_PYMESHLAB_DIR="$pymeshlab_dir"
 cmake --build build -j"$(nproc)"
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+# The Python package from its sdist (pip install), tested in the real wheel, against meshlabserver.
+GROWTH_REQUIRE_MESHLAB2020=1 scripts/test_python.sh --sdist
 scripts/sanitize.sh
 fuzz_seconds=${GROWTH_FUZZ_SECONDS:-60}
 # A fixed seed and number of inputs per target (see scripts/fuzz.sh), capped at 5 times the time.

@@ -27,7 +27,7 @@
 #include <common/plugins/interfaces/filter_plugin.h>
 #include <common/plugins/plugin_manager.h>
 
-#include <QApplication>
+#include <QCoreApplication>
 #include <QStringList>
 
 #include <vcg/complex/algorithms/update/bounding.h>
@@ -91,9 +91,9 @@ void printLog(const GLLogStream& log) {
 
 int main(int argc, char** argv) {
   if (argc < 5) return usage();
-  // Plugins create QActions (QtWidgets): a QApplication, without a display (offscreen platform).
-  if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
-  QApplication app(argc, argv);
+  // A QCoreApplication, as PyMeshLab has: the plugins' QActions need no GUI, and the wheel's Qt
+  // ships no platform plugin (not even "offscreen") that a QApplication could start on.
+  QCoreApplication app(argc, argv);
   const QString pluginPath = QString::fromLocal8Bit(argv[1]);
   const QString filterName = QString::fromLocal8Bit(argv[2]);
   const char* inPath = argv[3];
