@@ -20,6 +20,11 @@
 #                                        100k points again, in process (build/plugin_time)
 #   scripts/benchmark.sh --floors [--clouds ..]   measure the no-op filter's memory (MeshLab's floor
 #                                        for applying any filter) of the saved rows' clouds again
+#   scripts/benchmark.sh --pymeshlab [--clouds torus-30k,hand] [--repeat 3]   the PyMeshLab row set
+#                                        (scripts/benchmark_pymeshlab.py): both filters and Ball
+#                                        Pivoting in one MeshSet of the venv's PyMeshLab 2025.7
+#                                        (scripts/setup.sh --pymeshlab, package installed by
+#                                        scripts/test_python.sh), written to out/benchmark/pymeshlab.md
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
@@ -31,6 +36,16 @@ build=${GROWTH_BUILD_DIR:-$root/build}
 out=$root/out/benchmark
 data=$(cd "$root/.." && pwd)/shared/data
 command="scripts/benchmark.sh $*"
+
+if [ "${1:-}" = "--pymeshlab" ]; then
+  shift
+  venv_python=$root/third_party/venv/bin/python
+  [ -x "$venv_python" ] || { echo "benchmark: no venv: run scripts/setup.sh --pymeshlab" >&2; exit 1; }
+  "$venv_python" -c 'import growth_meshers' 2>/dev/null ||
+    { echo "benchmark: growth_meshers is not installed in the venv: run scripts/test_python.sh" >&2; exit 1; }
+  [ -x "$build/make_cloud" ] || cmake --build "$build" --target make_cloud >/dev/null
+  exec "$venv_python" "$root/scripts/benchmark_pymeshlab.py" --build "$build" --data-dir "$data" --out "$out" "$@"
+fi
 
 args=()
 skip_build=false
