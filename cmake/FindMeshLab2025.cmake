@@ -95,7 +95,11 @@ GROWTH_PYMESHLAB_DIR to the installed pymeshlab package folder (pip install pyme
 the float build (f) needs scripts/setup.sh --meshlab-2025")
 
 if(MeshLab2025_FOUND)
-  find_package(Qt5 REQUIRED COMPONENTS ${_ml2025_qt})
+  find_package(Qt5 QUIET COMPONENTS ${_ml2025_qt})
+  if(NOT Qt5_FOUND)
+    message(FATAL_ERROR "FindMeshLab2025: Qt 5 development files missing (Qt5 ${_ml2025_qt}): "
+      "apt install qtbase5-dev libqt5opengl5-dev")
+  endif()
   set(_dirs "${PROJECT_SOURCE_DIR}/meshlab_compat/meshlab2025;${MeshLab2025_VCGLIB_DIR};${MeshLab2025_EIGEN_DIR};${MeshLab2025_INCLUDE_DIR};${MeshLab2025_GLEW_INCLUDE_DIR}")
   foreach(_p IN LISTS MeshLab2025_FIND_COMPONENTS)
     if(NOT MeshLab2025_${_p}_FOUND OR TARGET MeshLab2025${_p}::vcglib)

@@ -12,7 +12,8 @@ or the name of a PLY in --data-dir (hand, bunny_merged_normals, ...). Each filte
 times on a fresh copy of the cloud layer; the fastest wall time counts, and the ratios are against
 Ball Pivoting's fastest on the same cloud in the same run. The mesh of each row is measured by
 PyMeshLab itself (get_topological_measures: non-manifold edges and vertices, boundary edges,
-components; get_geometric_measures: the shortest and mean edge). Writes OUT/pymeshlab.md and
+components) and by its vertex and face matrices (the shortest and mean of the unique edges, and their
+standard deviation over the mean). Writes OUT/pymeshlab.md and
 OUT/pymeshlab.jsonl, and prints the table.
 """
 import argparse

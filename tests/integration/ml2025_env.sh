@@ -1,6 +1,6 @@
 # Sourced by the MeshLab 2025.07 integration tests after meshlab_prefix.sh. GROWTH_ML2025_PRECISION
-# (set by ctest) picks the build: d (default) for MeshLab 2025.07d / PyMeshLab 2025.7 (double), f
-# for the single-precision MeshLab 2025.07. Skips the test (exit 77, which ctest reports as
+# (set by ctest) picks the build: d (default) for PyMeshLab 2025.7 (double, linked against the wheel),
+# f for the single-precision MeshLab 2025.07 GUI. Skips the test (exit 77, which ctest reports as
 # skipped) when that build's plugins are not built. Provides ml_apply, plugins2025, ml_version
 # (2025.07d or 2025.07), ml_precision (double or single), same_counts.
 ml2025_precision=${GROWTH_ML2025_PRECISION:-d}
@@ -11,8 +11,9 @@ case "$ml2025_precision" in
   *) fail "GROWTH_ML2025_PRECISION must be d or f, not '$ml2025_precision'" ;;
 esac
 if [ -z "$ml2025_dir" ] || [ ! -x "$ml2025_dir/ml_apply" ]; then
-  echo "SKIP: the MeshLab 2025.07 ($ml_precision precision) plugins are not built (run scripts/setup.sh," \
-       "then configure with -D$ml2025_option=ON and build)"
+  echo "SKIP: the MeshLab 2025.07 ($ml_precision precision) plugins are not built (run scripts/setup.sh" \
+       "$([ "$ml2025_precision" = d ] && echo --pymeshlab || echo --meshlab-2025), then configure with" \
+       "-D$ml2025_option=ON and build)"
   exit 77
 fi
 ml_version=$(basename "$ml2025_dir"); ml_version=${ml_version#meshlab-}
