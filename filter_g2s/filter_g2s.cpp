@@ -179,6 +179,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   if (st.componentsDropped > 0)
     Log("Robust G2S: %zu piece%s of fewer than %d faces dropped (%zu faces): triangles among stray points",
         st.componentsDropped, st.componentsDropped == 1 ? "" : "s", p.minComponentFaces, st.componentFacesDropped);
-  Log("Robust G2S: time %.3f s (%.0f triangles/s)", st.seconds, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
+  for (const auto& pass : st.passes)
+    Log("Robust G2S pass, %s: %zu faces out, %zu in, %.3f s", pass.name.c_str(), pass.facesRemoved, pass.facesAdded,
+        pass.seconds);
+  Log("Robust G2S: time %.3f s (setup %.3f, growth %.3f, clean-up %.3f, output %.3f; %.0f triangles/s)", st.seconds,
+      st.secondsSetup, st.secondsGrowth, st.secondsCleanup, st.secondsOutput, st.seconds > 0 ? double(st.faces) / st.seconds : 0.0);
   return true;
 }

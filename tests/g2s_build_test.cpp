@@ -379,6 +379,36 @@ TEST(G2SBuild, GaussianNoiseTenAndTwentyFivePercentStaysManifold) {
   }
 }
 
+TEST(G2SBuild, PassesAreListedInTheirOrderAndAccountForEveryFace) {
+  const std::vector<std::string> order = {"thin-part rims (in the growth)", "non-manifold vertices (sec. 4.2)",
+                                          "crossing faces", "small pieces", "hole closure",
+                                          "wider hole closure and regrowth", "small handles", "orientation"};
+  for (double sigma : {0.0, 0.25}) {
+    SCOPED_TRACE(sigma);
+    const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 5000, sigma, sigma > 0 ? 0.02 : 0.0));
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    std::vector<std::string> names;
+    long net = 0;
+    size_t touched = 0;
+    for (const auto& pass : r->stat.passes) {
+      names.push_back(pass.name);
+      EXPECT_GE(pass.seconds, 0.0);
+      EXPECT_LE(pass.seconds, r->stat.seconds);
+      if (names.size() > 1) net += long(pass.facesAdded) - long(pass.facesRemoved); // (the rim pass is in the growth)
+      touched += pass.facesAdded + pass.facesRemoved;
+    }
+    EXPECT_EQ(names, order);
+    EXPECT_EQ(long(r->stat.faces), long(r->stat.grownFaces) + net);
+    if (sigma == 0.0) {
+      EXPECT_EQ(touched, 0u); // a clean closed cloud: no pass has anything to do
+    } else {
+      EXPECT_GT(touched, 0u);
+      EXPECT_GT(r->stat.passes[2].facesRemoved + r->stat.passes[3].facesRemoved + r->stat.passes[4].facesAdded, 0u);
+    }
+  }
+}
+
 TEST(G2SBuild, OutliersStayManifoldAndDoNotSpoilTheSurface) {
   const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 5000, 0.0, 0.05));
   const auto r = run(cloud);

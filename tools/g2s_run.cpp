@@ -8,7 +8,7 @@
 // few float rounding steps: seeds of almost no size)
 // options: --k K  --max-radius F  --n N  --m M  --no-cleanup  --holes E (close holes of <= E edges; 0 off)  --keep-handles
 //          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
-//          --random-seed S
+//          --random-seed S  --threads T (crossing-face test; 0 = automatic)
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (g2s::Stat::seconds, wall clock);
@@ -43,7 +43,7 @@ static void usage() {
                "               [--seed S] [--nonuniform] [--gauss SIGMA_IN_SPACINGS] [--outliers FRACTION]\n"
                "               [--rings R --segments S] [--inner-radius r] [--thickness T]\n"
                "       [--near-triples K]\n"
-               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--keep-handles] [--min-component-faces F] [--random-seed S]\n"
+               "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--keep-handles] [--min-component-faces F] [--random-seed S] [--threads T]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");
 }
 
@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
       else if (a == "--holes") params.maxHoleEdges = std::atoi(value());
       else if (a == "--keep-handles") params.removeSmallHandles = false;
       else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
+      else if (a == "--threads") params.threads = std::atoi(value());
       else if (a == "--random-seed") params.randomSeed = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));
       else if (a == "--measure") measure = true;
@@ -191,6 +192,9 @@ int main(int argc, char** argv) {
     std::printf("seconds: %.4f\n", best);
     std::printf("seconds_phases: setup %.4f growth %.4f cleanup %.4f output %.4f\n", st.secondsSetup,
                 st.secondsGrowth, st.secondsCleanup, st.secondsOutput);
+    for (const auto& pass : st.passes)
+      std::printf("pass: %s | faces out %zu | faces in %zu | seconds %.4f\n", pass.name.c_str(), pass.facesRemoved,
+                  pass.facesAdded, pass.seconds);
     std::printf("triangles_per_second: %.0f\n", double(st.faces) / best);
     std::printf("cpu_seconds: %.4f\n", bestCpu);
     std::printf("simd: %s\n", growth::g2s::simdLevelName(growth::g2s::simdLevel()));

@@ -35,6 +35,8 @@ void checkParams(const Params& p) {
     throw Error("The largest hole to close must be between 0 (off) and 10000 edges.");
   if (p.minComponentFaces < 0)
     throw Error("The smallest piece kept must be at least 0 faces (0 keeps all).");
+  if (p.threads < 0 || p.threads > 1024)
+    throw Error("The number of threads must be between 0 (automatic) and 1024.");
   if (p.flatnessLevels < 1 || p.flatnessLevels > 180)
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
@@ -63,6 +65,13 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
   stat.candidateSearches = mesher.candidateSearches();
   stat.edgesLeftAtFullPoints = mesher.edgesLeftAtFullPoints();
   stat.thinPartRefusals = mesher.foldsRefused();
+  Stat::Pass rim;
+  rim.name = "thin-part rims (in the growth)";
+  rim.facesRemoved = mesher.rimPassFacesRemoved();
+  rim.facesAdded = mesher.rimPassFacesAdded();
+  rim.seconds = mesher.rimPassSeconds();
+  stat.passes.push_back(rim);
+  stat.grownFaces = mesher.liveTriangles();
   if (stat.edgesLeftAtFullPoints > 0)
     stat.warnings.push_back(std::to_string(stat.edgesLeftAtFullPoints) + " front edges were left open at points "
                             "that already had " + std::to_string(PointEdgeMap::kMaxEntries) +
@@ -92,16 +101,38 @@ std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const
 // Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
 // small holes closed; then the boundary counts and the orientation of every component (by the
 // layer's normals for the sheets, where it has them).
+// One pass of the clean-up, timed, with the live faces it took out and added (new faces are
+// appended to the triangles, so the added ones are the growth of that array).
+template <class F>
+void runPass(Mesher& mesher, Stat& stat, const char* name, F&& pass) {
+  Stopwatch watch;
+  const size_t liveBefore = mesher.liveTriangles(), allBefore = mesher.triangles().size();
+  pass();
+  Stat::Pass p;
+  p.name = name;
+  p.facesAdded = mesher.triangles().size() - allBefore;
+  p.facesRemoved = liveBefore + p.facesAdded - mesher.liveTriangles();
+  p.seconds = watch.total();
+  stat.passes.push_back(p);
+}
+
+// Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
+// small holes closed; then the boundary counts and the orientation of every component (by the
+// layer's normals for the sheets, where it has them).
 void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, const InputCloud& input) {
   if (p.removeNonManifoldVertices) {
-    const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
-    stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
-    stat.facesRemoved = cs.facesRemoved;
+    runPass(mesher, stat, "non-manifold vertices (sec. 4.2)", [&] {
+      const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
+      stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
+      stat.facesRemoved = cs.facesRemoved;
+    });
     // Not in the paper: no two faces may intersect (g2s_repair.cpp).
-    const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
-    stat.selfIntersectionFacesRemoved = si.facesRemoved;
-    stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
-    stat.facesRemoved += si.fanFacesRemoved;
+    runPass(mesher, stat, "crossing faces", [&] {
+      const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
+      stat.selfIntersectionFacesRemoved = si.facesRemoved;
+      stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
+      stat.facesRemoved += si.fanFacesRemoved;
+    });
   } else {
     stat.nonManifoldVertices = countNonManifoldVertices(mesher.triangles(), mesher.points().size(),
                                                         std::vector<char>(mesher.triangles().size(), 1));
@@ -109,10 +140,13 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   // Not in the paper: pieces too small to be a part of the surface (triangles among stray points)
   // go before the hole pass, which then spends no time on their loops.
   if (p.minComponentFaces > 1)
-    stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
+    runPass(mesher, stat, "small pieces", [&] {
+      stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
+    });
   if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
-    Mesher::HoleStat hs = mesher.closeHoles(p.maxHoleEdges);
-    mesher.widenHoles(p.maxHoleEdges, hs);
+    Mesher::HoleStat hs;
+    runPass(mesher, stat, "hole closure", [&] { hs = mesher.closeHoles(p.maxHoleEdges); });
+    runPass(mesher, stat, "wider hole closure and regrowth", [&] { mesher.widenHoles(p.maxHoleEdges, hs); });
     stat.holesClosed = hs.closed;
     stat.holeFacesAdded = hs.facesAdded;
     stat.holeFacesReplaced = hs.facesReplaced;
@@ -124,29 +158,33 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   Mesher::BoundaryCount boundary = mesher.boundary();
   if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)
     // Not in the paper: small handles (tunnels between close sheets) cut, their loops closed.
-    if (p.removeSmallHandles) {
-      const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary, p.maxHoleEdges);
-      stat.handlesCut = hs.handles;
-      stat.handleFacesRemoved = hs.facesRemoved;
-      stat.nonManifoldVerticesRemoved += hs.nonManifoldVertices;
-      stat.handleFacesAdded = hs.holeFacesAdded;
-      stat.handles = hs.handlesBefore;
-      if (hs.handles > 0) {
-        boundary = mesher.boundary();
+    runPass(mesher, stat, "small handles", [&] {
+      if (p.removeSmallHandles) {
+        const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary, p.maxHoleEdges);
+        stat.handlesCut = hs.handles;
+        stat.handleFacesRemoved = hs.facesRemoved;
+        stat.nonManifoldVerticesRemoved += hs.nonManifoldVertices;
+        stat.handleFacesAdded = hs.holeFacesAdded;
+        stat.handles = hs.handlesBefore;
+        if (hs.handles > 0) {
+          boundary = mesher.boundary();
+          stat.handles = mesher.handleCount(boundary);
+        }
+      } else {
         stat.handles = mesher.handleCount(boundary);
       }
-    } else {
-      stat.handles = mesher.handleCount(boundary);
-    }
+    });
   }
   // The search structures go before the output's memory is taken (the repairs search).
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   mesher.releaseGrowthState();
   stat.boundaryEdges = boundary.edges;
   stat.holes = boundary.loops;
-  // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
-  const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(cloud, input, mesher) : std::vector<P3>();
-  mesher.orientComponents(normals.empty() ? nullptr : &normals);
+  runPass(mesher, stat, "orientation", [&] {
+    // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
+    const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(cloud, input, mesher) : std::vector<P3>();
+    mesher.orientComponents(normals.empty() ? nullptr : &normals);
+  });
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   mesher.releaseWorkingState();
   releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer

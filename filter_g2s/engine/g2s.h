@@ -26,6 +26,8 @@ struct Params {
   int minComponentFaces = 50;        // not in the paper: connected pieces with fewer faces are dropped (the largest
                                      // always stays): triangles among stray points; 0 keeps all
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
+  int threads = 0;                   // threads for the crossing-face test (0 = automatic, at most
+                                     // growth::kMaxThreads); the mesh is the same for any number
 };
 
 // The default maximum search radius, in multiples of the local spacing.
@@ -78,6 +80,15 @@ struct Stat {
   double secondsGrowth = 0;               // seeds and front growth
   double secondsCleanup = 0;              // sec. 4.2, boundary and hole counts, orientation
   double secondsOutput = 0;               // filling the output mesh, its bounding box and normals
+  // The passes after the growth (and the rim pass inside it), in the order they ran: the live
+  // faces each took out and added, and its time. Passes with nothing to do are listed with zeros.
+  struct Pass {
+    std::string name;
+    size_t facesRemoved = 0, facesAdded = 0;
+    double seconds = 0;
+  };
+  std::vector<Pass> passes;
+  size_t grownFaces = 0;                  // faces at the end of the growth, before the passes after it
   std::vector<std::string> warnings;
 };
 

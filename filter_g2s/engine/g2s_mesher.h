@@ -255,6 +255,10 @@ public:
   size_t otherSheetBalls() const { return otherSheetBalls_; }
   // Loops at the rims of thin parts closed after the growth (closeRimLoops, g2s_thin.cpp).
   size_t rimLoopsClosed() const { return rimLoopsClosed_; }
+  // That pass's faces taken out and added, and its time (zero where no thin-part rule acted).
+  size_t rimPassFacesRemoved() const { return rimFacesRemoved_; }
+  size_t rimPassFacesAdded() const { return rimFacesAdded_; }
+  double rimPassSeconds() const { return rimSeconds_; }
   size_t liveTriangles() const;
   size_t boundaryEdges() const;   // edges with one live triangle
   size_t boundaryLoops();         // holes: loops of boundary edges
@@ -480,6 +484,8 @@ private:
   mutable size_t cylinderQueries_ = 0;
   size_t edgesLeftAtFullPoints_ = 0;
   size_t foldsRefused_ = 0, otherSheetBalls_ = 0, rimLoopsClosed_ = 0;
+  size_t rimFacesRemoved_ = 0, rimFacesAdded_ = 0;
+  double rimSeconds_ = 0;
   ManifoldCleanupStat thinCleanup_; // sec. 4.2 done early by closeRimLoops
   mutable std::vector<std::uint32_t> foldHits_; // scratch of foldsAcrossThePart
   mutable std::uint32_t lastInside_ = 0;        // see emptyBall

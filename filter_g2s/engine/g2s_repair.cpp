@@ -197,7 +197,7 @@ size_t Mesher::CrossingPass::removeInRegion(std::vector<std::uint32_t>& seeds) {
   local_.clear();
   for (std::uint32_t f : region_) local_.push_back(m_.tri_[f]);
   localAlive_.assign(region_.size(), 1);
-  const size_t removed = growth::removeSelfIntersections(pos_, local_, localAlive_, 1);
+  const size_t removed = growth::removeSelfIntersections(pos_, local_, localAlive_, m_.params_.threads);
   for (size_t k = 0; k < region_.size(); ++k) sub_[region_[k]] = localAlive_[k];
   seeds.clear();
   for (std::uint32_t f : region_) {

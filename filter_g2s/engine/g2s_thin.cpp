@@ -29,6 +29,8 @@
 #include "g2s_apart.h"
 #include "g2s_mesher.h"
 
+#include <growth/stopwatch.h>
+
 #include <growth/self_intersections.h>
 
 #include <algorithm>
@@ -848,6 +850,8 @@ void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
 }
 
 void Mesher::closeRimLoops() {
+  Stopwatch watch;
+  const size_t before = tri_.size(), removedBefore = rimFacesRemoved_;
   // A few rounds: taking off a stray piece (see strayTriangle) opens the loop of the mesh around it.
   for (int round = 0; round < kRounds; ++round) {
     RimPass pass(*this);
@@ -856,6 +860,8 @@ void Mesher::closeRimLoops() {
   // The closures' new edges (the diagonals) were queued by addTriangle and then closed by their
   // second triangle: the queue only drains.
   grow();
+  rimFacesAdded_ += tri_.size() + (rimFacesRemoved_ - removedBefore) - before;
+  rimSeconds_ += watch.total();
 }
 
 } // namespace g2s
@@ -865,6 +871,7 @@ namespace growth {
 namespace g2s {
 
 void Mesher::removeGrownTriangle(size_t f) {
+  ++rimFacesRemoved_;
   const Triangle t = tri_[f];
   pem_.removeTriangle(t[0], t[1], t[2]);
   for (int k = 0; k < 3; ++k) {
