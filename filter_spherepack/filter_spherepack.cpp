@@ -146,7 +146,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
   Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "
       "measures report it), median spacing %g, sqrt(area per point) %g, estimated noise %g", st.inputPoints,
-      st.duplicatesDropped, st.scale.meanSpacing, st.scale.spacing, st.scale.areaSpacing, st.scale.noise);
+      st.duplicatesDropped, st.scale.spacing, st.scale.medianSpacing, st.scale.areaSpacing, st.scale.noise);
   if (st.farPointsLeftOut > 0)
     Log("Sphere Packing: %zu far point%s left out, %g or more from the bulk of the cloud (beyond the box grid's "
         "reach at this d)", st.farPointsLeftOut, st.farPointsLeftOut == 1 ? "" : "s", st.farPointsGap);

@@ -28,14 +28,14 @@ CloudSpec spec(Shape s, size_t n, std::uint64_t seed = 1) {
 double poissonMedianSpacing(double areaPerPoint) { return std::sqrt(areaPerPoint * std::log(2.0) / M_PI); }
 
 void expectAllZero(const SamplingEstimate& e) {
-  EXPECT_EQ(e.spacing, 0.0);
+  EXPECT_EQ(e.medianSpacing, 0.0);
   EXPECT_EQ(e.areaPerPoint, 0.0);
   EXPECT_EQ(e.noiseSigma, 0.0);
   EXPECT_EQ(e.noise, 0.0);
 }
 
 void expectFiniteSane(const SamplingEstimate& e) {
-  EXPECT_TRUE(std::isfinite(e.spacing) && e.spacing >= 0);
+  EXPECT_TRUE(std::isfinite(e.medianSpacing) && e.medianSpacing >= 0);
   EXPECT_TRUE(std::isfinite(e.areaPerPoint) && e.areaPerPoint >= 0);
   EXPECT_TRUE(std::isfinite(e.noiseSigma) && e.noiseSigma >= 0);
   EXPECT_TRUE(std::isfinite(e.noise) && e.noise >= 0);
@@ -66,7 +66,7 @@ TEST(CloudScale, IdenticalCollinearAndNonFinitePoints) {
   for (int i = 0; i < 1000; ++i) line.emplace_back(0.01 * i, 0.02 * i, -0.02 * i); // spacing 0.03
   const SamplingEstimate e = growth::estimateSampling(line);
   expectFiniteSane(e);
-  EXPECT_NEAR(e.spacing, 0.03, 1e-12);
+  EXPECT_NEAR(e.medianSpacing, 0.03, 1e-12);
   EXPECT_EQ(e.noise, 0.0); // no plane: every local fit is degenerate
   EXPECT_EQ(e.noiseSamples, 0u);
   // Six points: too few for the quadric fit (six terms), no noise, spacing still measured.
@@ -110,7 +110,7 @@ TEST(CloudScale, SpacingAndAreaOfTheGeneratedShapes) {
       const double a = growth::shapeArea(c) / double(n);
       const std::string what = std::string(growth::shapeName(s)) + " " + std::to_string(n);
       EXPECT_NEAR(e.areaPerPoint / a, 1.0, 0.03) << what;
-      EXPECT_NEAR(e.spacing / poissonMedianSpacing(a), 1.0, 0.03) << what;
+      EXPECT_NEAR(e.medianSpacing / poissonMedianSpacing(a), 1.0, 0.03) << what;
       EXPECT_EQ(e.samples + e.isolated, std::min<size_t>(n, 20000)) << what;
       EXPECT_EQ(e.isolated, 0u) << what;
     }
@@ -134,10 +134,10 @@ TEST(CloudScale, OneFarPointChangesNothing) {
     auto far = cloud;
     far.insert(far.begin() + std::ptrdiff_t(at), Point3d(2e4, -3e4, 1e4)); // 10^4 x the cloud's size
     const SamplingEstimate e = growth::estimateSampling(far);
-    EXPECT_NEAR(e.spacing / clean.spacing, 1.0, 0.03) << at;
+    EXPECT_NEAR(e.medianSpacing / clean.medianSpacing, 1.0, 0.03) << at;
     EXPECT_NEAR(e.areaPerPoint / clean.areaPerPoint, 1.0, 0.03) << at;
-    EXPECT_NEAR(2.5 * e.spacing / (2.5 * clean.spacing), 1.0, 0.03) << at; // d = 2.5 spacings
-    EXPECT_NEAR(e.noise, clean.noise, 0.01 * clean.spacing) << at;
+    EXPECT_NEAR(2.5 * e.medianSpacing / (2.5 * clean.medianSpacing), 1.0, 0.03) << at; // d = 2.5 spacings
+    EXPECT_NEAR(e.noise, clean.noise, 0.01 * clean.medianSpacing) << at;
   }
   // The mean spacing is robust too now (it was multiplied by more than 10 when the far point was a
   // sample: its grid had one cell for the whole sphere).
@@ -153,11 +153,11 @@ TEST(CloudScale, OnePercentOutliersBarelyMoveTheEstimates) {
     const SamplingEstimate clean = growth::estimateSampling(growth::generateCloud(c).points);
     c.outlierFraction = 0.01;
     const SamplingEstimate e = growth::estimateSampling(growth::generateCloud(c).points);
-    EXPECT_NEAR(e.spacing / clean.spacing, 1.0, 0.03) << growth::shapeName(s);
+    EXPECT_NEAR(e.medianSpacing / clean.medianSpacing, 1.0, 0.03) << growth::shapeName(s);
     EXPECT_NEAR(e.areaPerPoint / clean.areaPerPoint, 1.0, 0.03) << growth::shapeName(s);
-    EXPECT_LT(e.noise, 0.15 * e.spacing) << growth::shapeName(s);
+    EXPECT_LT(e.noise, 0.15 * e.medianSpacing) << growth::shapeName(s);
     // With noise as well: the noise estimate keeps within its tolerance.
-    c.noiseBound = 0.5 * clean.spacing;
+    c.noiseBound = 0.5 * clean.medianSpacing;
     const SamplingEstimate noisy = growth::estimateSampling(growth::generateCloud(c).points);
     EXPECT_NEAR(noisy.noise / c.noiseBound, 1.0, 0.25) << growth::shapeName(s);
   }
@@ -168,7 +168,7 @@ TEST(CloudScale, BoundedNoiseIsFound) {
     CloudSpec c = spec(s, 20000, 7);
     const SamplingEstimate clean = growth::estimateSampling(growth::generateCloud(c).points);
     for (double nu : {0.25, 0.5, 1.0}) {
-      c.noiseBound = nu * clean.spacing;
+      c.noiseBound = nu * clean.medianSpacing;
       const SamplingEstimate e = growth::estimateSampling(growth::generateCloud(c).points);
       EXPECT_NEAR(e.noise / c.noiseBound, 1.0, 0.25) << growth::shapeName(s) << " nu " << nu;
       EXPECT_NEAR(e.noiseSigma, e.noise / std::sqrt(5.0), 1e-12 * e.noise);
@@ -182,7 +182,7 @@ TEST(CloudScale, CleanCloudsHaveLittleNoise) {
   for (Shape s : {Shape::Sphere, Shape::Torus, Shape::Patch, Shape::Genus2})
     for (size_t n : {2000u, 10000u, 200000u}) {
       const SamplingEstimate e = growth::estimateSampling(growth::generateCloud(spec(s, n, 9)).points);
-      EXPECT_LT(e.noise, 0.15 * e.spacing) << growth::shapeName(s) << " " << n;
+      EXPECT_LT(e.noise, 0.15 * e.medianSpacing) << growth::shapeName(s) << " " << n;
     }
 }
 
@@ -191,7 +191,7 @@ TEST(CloudScale, GaussianNoiseSigmaIsFound) {
     CloudSpec c = spec(s, 20000, 11);
     const SamplingEstimate clean = growth::estimateSampling(growth::generateCloud(c).points);
     for (double sigma : {0.1, 0.3}) {
-      c.gaussianSigma = sigma * clean.spacing;
+      c.gaussianSigma = sigma * clean.medianSpacing;
       const SamplingEstimate e = growth::estimateSampling(growth::generateCloud(c).points);
       EXPECT_NEAR(e.noiseSigma / c.gaussianSigma, 1.0, 0.25) << growth::shapeName(s) << " sigma " << sigma;
     }
@@ -266,7 +266,7 @@ TEST(CloudScale, NonUniformDensity) {
   EXPECT_GT(e.areaPerPoint, 0.5 * mean);
   EXPECT_LT(e.areaPerPoint, 1.5 * mean);
   EXPECT_EQ(e.isolated, 0u);
-  EXPECT_LT(e.noise, 0.15 * e.spacing);
+  EXPECT_LT(e.noise, 0.15 * e.medianSpacing);
 }
 
 // With the normals (SamplingOptions::normals), a closed plate 2.6 median spacings thick reads as

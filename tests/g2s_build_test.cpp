@@ -3,6 +3,7 @@
 #include "g2s.h"
 #include "g2s_mesher.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>

@@ -3,6 +3,7 @@
 // one point far away changes neither it nor the mesh's holes.
 #include "g2s.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>

@@ -4,6 +4,7 @@
 // clean closed cloud is left exactly as the paper's method meshes it.
 #include "g2s.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>

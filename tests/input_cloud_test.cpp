@@ -1,3 +1,4 @@
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>

@@ -1,3 +1,4 @@
+#include <growth/cloud_scale.h>
 #include <growth/mesh_normals.h>
 
 #include "g2s.h"

@@ -4,6 +4,7 @@
 #include "sphere_packer.h"
 #include "region_triangulation.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>
@@ -520,8 +521,8 @@ TEST(SpherePacker, DefaultDiameterFollowsTheNoise) {
   std::vector<Point3d> layer;
   for (const auto& v : cloud.vert) layer.push_back(Point3d::Construct(v.cP()));
   const double reference = growth::meanSpacing(layer);
-  EXPECT_NEAR(st.scale.meanSpacing, reference, 0.02 * reference);
-  EXPECT_GT(st.scale.meanSpacing, 0.0);
+  EXPECT_NEAR(st.scale.spacing, reference, 0.02 * reference);
+  EXPECT_GT(st.scale.spacing, 0.0);
   EXPECT_NE(st.diameterReason.find("noise"), std::string::npos) << st.diameterReason;
   const auto m = growth::measure(out);
   EXPECT_TRUE(m.manifold());

@@ -18,6 +18,7 @@
 #include "g2s.h"
 #include "g2s_near.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>

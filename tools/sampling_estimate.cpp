@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
       if (noiseSpacings > 0 || gaussSpacings > 0) {
         growth::CloudSpec clean = spec;
         clean.outlierFraction = 0;
-        const double spacing = growth::estimateSampling(growth::generateCloud(clean).points, options, threads).spacing;
+        const double spacing = growth::estimateSampling(growth::generateCloud(clean).points, options, threads).medianSpacing;
         spec.noiseBound = noiseSpacings * spacing;
         spec.gaussianSigma = gaussSpacings * spacing;
       }
@@ -111,16 +111,16 @@ int main(int argc, char** argv) {
       bestMeanCpu = std::min(bestMeanCpu, seconds(CLOCK_PROCESS_CPUTIME_ID) - c);
     }
     std::printf("points: %zu\nk: %d\nspacing: %.6g\narea_per_point: %.6g\narea_spacing: %.6g\n", points.size(),
-                options.neighbours, e.spacing, e.areaPerPoint, std::sqrt(e.areaPerPoint));
+                options.neighbours, e.medianSpacing, e.areaPerPoint, std::sqrt(e.areaPerPoint));
     std::printf("noise_sigma: %.6g\nnoise: %.6g\nnoise_over_spacing: %.4f\n", e.noiseSigma, e.noise,
-                e.spacing > 0 ? e.noise / e.spacing : 0.0);
+                e.medianSpacing > 0 ? e.noise / e.medianSpacing : 0.0);
     std::printf("samples: %zu\nisolated: %zu\nnoise_samples: %zu\n", e.samples, e.isolated, e.noiseSamples);
     std::printf("ms: %.2f\ncpu_ms: %.2f\nmean_spacing: %.6g\nmean_spacing_ms: %.2f\nmean_spacing_cpu_ms: %.2f\n",
                 1e3 * best, 1e3 * bestCpu, mean, 1e3 * bestMean, 1e3 * bestMeanCpu);
     if (generated) {
       const double a = growth::shapeArea(spec) / double(spec.count);
       std::printf("area_ratio: %.4f\nspacing_ratio: %.4f\n", e.areaPerPoint / a,
-                  e.spacing / std::sqrt(a * std::log(2.0) / 3.14159265358979323846));
+                  e.medianSpacing / std::sqrt(a * std::log(2.0) / 3.14159265358979323846));
       if (spec.noiseBound > 0) std::printf("noise_ratio: %.4f\n", e.noise / spec.noiseBound);
       if (spec.gaussianSigma > 0) std::printf("sigma_ratio: %.4f\n", e.noiseSigma / spec.gaussianSigma);
     }

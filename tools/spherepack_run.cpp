@@ -13,6 +13,7 @@
 // Prints one "key: value" per line. Time is the engine's own (Stat::seconds).
 #include "sphere_packer.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>
@@ -128,8 +129,8 @@ int main(int argc, char** argv) {
                            st.secondsTriangulation, st.secondsCleanup, st.secondsOutput};
       for (int k = 0; k < 7; ++k) phase[k] = std::min(phase[k], t[k]);
     }
-    std::printf("spacing: %.6g\n", st.scale.meanSpacing);
-    std::printf("median_spacing: %.6g\narea_spacing: %.6g\nnoise: %.6g\nd_reason: %s\n", st.scale.spacing,
+    std::printf("spacing: %.6g\n", st.scale.spacing);
+    std::printf("median_spacing: %.6g\narea_spacing: %.6g\nnoise: %.6g\nd_reason: %s\n", st.scale.medianSpacing,
                 st.scale.areaSpacing, st.scale.noise, st.diameterReason.c_str());
     std::printf("thin_share: %.4f\nsheet_gap: %.6g\n", st.scale.thinShare, st.scale.sheetGap);
     std::printf("points: %zu\nd: %.6g\ns: %.6g\nmean_splat_radius: %.6g\nsplats_unbounded: %zu\nsplats_clamped: %zu\n",

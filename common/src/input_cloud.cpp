@@ -19,35 +19,6 @@ namespace {
 bool finite3(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 } // namespace
 
-double roughSpacing(const vcg::Box3d& box, size_t n) {
-  if (n < 2 || box.IsNull()) return 0;
-  return box.Diag() / std::sqrt(double(n));
-}
-
-vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
-  vcg::Box3d box;
-  const size_t stride = std::max<size_t>(1, points.size() / std::max<size_t>(1, maxSamples));
-  std::vector<double> c[3];
-  for (size_t i = 0; i < points.size(); i += stride)
-    if (finite3(points[i]))
-      for (int a = 0; a < 3; ++a) c[a].push_back(points[i][a]);
-  if (c[0].empty()) return box;
-  double lo[3], hi[3], extent = 0;
-  for (int a = 0; a < 3; ++a) {
-    auto at = [&](double q) {
-      const size_t k = std::min(c[a].size() - 1, size_t(q * double(c[a].size() - 1) + 0.5));
-      std::nth_element(c[a].begin(), c[a].begin() + std::ptrdiff_t(k), c[a].end());
-      return c[a][k];
-    };
-    lo[a] = at(0.01);
-    hi[a] = at(0.99);
-    extent = std::max(extent, hi[a] - lo[a]);
-  }
-  box.Add(vcg::Point3d(lo[0] - extent, lo[1] - extent, lo[2] - extent));
-  box.Add(vcg::Point3d(hi[0] + extent, hi[1] + extent, hi[2] + extent));
-  return box;
-}
-
 InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   InputCloud c;
   c.layerFaces = static_cast<size_t>(mesh.fn);
@@ -201,50 +172,6 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
       throw Error("All points of the layer lie on one straight line: there is no surface to reconstruct.");
   }
   return c;
-}
-
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
-  return meanSpacing(points, maxSamples, 0);
-}
-
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads) {
-  if (points.size() < 2) return 0;
-  // Cells from the bulk of the cloud (a far point would make them huge, and a cell hold everything).
-  const vcg::Box3d box = robustBox(points, maxSamples);
-  if (box.IsNull()) return 0;
-  size_t inside = 0;
-  for (const auto& p : points) inside += box.IsIn(p) ? 1 : 0;
-  PointGrid grid;
-  grid.build(points, std::max(roughSpacing(box, std::max<size_t>(inside, 2)), 1e-12 * (1.0 + box.Diag())));
-  const size_t stride = std::max<size_t>(1, points.size() / std::max<size_t>(1, maxSamples));
-  // The samples' nearest distances, batched by grid cell (the same values as one nearest() query
-  // per sample), then summed in sample order, leaving out those beyond kSpacingOutlierFactor times
-  // their median.
-  std::vector<double> d2;
-  grid.nearestOtherSquaredDistances(stride, d2, threads);
-  return trimmedMeanSpacing(d2);
-}
-
-double trimmedMeanSpacing(const std::vector<double>& d2) {
-  std::vector<double> valid;
-  valid.reserve(d2.size());
-  for (const double v : d2)
-    if (v >= 0) valid.push_back(v);
-  if (valid.empty()) return 0;
-  const size_t mid = valid.size() / 2;
-  std::nth_element(valid.begin(), valid.begin() + std::ptrdiff_t(mid), valid.end());
-  // (A median of 0, more than half the samples on a duplicate, leaves nothing out.)
-  const double cut2 = valid[mid] > 0 ? kSpacingOutlierFactor * kSpacingOutlierFactor * valid[mid]
-                                     : std::numeric_limits<double>::infinity();
-  double sum = 0;
-  size_t n = 0;
-  for (const double v : d2) {
-    if (v >= 0 && v <= cut2) {
-      sum += std::sqrt(v);
-      ++n;
-    }
-  }
-  return n > 0 ? sum / double(n) : 0;
 }
 
 } // namespace growth

@@ -1,6 +1,7 @@
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
+#include <growth/cloud_scale.h>
 #include <growth/morton.h>
 #include <growth/point_grid.h>
 #include <growth/self_intersections.h>

@@ -1,3 +1,4 @@
+#include <growth/cloud_scale.h>
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/parallel.h>

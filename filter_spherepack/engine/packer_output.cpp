@@ -141,7 +141,7 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
 void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
             bool noFaces, Stat& st) {
   const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
-                              ? oppositeNeighbourShare(in.points, in.normals, scale.spacing)
+                              ? oppositeNeighbourShare(in.points, in.normals, scale.medianSpacing)
                               : 0.0;
   if (opposite >= kOppositeNeighbourShare)
     st.warnings.push_back("The normals look unoriented: for " + fmt(100 * opposite) + " % of the points the "

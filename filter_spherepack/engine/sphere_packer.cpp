@@ -41,7 +41,7 @@ CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads, cons
   const SamplingEstimate e = estimateSampling(points, options, threads);
   if (!(e.areaPerPoint > 0) || !std::isfinite(e.areaPerPoint)) return sc;
   sc.spacing = e.spacing;
-  sc.meanSpacing = e.meanSpacing;
+  sc.medianSpacing = e.medianSpacing;
   sc.areaSpacing = std::sqrt(e.areaPerPoint);
   sc.area = e.areaPerPoint * double(points.size());
   sc.noise = std::isfinite(e.noise) ? e.noise : 0.0;

@@ -49,9 +49,9 @@ struct Params {
 // The scale of a cloud, from which the defaults are derived: robust estimates (medians over a
 // sample of the points, growth/cloud_scale.h), so that outliers and far points barely move them.
 struct CloudScale {
-  double spacing = 0;        // median nearest-neighbour distance (for the packer's own checks)
-  double meanSpacing = 0;    // the robust (trimmed) mean spacing, growth::meanSpacing's estimator
-                             // on the estimate's samples: what Robust G2S and mesh_measures report
+  double spacing = 0;        // the spacing: the robust (trimmed) mean nearest-neighbour distance
+                             // (growth/cloud_scale.h), as Robust G2S, the measures and every log use it
+  double medianSpacing = 0;  // median nearest-neighbour distance (for the packer's own checks)
   double areaSpacing = 0;    // sqrt(surface area per point): a sampling length that does not depend
                              // on how regular the sampling is (0.47 of it is the median spacing of
                              // a random sample, all of it that of a square lattice)

@@ -5,7 +5,7 @@
 // multiplied by ~90 on a 50k-point sphere by one point far away).
 //
 // For each sampled point p, its k nearest other points (k = SamplingOptions::neighbours):
-// - spacing = median over the samples of the distance to the nearest other point. For a Poisson
+// - medianSpacing = median over the samples of the distance to the nearest other point. For a Poisson
 //   sample of the plane with area a per point, P(r1 > r) = exp(-pi r^2 / a), so the median is
 //   sqrt(a ln 2 / pi) = 0.4697 sqrt(a).
 // - areaPerPoint = pi median(r_k)^2 / (k - 1/3), r_k the distance to the k-th nearest other point:
@@ -35,12 +35,39 @@
 // with fewer than k neighbours within the cap is isolated (counted, not used), and a search stops
 // after kSamplingVisitLimit points (in a dense cluster the radius then shrinks to the k-th distance
 // among those visited; for duplicates, the nearest of those visited are taken).
+#include <vcg/space/box3.h>
 #include <vcg/space/point3.h>
 
 #include <cstddef>
 #include <vector>
 
 namespace growth {
+
+// The spacing. // Mean distance of each point to its nearest other point (the cloud's mean spacing), computed on
+// up to `maxSamples` points taken at a fixed stride (deterministic). 0 for fewer than 2 points.
+// Robust: samples whose nearest other point is farther than kSpacingOutlierFactor (5) times the
+// median of the samples' distances are left out of the mean (stray points, far outliers: on a
+// clean sampling none is, so the value is the plain mean), and the search grid is sized from
+// robustBox(), so one far point changes neither the value nor the cost.
+constexpr size_t kMeanSpacingSamples = 20000;
+constexpr double kSpacingOutlierFactor = 5.0;
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
+// The same value, computed on `threads` threads (0 = automatic, growth/parallel.h).
+double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads);
+
+// The trimmed mean of meanSpacing() from the samples' squared nearest distances (entries below 0:
+// no nearest point, ignored), summed in the given order: for callers that measure the distances on
+// their own index (Robust G2S on its grid) and must log the same number as meanSpacing().
+double trimmedMeanSpacing(const std::vector<double>& squaredNearest);
+
+// Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
+double roughSpacing(const vcg::Box3d& box, size_t n);
+
+// The box of the bulk of a cloud: per axis the 1 % and 99 % quantiles of the finite points among
+// up to maxSamples taken at a fixed stride, widened on every side by the largest of those extents.
+// A few far points do not move it (they move the bounding box). Null when no point is finite.
+vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
+
 
 struct SamplingOptions {
   size_t maxSamples = 20000;     // points sampled at a fixed stride (deterministic)
@@ -61,10 +88,10 @@ struct SamplingOptions {
 constexpr double kOtherSheetSine = 0.5; // 30 degrees out of the tangent plane
 
 struct SamplingEstimate {
-  double spacing = 0;      // median nearest-neighbour distance over the samples
-  double meanSpacing = 0;  // growth::trimmedMeanSpacing of the samples' nearest distances: the
-                           // estimator of growth::meanSpacing (mesh_measures, Robust G2S) on these
-                           // samples, within sampling error of it
+  double spacing = 0;      // the spacing, in every log and statistic of both filters: the trimmed
+                           // mean of the samples' nearest distances (trimmedMeanSpacing), the
+                           // estimator of meanSpacing() on these samples, within sampling error of it
+  double medianSpacing = 0; // median nearest-neighbour distance over the samples
   double areaPerPoint = 0; // pi median(r_k)^2 / (k - 1/3): surface area per point, Poisson-calibrated
   double noiseSigma = 0;   // robust standard deviation of the offsets normal to the local surface
   double noise = 0;        // nu = sqrt(5) noiseSigma: bound of a uniform-in-ball noise (sec. 5.3)

@@ -42,29 +42,4 @@ constexpr double kMaxAbsCoordinate = 1e15;
 // identical or on one line, faces when !allowFaces, missing/zero/NaN normals when needNormals.
 InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check);
 
-// Mean distance of each point to its nearest other point (the cloud's mean spacing), computed on
-// up to `maxSamples` points taken at a fixed stride (deterministic). 0 for fewer than 2 points.
-// Robust: samples whose nearest other point is farther than kSpacingOutlierFactor (5) times the
-// median of the samples' distances are left out of the mean (stray points, far outliers: on a
-// clean sampling none is, so the value is the plain mean), and the search grid is sized from
-// robustBox(), so one far point changes neither the value nor the cost.
-constexpr size_t kMeanSpacingSamples = 20000;
-constexpr double kSpacingOutlierFactor = 5.0;
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
-// The same value, computed on `threads` threads (0 = automatic, growth/parallel.h).
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads);
-
-// The trimmed mean of meanSpacing() from the samples' squared nearest distances (entries below 0:
-// no nearest point, ignored), summed in the given order: for callers that measure the distances on
-// their own index (Robust G2S on its grid) and must log the same number as meanSpacing().
-double trimmedMeanSpacing(const std::vector<double>& squaredNearest);
-
-// Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
-double roughSpacing(const vcg::Box3d& box, size_t n);
-
-// The box of the bulk of a cloud: per axis the 1 % and 99 % quantiles of the finite points among
-// up to maxSamples taken at a fixed stride, widened on every side by the largest of those extents.
-// A few far points do not move it (they move the bounding box). Null when no point is finite.
-vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
-
 } // namespace growth

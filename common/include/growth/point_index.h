@@ -25,6 +25,7 @@
 //   Morton code of their place inside the cell at 2^kSplitBits sub-cells per axis: its sub-cells
 //   of every level are contiguous ranges (an implicit octree), and a query descends it to the
 //   sub-cells its ball's box touches, so its cost follows the local density, not the cell's count.
+#include <growth/cloud_scale.h>
 #include <growth/huge_pages.h>
 #include <growth/morton.h>
 
