@@ -68,7 +68,10 @@ private:
   // The faces that a triangle on the points of loop_ can meet, into near_.
   void gatherNearLoop();
   // Triangle t meets no live face, no face added before and none of pending_ (exactly).
-  bool meetsNothing(const Triangle& t) const;
+  // (ear: a triangle of close(), whose answer about the mesh's faces is kept for the loop.)
+  bool meetsNothing(const Triangle& t, bool ear = false) const;
+  // Ear t meets a live face near loop_ (anyMeeting), answered once per ear and loop.
+  bool earMeetsMesh(const Triangle& t) const;
   // The live faces near loop_ (near_ and the long ones) that t meets: stop(face) for each, until it
   // returns true (then true).
   template <class F> bool anyMeeting(const Triangle& t, F&& stop) const;
@@ -104,6 +107,11 @@ private:
   std::vector<Triangle> pending_;
   std::vector<std::uint32_t> seen_;
   std::vector<NearFace> near_;
+  struct EarAnswer {
+    Triangle t;
+    bool meets;
+  };
+  mutable std::vector<EarAnswer> earAnswers_; // earMeetsMesh's answers for this loop
   // The long faces whose box meets the loop's box are in near_ too (from the cells that box
   // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
   bool nearHasLong_ = false;

@@ -1,5 +1,6 @@
 #include "g2s_mesher.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h> // growth::Random
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>     // growth::robustBox, roughSpacing, trimmedMeanSpacing

@@ -364,6 +364,7 @@ void Mesher::HolePass::gatherNearLoop() {
       hi[d] = std::max(hi[d], pts_[v][d]);
     }
   }
+  earAnswers_.clear(); // (the answers were for the faces near the loop before)
   // Each face once (inNear_ marks the faces seen, cleared after).
   seen_.clear();
   auto consider = [&](std::uint32_t g) {
@@ -448,14 +449,24 @@ template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop
   return false;
 }
 
-bool Mesher::HolePass::meetsNothing(const Triangle& t) const {
+bool Mesher::HolePass::meetsNothing(const Triangle& t, bool ear) const {
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
   for (const Triangle& p : pending_)
     if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
         facesIntersect(pos, t, p))
       return false;
-  return !anyMeeting(t, [](std::uint32_t) { return true; });
+  return !(ear ? earMeetsMesh(t) : anyMeeting(t, [](std::uint32_t) { return true; }));
+}
+
+bool Mesher::HolePass::earMeetsMesh(const Triangle& t) const {
+  // The mesh's faces do not change while one loop is closed (gatherNearLoop), and close() tries
+  // the ears that failed again at each later step: each ear's answer is kept for the loop.
+  for (const EarAnswer& k : earAnswers_)
+    if (k.t[0] == t[0] && k.t[1] == t[1] && k.t[2] == t[2]) return k.meets;
+  const bool meets = anyMeeting(t, [](std::uint32_t) { return true; });
+  earAnswers_.push_back(EarAnswer{t, meets});
+  return meets;
 }
 
 // False with pending_ and the point–edge map as before.
@@ -471,7 +482,7 @@ bool Mesher::HolePass::close() {
       ok = !isZero(normal(t[0], t[1], t[2])) && pem.canAddTriangle(t[0], t[1], t[2]);
       for (size_t i = 0; i < 3 && ok; ++i)
         ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop_[i], loop_[(i + 1) % 3], opp_[i])) >= minCos_;
-      ok = ok && meetsNothing(t);
+      ok = ok && meetsNothing(t, true);
       if (ok) {
         pem.addTriangle(t[0], t[1], t[2]);
         pending_.push_back(t);
@@ -500,7 +511,7 @@ bool Mesher::HolePass::close() {
       // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
       if (pem.triangles(v0, v2) != 0) continue;
       const Triangle t{v1, v0, v2};
-      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
+      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t, true)) continue;
       // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
       pem.addTriangle(t[0], t[1], t[2]);
       pending_.push_back(t);
@@ -562,10 +573,10 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
       for (size_t j = i + 1; j < k; ++j) {
         const double sub = best[i * n + j] + best[j * n + k];
         if (!(sub < best[i * n + k])) continue;
-        if (!isValid(i, j, k)) continue;
         const Triangle t = tri(i, j, k);
         const double cost = sub + 0.5 * normal(t[0], t[1], t[2]).Norm();
-        if (cost < best[i * n + k]) {
+        // (The tests only where the triangle would improve the best: the same choice, fewer tests.)
+        if (cost < best[i * n + k] && isValid(i, j, k)) {
           best[i * n + k] = cost;
           split[i * n + k] = std::uint32_t(j);
         }

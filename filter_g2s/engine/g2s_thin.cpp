@@ -29,6 +29,7 @@
 #include "g2s_apart.h"
 #include "g2s_mesher.h"
 
+#include <growth/cloud_scale.h>
 #include <growth/stopwatch.h>
 
 #include <growth/self_intersections.h>
