@@ -660,6 +660,29 @@ TEST(G2SBuild, ThinSlabFacesOutward) {
 // before the crossing-free closures). Two of them closed with a handle (a tunnel through a rim)
 // before the handle pass (Params::removeSmallHandles, g2s_handles.cpp).
 // (At two spacings the growth still crosses: not solved.)
+// Params::thinPartRules is the option that makes the difference on thin plates: without it the
+// growth's candidate choice is the paper's, and on these samplings the front crosses the plate
+// and grows its other sheet inside out.
+TEST(G2SBuild, ThinPartRulesAreWhatKeepsAThinPlatesSheetsFacingOut) {
+  size_t inwardWithout = 0;
+  for (std::uint64_t seed : {1u, 10u}) {
+    SCOPED_TRACE(seed);
+    const CloudSpec spec = slabSpec(0.025, 30000, seed);
+    const Mesh cloud = cloudMesh(spec);
+    g2s::Params off = defaults();
+    off.thinPartRules = false;
+    const auto without = run(cloud, off);
+    expectValidOutput(cloud, without);
+    EXPECT_EQ(without->stat.thinPartRefusals, 0u);
+    inwardWithout += slabFacing(without->mesh, spec.slabHalfSize, spec.slabThickness).inward;
+    const auto with = run(cloud);
+    EXPECT_EQ(slabFacing(with->mesh, spec.slabHalfSize, spec.slabThickness).inward, 0u);
+    EXPECT_GT(with->stat.thinPartRefusals, 0u);
+  }
+  RecordProperty("inward_faces_without_rules", int(inwardWithout));
+  EXPECT_GT(inwardWithout, 1000u);
+}
+
 TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   struct Case {
     double thickness;

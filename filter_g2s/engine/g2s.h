@@ -25,6 +25,10 @@ struct Params {
                                      // sheets) and close their loops; needs the two passes above
   int minComponentFaces = 50;        // not in the paper: connected pieces with fewer faces are dropped (the largest
                                      // always stays): triangles among stray points; 0 keeps all
+  bool thinPartRules = true;         // not in the paper: during the growth, refuse candidates that fold or cross
+                                     // into the material between two close sheets (a closed part a few
+                                     // spacings thick), and close the rim loops this leaves (g2s_mesher.cpp,
+                                     // kSheetGap; g2s_thin.cpp); off: the paper's candidate choice
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
   int threads = 0;                   // threads for the crossing-face test (0 = automatic, at most
                                      // growth::kMaxThreads); the mesh is the same for any number

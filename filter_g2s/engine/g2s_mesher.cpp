@@ -133,7 +133,7 @@ std::uint64_t gcd(std::uint64_t a, std::uint64_t b) {
 } // namespace
 
 Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
-    : params_(params), spacing_(spacing), queue_(std::max(1, params.sizeLevels * params.flatnessLevels)) {
+    : params_(params), thin_(params.thinPartRules), spacing_(spacing), queue_(std::max(1, params.sizeLevels * params.flatnessLevels)) {
   const size_t given = points.size();
   if (spacing_ > 0) {
     grid_.build(std::move(points), kCellSpacings * spacing_);
@@ -513,10 +513,11 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
     if (!emptyBall(ball, gatherRadius, gatherCentre, a, b, id) &&
         // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
         // local edge length.)
-        !(__builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
+        !(thin_ && __builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
           emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
       continue;
     const Candidate cand = accepted(A, B, id, level, frontNormal, frontNorm, false);
+    if (!thin_) return cand;
     if ((__builtin_expect(cand.cosBeta < kGapFoldCos, 0) &&
          ((cand.cosBeta < kFoldCos && foldsAcrossThePart(a, b, c, id, dir, frontNormal, frontNorm, radius)) ||
           foldsAcrossAGap(a, b, id, dir, frontNormal, frontNorm))) ||
@@ -602,6 +603,7 @@ GROWTH_G2S_INLINE Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std
     if (found == 1) {
       if (!topologyAllows(a, b, c, scored_[0].id)) continue;
       const Candidate cand = accepted(A, B, scored_[0].id, level, frontNormal, frontNorm, true);
+      if (!thin_) return cand;
       if ((__builtin_expect(cand.cosBeta < kGapFoldCos, 0) && foldsAcrossAGap(a, b, scored_[0].id, dir, frontNormal, frontNorm)) ||
           (__builtin_expect((pts_[scored_[0].id] - A) * frontNormal <= -kUnderGap * spacing_ * frontNorm, 0) &&
            growsUnderASheet(a, b, scored_[0].id, frontNormal, frontNorm))) {

@@ -439,6 +439,7 @@ private:
   void nestedShellSigns(const ComponentOf& component, size_t components, std::vector<signed char>& wanted) const;
 
   Params params_;
+  bool thin_ = true; // params_.thinPartRules
   double spacing_ = 0;
   double seedMaxEdge_ = 0;
   size_t clumps_ = 0, clumpPointsMerged_ = 0;
