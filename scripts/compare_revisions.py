@@ -12,7 +12,7 @@ ratio of the rates (after / before), the median and quartiles of the ratios of e
 back-to-back runs (time after / time before: the least sensitive to the machine's drift), and writes the same table to out/revisions/compare-*.md.
 
   scripts/compare_revisions.sh BEFORE [AFTER]      (AFTER defaults to HEAD)
-      [--rounds N] [--points N] [--shapes sphere,torus] [--filters g2s,spherepack]
+      [--rounds N] [--points N] [--shapes sphere,torus] [--filters g2s,spherepack] [--clouds A.ply,B.ply]
 
 The sphere packer runs with --threads 1 (Robust G2S is single-threaded): the machines have two
 cores, and one thread each keeps the two revisions' runs from competing with other work.
@@ -76,6 +76,8 @@ def main():
     ap.add_argument("--points", type=int, default=200000)
     ap.add_argument("--shapes", default="sphere,torus")
     ap.add_argument("--filters", default="g2s,spherepack")
+    ap.add_argument("--clouds", default="", help="PLY files timed too, comma-separated (real scans, noisy clouds "
+                    "written by make_cloud); --shapes '' leaves only these")
     ap.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     a = ap.parse_args()
 
@@ -84,12 +86,18 @@ def main():
     clouds_dir = os.path.join(ROOT, "out", "revisions", "clouds")
     os.makedirs(clouds_dir, exist_ok=True)
     clouds = []
-    for shape in a.shapes.split(","):
+    for shape in [x for x in a.shapes.split(",") if x]:
         path = os.path.join(clouds_dir, f"{shape}-{a.points}.ply")
         if not os.path.exists(path):
             run([os.path.join(builds[1], "make_cloud"), "--shape", shape, "--points", str(a.points), "--seed", "1",
                  "-o", path], stdout=subprocess.DEVNULL)
         clouds.append((f"{shape}-{a.points}", path))
+    for path in [x for x in a.clouds.split(",") if x]:
+        if not os.path.isfile(path):
+            sys.exit(f"compare_revisions: no cloud {path}")
+        clouds.append((os.path.splitext(os.path.basename(path))[0], os.path.abspath(path)))
+    if not clouds:
+        sys.exit("compare_revisions: no cloud (--shapes and --clouds are both empty)")
     filters = a.filters.split(",")
     extra = {"g2s": [], "spherepack": ["--threads", "1"]}
 

@@ -514,7 +514,7 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
         // (A G2S ball can hold another sheet's points only beyond kSheetGap spacings and the
         // local edge length.)
         !(thin_ && __builtin_expect(ball.radius2 > std::max(kSheetGap * kSheetGap * spacing_ * spacing_, local * local), 0) &&
-          emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local)))
+          emptyButOtherSheet(ball, a, b, id, lastInside_, frontNormal, frontNorm, local, gatherRadius, gatherCentre)))
       continue;
     const Candidate cand = accepted(A, B, id, level, frontNormal, frontNorm, false);
     if (!thin_) return cand;
@@ -628,7 +628,8 @@ GROWTH_G2S_INLINE Candidate Mesher::search(std::uint32_t a, std::uint32_t b, std
 }
 
 bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
-                                std::uint32_t inside, const P3& frontNormal, double frontNorm, double local) {
+                                std::uint32_t inside, const P3& frontNormal, double frontNorm, double local,
+                                double gatherRadius, const P3& gatherCentre) {
   // Flat candidates only: a fold is no gap-closing triangle of the sheet.
   const P3 n = (pts_[a] - pts_[b]) ^ (pts_[p] - pts_[b]);
   const double len = n.Norm();
@@ -641,10 +642,21 @@ bool Mesher::emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t
   // The point that failed the emptiness test lies near the plane (on a clean cloud, nearly
   // always): the ball is spoiled by its own sheet, without another query.
   if (std::abs((pts_[inside] - ball.centre) * unit) <= far) return false;
-  const bool spoiled = grid_.anyInBall(ball.centre, radius, [&](std::uint32_t i, double d2) {
+  auto spoils = [&](std::uint32_t i, double d2) {
     return i != a && i != b && i != p && strictlyInside(d2, ball.radius2) &&
            std::abs((pts_[i] - ball.centre) * unit) <= far;
-  });
+  };
+  // The gathered points first: a point of them that spoils the ball decides it (its own sheet,
+  // near the front, nearly always does); where they hold the whole ball (gatherNear keeps a float
+  // margin) none spoiling it decides it too; only otherwise the grid is asked. The same answer
+  // as the grid's query alone, from far fewer points.
+  bool spoiled = false;
+  for (size_t k = 0; k < near_.size && !spoiled; ++k) {
+    const std::uint32_t i = near_.id[k];
+    spoiled = spoils(i, (pts_[i] - ball.centre).SquaredNorm());
+  }
+  if (!spoiled && !((ball.centre - gatherCentre).Norm() + radius <= gatherRadius * (1.0 - 1e-12)))
+    spoiled = grid_.anyInBall(ball.centre, radius, spoils);
   otherSheetBalls_ += !spoiled;
   return !spoiled;
 }

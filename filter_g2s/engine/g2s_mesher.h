@@ -352,9 +352,11 @@ private:
   // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
   // point but points far off its plane, of another sheet (a flat candidate only).
   // local: the mean edge length at a and b.
-  // inside: a point found inside the ball by emptyBall.
+  // inside: a point found inside the ball by emptyBall. gatherRadius, gatherCentre: the ball
+  // gathered into near_ (its points are used where it holds the G2S ball).
   GROWTH_G2S_COLD bool emptyButOtherSheet(const Ball& ball, std::uint32_t a, std::uint32_t b, std::uint32_t p,
-                                          std::uint32_t inside, const P3& frontNormal, double frontNorm, double local);
+                                          std::uint32_t inside, const P3& frontNormal, double frontNorm, double local,
+                                          double gatherRadius, const P3& gatherCentre);
   // Candidate (b, a, p), far behind the front triangle (a, b, c), folds while its search sphere
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
