@@ -8,6 +8,9 @@ source "$(dirname "$0")/mesher_checks.sh"
 torus_cloud "$work/torus.ply"
 mlserver_mlx g2s torus.ply mesh.ply -m fq
 grep -q "Robust G2S: .* faces on" "$work/server.log" || { cat "$work/server.log"; fail "no statistics in the log"; }
+for pass in "non-manifold vertices (sec. 4.2)" "crossing faces" "hole closure" "small handles" "orientation"; do
+  grep -qF "Robust G2S pass, $pass: " "$work/server.log" || { cat "$work/server.log"; fail "no log line for the pass '$pass'"; }
+done
 LC_ALL=C sed -n '/^end_header/q;p' "$work/mesh.ply" | grep -q "property float quality" \
   || fail "per-face quality not saved"
 check_closed_torus "$work/mesh.ply"
