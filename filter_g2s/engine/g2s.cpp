@@ -103,15 +103,18 @@ std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const
 // layer's normals for the sheets, where it has them).
 // One pass of the clean-up, timed, with the live faces it took out and added (new faces are
 // appended to the triangles, so the added ones are the growth of that array).
+// `live`: the live faces before the pass (one count per pass), updated.
 template <class F>
-void runPass(Mesher& mesher, Stat& stat, const char* name, F&& pass) {
+void runPass(Mesher& mesher, Stat& stat, size_t& live, const char* name, F&& pass) {
   Stopwatch watch;
-  const size_t liveBefore = mesher.liveTriangles(), allBefore = mesher.triangles().size();
+  const size_t allBefore = mesher.triangles().size();
   pass();
   Stat::Pass p;
   p.name = name;
   p.facesAdded = mesher.triangles().size() - allBefore;
-  p.facesRemoved = liveBefore + p.facesAdded - mesher.liveTriangles();
+  const size_t liveAfter = mesher.liveTriangles();
+  p.facesRemoved = live + p.facesAdded - liveAfter;
+  live = liveAfter;
   p.seconds = watch.total();
   stat.passes.push_back(p);
 }
@@ -120,14 +123,15 @@ void runPass(Mesher& mesher, Stat& stat, const char* name, F&& pass) {
 // small holes closed; then the boundary counts and the orientation of every component (by the
 // layer's normals for the sheets, where it has them).
 void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, const InputCloud& input) {
+  size_t live = mesher.liveTriangles();
   if (p.removeNonManifoldVertices) {
-    runPass(mesher, stat, "non-manifold vertices (sec. 4.2)", [&] {
+    runPass(mesher, stat, live, "non-manifold vertices (sec. 4.2)", [&] {
       const ManifoldCleanupStat cs = mesher.removeNonManifoldVertices();
       stat.nonManifoldVerticesRemoved = cs.nonManifoldVertices;
       stat.facesRemoved = cs.facesRemoved;
     });
     // Not in the paper: no two faces may intersect (g2s_repair.cpp).
-    runPass(mesher, stat, "crossing faces", [&] {
+    runPass(mesher, stat, live, "crossing faces", [&] {
       const Mesher::SelfIntersectionStat si = mesher.removeSelfIntersections();
       stat.selfIntersectionFacesRemoved = si.facesRemoved;
       stat.nonManifoldVerticesRemoved += si.nonManifoldVertices;
@@ -140,13 +144,13 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   // Not in the paper: pieces too small to be a part of the surface (triangles among stray points)
   // go before the hole pass, which then spends no time on their loops.
   if (p.minComponentFaces > 1)
-    runPass(mesher, stat, "small pieces", [&] {
+    runPass(mesher, stat, live, "small pieces", [&] {
       stat.componentsDropped = mesher.dropSmallComponents(size_t(p.minComponentFaces), stat.componentFacesDropped);
     });
   if (p.maxHoleEdges > 0 && p.removeNonManifoldVertices) { // (its loops need manifold vertices)
     Mesher::HoleStat hs;
-    runPass(mesher, stat, "hole closure", [&] { hs = mesher.closeHoles(p.maxHoleEdges); });
-    runPass(mesher, stat, "wider hole closure and regrowth", [&] { mesher.widenHoles(p.maxHoleEdges, hs); });
+    runPass(mesher, stat, live, "hole closure", [&] { hs = mesher.closeHoles(p.maxHoleEdges); });
+    runPass(mesher, stat, live, "wider hole closure and regrowth", [&] { mesher.widenHoles(p.maxHoleEdges, hs); });
     stat.holesClosed = hs.closed;
     stat.holeFacesAdded = hs.facesAdded;
     stat.holeFacesReplaced = hs.facesReplaced;
@@ -158,7 +162,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   Mesher::BoundaryCount boundary = mesher.boundary();
   if (p.removeNonManifoldVertices) { // (a handle count needs manifold vertices)
     // Not in the paper: small handles (tunnels between close sheets) cut, their loops closed.
-    runPass(mesher, stat, "small handles", [&] {
+    runPass(mesher, stat, live, "small handles", [&] {
       if (p.removeSmallHandles) {
         const Mesher::HandleStat hs = mesher.removeSmallHandles(boundary, p.maxHoleEdges);
         stat.handlesCut = hs.handles;
@@ -180,7 +184,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   mesher.releaseGrowthState();
   stat.boundaryEdges = boundary.edges;
   stat.holes = boundary.loops;
-  runPass(mesher, stat, "orientation", [&] {
+  runPass(mesher, stat, live, "orientation", [&] {
     // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
     const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(cloud, input, mesher) : std::vector<P3>();
     mesher.orientComponents(normals.empty() ? nullptr : &normals);

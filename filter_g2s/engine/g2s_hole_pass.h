@@ -106,7 +106,9 @@ private:
   const double minCos_;
   std::vector<Triangle> pending_;
   std::vector<std::uint32_t> seen_;
-  std::vector<NearFace> near_;
+  std::vector<NearFace> near_;     // sorted by lo[0] (gatherNearLoop)
+  std::vector<double> nearLowX_;   // their lo[0], in that order
+  double nearWidestX_ = 0;         // the largest x extent of their boxes
   struct EarAnswer {
     Triangle t;
     bool meets;
