@@ -106,9 +106,7 @@ private:
   const double minCos_;
   std::vector<Triangle> pending_;
   std::vector<std::uint32_t> seen_;
-  std::vector<NearFace> near_;     // sorted by lo[0] (gatherNearLoop)
-  std::vector<double> nearLowX_;   // their lo[0], in that order
-  double nearWidestX_ = 0;         // the largest x extent of their boxes
+  std::vector<NearFace> near_;
   struct EarAnswer {
     Triangle t;
     bool meets;

@@ -403,15 +403,6 @@ void Mesher::HolePass::gatherNearLoop() {
         }
   }
   for (std::uint32_t g : seen_) inNear_[g] = 0;
-  // By the low x of their boxes, with the widest box's x extent: anyMeeting looks only at the run
-  // whose boxes can reach a triangle's in x (its callers ask "any", or collect a set).
-  std::sort(near_.begin(), near_.end(), [](const NearFace& x, const NearFace& y) { return x.lo[0] < y.lo[0]; });
-  nearLowX_.resize(near_.size());
-  nearWidestX_ = 0;
-  for (size_t k = 0; k < near_.size(); ++k) {
-    nearLowX_[k] = near_[k].lo[0];
-    nearWidestX_ = std::max(nearWidestX_, near_[k].hi[0] - near_[k].lo[0]);
-  }
 }
 
 template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
@@ -450,15 +441,11 @@ template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop
           if (it != longCells_.end() && meetsLong(it->second)) return true;
         }
   }
-  // (Low x in [lo.x - 2 widest, hi.x], twice for a margin for rounding: the others lie beside t's box.)
-  const size_t from = size_t(std::lower_bound(nearLowX_.begin(), nearLowX_.end(), lo[0] - 2 * nearWidestX_) - nearLowX_.begin());
-  for (size_t r = from; r < near_.size() && nearLowX_[r] <= hi[0]; ++r) {
-    const NearFace& e = near_[r];
+  for (const NearFace& e : near_)
     if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
           e.lo[2] > hi[2]) &&
         meetsBeside(m_.tri_[e.g]) && stop(e.g))
       return true;
-  }
   return false;
 }
 

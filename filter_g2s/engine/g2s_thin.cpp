@@ -178,9 +178,6 @@ private:
   std::vector<std::uint32_t> nearId;
   std::vector<Triangle> active;
   std::vector<std::array<double, 6>> activeBox;
-  std::vector<std::uint32_t> activeOrder; // active by the low x of its box (collectActive)
-  std::vector<double> activeLowX;         // those low x, in that order
-  double activeWidestX = 0;               // the largest x extent of the boxes
   P3 lo, hi;
 };
 
@@ -514,18 +511,6 @@ void Mesher::RimPass::collectActive() {
     active.push_back(t);
     activeBox.push_back(b);
   }
-  // By the low x of their boxes, with the widest box's x extent: crossesActive looks only at the
-  // run whose boxes can reach c's in x (it asks "any", so the order does not change its answer).
-  activeOrder.resize(active.size());
-  for (size_t n = 0; n < active.size(); ++n) activeOrder[n] = std::uint32_t(n);
-  std::sort(activeOrder.begin(), activeOrder.end(),
-            [&](std::uint32_t x, std::uint32_t y) { return activeBox[x][0] < activeBox[y][0]; });
-  activeLowX.resize(active.size());
-  activeWidestX = 0;
-  for (size_t n = 0; n < active.size(); ++n) {
-    activeLowX[n] = activeBox[activeOrder[n]][0];
-    activeWidestX = std::max(activeWidestX, activeBox[n][3] - activeBox[n][0]);
-  }
 }
 
 // Triangle c crosses one of active: a triangle whose box is apart from c's cannot meet it (the
@@ -539,11 +524,7 @@ bool Mesher::RimPass::crossesActive(const Triangle& c) {
   }
   const std::vector<P3>& pos = grid_.points();
   std::unique_ptr<PlaneOf> plane; // c's, made at the first face whose box meets c's
-  // Boxes with low x in [clo.x - 2 widest, chi.x] (twice: a margin for rounding): the others lie
-  // beside c's box in x.
-  const size_t from = size_t(std::lower_bound(activeLowX.begin(), activeLowX.end(), clo[0] - 2 * activeWidestX) - activeLowX.begin());
-  for (size_t r = from; r < active.size() && activeLowX[r] <= chi[0]; ++r) {
-    const size_t n = activeOrder[r];
+  for (size_t n = 0; n < active.size(); ++n) {
     const std::array<double, 6>& b = activeBox[n];
     if (b[3] < clo[0] || b[0] > chi[0] || b[4] < clo[1] || b[1] > chi[1] || b[5] < clo[2] || b[2] > chi[2])
       continue;
