@@ -98,9 +98,6 @@ std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const
   return normals;
 }
 
-// Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
-// small holes closed; then the boundary counts and the orientation of every component (by the
-// layer's normals for the sheets, where it has them).
 // One pass of the clean-up, timed, with the live faces it took out and added (new faces are
 // appended to the triangles, so the added ones are the growth of that array).
 // `live`: the live faces before the pass (one count per pass), updated.
