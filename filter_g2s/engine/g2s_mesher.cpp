@@ -194,6 +194,14 @@ void Mesher::gather(const P3& centre, double radius) {
 
 bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
                        std::uint32_t b, std::uint32_t c) const {
+  // The point found inside the last ball tested first: the balls tested one after another are
+  // mostly those of one edge's candidates, which overlap, so a point inside one is often inside
+  // the next. The same exact test as below, so the same answer.
+  {
+    const std::uint32_t w = lastInside_;
+    if (w != a && w != b && w != c && w < grid_.size() && strictlyInside((pts_[w] - ball.centre).SquaredNorm(), ball.radius2))
+      return false;
+  }
   // Gathered points: decided in float where they are farther than the float error from the
   // sphere, exactly otherwise (the three points on the sphere always go the exact way).
   float cf[3];
