@@ -169,6 +169,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
   assignHuge(crossing_, n, std::uint8_t(0));
   assignHuge(freeEdges_, n, std::uint16_t(0));
   assignHuge(faceAt_, n, std::uint32_t(kNoFace));
+  assignHuge(onSurface_, n, std::uint8_t(0));
   for (int k = 1; k < params_.flatnessLevels; ++k)
     cosLimit_.push_back(std::cos(3.14159265358979323846 * double(k) / double(params_.flatnessLevels)));
   // A closed surface has 2N − 4 + 4g triangles: room for 2N + 16, made resident at once (an
@@ -190,6 +191,23 @@ double Mesher::sampleSpacing() const {
 
 void Mesher::gather(const P3& centre, double radius) {
   grid_.gatherNear(centre, radius, near_);
+  nearCentre_ = centre;
+  nearRadius_ = radius;
+}
+
+template <class F> bool Mesher::anyInBall(const P3& c, double radius, F&& stop) const {
+  // Within the gathered ball, its list holds every point of this one (and others, which the
+  // exact distance leaves out as the grid's scan does): the same points, fewer visited.
+  if (!((c - nearCentre_).Norm() + radius <= nearRadius_ * (1.0 - 1e-12))) return grid_.anyInBall(c, radius, stop);
+  const double r2 = radius * radius;
+  for (size_t k = 0; k < near_.size; ++k) {
+    const std::uint32_t i = near_.id[k];
+    const P3& p = pts_[i];
+    const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+    const double d2 = dx * dx + dy * dy + dz * dz;
+    if (d2 <= r2 && stop(i, d2)) return true;
+  }
+  return false;
 }
 
 bool Mesher::emptyBall(const Ball& ball, double gatherRadius, const P3& gatherCentre, std::uint32_t a,
@@ -698,11 +716,14 @@ bool Mesher::foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t 
 }
 
 bool Mesher::onASurface(std::uint32_t p) const {
+  // (A property of the points alone: asked once per point.)
+  if (onSurface_[p] != 0) return onSurface_[p] == 1;
   int near = 0;
-  grid_.anyInBall(pts_[p], kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
+  anyInBall(pts_[p], kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
     near += i != p;
     return near >= kGapSheetPoints;
   });
+  onSurface_[p] = near >= kGapSheetPoints ? 1 : 2;
   return near >= kGapSheetPoints;
 }
 
@@ -732,7 +753,12 @@ bool Mesher::growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p,
   // material, and would grow the other sheet inside out. Two surfaces facing each other across
   // the air face opposite ways; the point's own sheet, seen past a tilted triangle, lies about the
   // front triangle's plane; the points of a stray triangle have fewer than kUnderSheetEdges edges.
-  return grid_.anyInBall(ball.centre, std::sqrt(ball.radius2 + reach * reach), [&](std::uint32_t i, double) {
+  // (The ball around that section of the cylinder; a slightly larger one, (1 + 1e-9): the
+  // predicates decide membership.)
+  if (!(reach >= gapNew)) return false;
+  const double half = 0.5 * (reach - gapNew);
+  return anyInBall(ball.centre + n * (0.5 * (gapNew + reach)), std::sqrt(ball.radius2 + half * half) * (1 + 1e-9),
+                   [&](std::uint32_t i, double) {
     if (i == a || i == b || i == p || edgeCount_[i] < kUnderSheetEdges) return false;
     const P3 d = pts_[i] - ball.centre;
     const double h = d * n;
@@ -761,7 +787,7 @@ bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uin
   // the first). (A slightly larger ball, (1 + 1e-9): the predicates decide membership.)
   double lowest = std::numeric_limits<double>::infinity();
   const double half = 0.5 * (reach - gap);
-  grid_.anyInBall(centroid + n * (0.5 * (gap + reach)), std::sqrt(half * half + narrow2) * (1 + 1e-9),
+  anyInBall(centroid + n * (0.5 * (gap + reach)), std::sqrt(half * half + narrow2) * (1 + 1e-9),
                   [&](std::uint32_t i, double) {
                     if (i == a || i == b || i == p || edgeCount_[i] < kUnderSheetEdges) return false;
                     const P3 d = pts_[i] - centroid;
@@ -778,7 +804,7 @@ bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uin
   // empty layer, not the triangle's own (noisy) sheet.
   const double top = lowest - margin, mid = 0.5 * (margin + top), span = 0.5 * (top - margin);
   if (!(top > margin)) return true;
-  return !grid_.anyInBall(centroid + n * mid, std::sqrt(span * span + wide2) * (1 + 1e-9), [&](std::uint32_t i, double) {
+  return !anyInBall(centroid + n * mid, std::sqrt(span * span + wide2) * (1 + 1e-9), [&](std::uint32_t i, double) {
     if (i == a || i == b || i == p) return false;
     const P3 d = pts_[i] - centroid;
     const double h = d * n;
@@ -796,7 +822,7 @@ bool Mesher::foldsAcrossAGap(std::uint32_t a, std::uint32_t b, std::uint32_t p, 
   // outlier, nor a point of noise off its own sheet).
   const P3 unit = frontNormal / frontNorm;
   int sheet = 0;
-  grid_.anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
+  anyInBall(Q, kGapSheetReach * spacing_, [&](std::uint32_t i, double) {
     sheet += i != p && std::abs((pts_[i] - Q) * unit) <= 0.5 * spacing_;
     return sheet >= kGapSheetPoints;
   });
@@ -806,7 +832,7 @@ bool Mesher::foldsAcrossAGap(std::uint32_t a, std::uint32_t b, std::uint32_t p, 
   // distance. (At a rim nothing lies ahead in the front's plane: the rim is the surface.)
   const P3 mid = (A + B) * 0.5;
   const double ahead = (Q - mid) * dir;
-  return grid_.anyInBall(mid, 2.0 * (Q - mid).Norm(), [&](std::uint32_t i, double) {
+  return anyInBall(mid, 2.0 * (Q - mid).Norm(), [&](std::uint32_t i, double) {
     const P3& X = pts_[i];
     if ((X - mid) * dir <= ahead) return false;
     const P3 n = (A - B) ^ (X - B);
@@ -1292,6 +1318,7 @@ void Mesher::releaseGrowthState() {
   HugeVector<std::uint16_t>().swap(freeEdges_);
   HugeVector<std::uint32_t>().swap(faceAt_);
   HugeVector<std::uint8_t>().swap(crossing_);
+  HugeVector<std::uint8_t>().swap(onSurface_);
   queue_ = BucketQueue<FrontEdge, HugeAllocator<FrontEdge>>(queue_.levels());
   near_ = NearList();
   std::vector<Scored>().swap(scored_);
@@ -1362,7 +1389,7 @@ size_t Mesher::memoryBytes() const {
   return grid_.memoryBytes() + pem_.memoryBytes() + scratch_.capacity() * sizeof(std::uint32_t) +
          edgeLengthSum_.capacity() * sizeof(float) +
          (edgeCount_.capacity() + freeEdges_.capacity()) * sizeof(std::uint16_t) + faceAt_.capacity() * sizeof(std::uint32_t) +
-         tri_.capacity() * sizeof(Triangle) + alive_.capacity() + crossing_.capacity() +
+         tri_.capacity() * sizeof(Triangle) + alive_.capacity() + crossing_.capacity() + onSurface_.capacity() +
          joinedAtVertex_.capacity() * sizeof(std::uint32_t);
 }
 

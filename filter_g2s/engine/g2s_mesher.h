@@ -349,6 +349,8 @@ private:
   Candidate accepted(const P3& A, const P3& B, std::uint32_t id, int level, const P3& frontNormal, double frontNorm,
                      bool single) const;
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
+  // grid_.anyInBall, over near_ where the ball lies inside the gathered one.
+  template <class F> bool anyInBall(const P3& c, double radius, F&& stop) const;
   // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
   // point but points far off its plane, of another sheet (a flat candidate only).
   // local: the mean edge length at a and b.
@@ -496,6 +498,9 @@ private:
   mutable bool roomRefused_ = false; // a candidate passed the topology tests but a point was full
   std::vector<double> cosLimit_;       // cos(kπ/m), k = 1..m−1: flatness class limits (sec. 4.1)
   NearList near_;                      // scratch: points of the last gathered ball
+  P3 nearCentre_{0, 0, 0};             // and that ball
+  double nearRadius_ = -1;
+  mutable HugeVector<std::uint8_t> onSurface_; // onASurface per point: 0 not asked yet, 1 yes, 2 no
   std::vector<Scored> scored_;         // scratch: candidates being ranked
 };
 
