@@ -581,36 +581,48 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
   std::vector<double> best(k * k, 0.0);
   std::vector<size_t> split(k * k, 0);
   // For each sub-chain (i, j): the split m of least total cost, the first such m on ties. With
-  // `avoid`, a triangle that crosses the mesh costs infinity; that test is the expensive part, so
-  // the splits are ranked by their cost without it, (cost, m), and tested in that order until
-  // one does not cross: the same split as testing every one.
-  std::vector<std::pair<double, size_t>> ranked;
-  for (size_t span = 2; span < k; ++span)
-    for (size_t i = 0; i + span < k; ++i) {
-      const size_t j = i + span;
-      ranked.clear();
-      double b = inf;
-      for (size_t m = i + 1; m < j; ++m) {
-        if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf)) continue;
-        const double c = best[i * k + m] + best[m * k + j] + cost(i, m, j);
-        if (avoid) {
-          if (c < inf) ranked.emplace_back(c, m);
-        } else if (c < b) {
-          b = c;
-          split[i * k + j] = m;
-        }
-      }
-      if (avoid) {
-        std::sort(ranked.begin(), ranked.end());
-        for (const auto& r : ranked)
-          if (!crossesActive(Triangle{q[i], q[r.second], q[j]})) {
-            b = r.first;
-            split[i * k + j] = r.second;
-            break;
+  // `avoid`, a triangle that crosses the mesh costs infinity. That test is the expensive part, so
+  // it is made lazily: the programme runs over the triangles not known to cross, the triangles of
+  // its result are tested, and those that cross are ruled out for the next run, until a result
+  // crosses nothing (or there is none). Every triangle that result uses is tested, and ruling out
+  // only lowers no cost, so it is the least-cost closure that crosses nothing, and by the same
+  // rule on ties (the first m) the same closure as testing every split.
+  std::vector<signed char> crossing(avoid ? k * k * k : 0, -1); // (i, m, j): -1 not tested, 0 no, 1 yes
+  auto crosses = [&](size_t i, size_t m, size_t j) { return avoid && crossing[(i * k + m) * k + j] == 1; };
+  std::vector<double> costOf(k * k * k, std::numeric_limits<double>::quiet_NaN()); // cost(i, m, j), once each
+  for (;;) {
+    for (size_t span = 2; span < k; ++span)
+      for (size_t i = 0; i + span < k; ++i) {
+        const size_t j = i + span;
+        double b = inf;
+        for (size_t m = i + 1; m < j; ++m) {
+          if (!(best[i * k + m] < inf) || !(best[m * k + j] < inf) || crosses(i, m, j)) continue;
+          double& t = costOf[(i * k + m) * k + j];
+          if (std::isnan(t)) t = cost(i, m, j);
+          const double c = best[i * k + m] + best[m * k + j] + t;
+          if (c < b) {
+            b = c;
+            split[i * k + j] = m;
           }
+        }
+        best[i * k + j] = b;
       }
-      best[i * k + j] = b;
+    if (!avoid || !(best[k - 1] < inf)) break;
+    bool ruledOut = false;
+    std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
+    while (!stack.empty()) {
+      const size_t i = stack.back().first, j = stack.back().second;
+      stack.pop_back();
+      if (j < i + 2) continue;
+      const size_t m = split[i * k + j];
+      signed char& x = crossing[(i * k + m) * k + j];
+      if (x < 0) x = crossesActive(Triangle{q[i], q[m], q[j]}) ? 1 : 0;
+      ruledOut = ruledOut || x == 1;
+      stack.emplace_back(i, m);
+      stack.emplace_back(m, j);
     }
+    if (!ruledOut) break;
+  }
   closure.clear();
   if (!(best[k - 1] < inf)) return false;
   std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
