@@ -683,6 +683,47 @@ TEST(G2SBuild, ThinPartRulesAreWhatKeepsAThinPlatesSheetsFacingOut) {
   EXPECT_GT(inwardWithout, 1000u);
 }
 
+// Params::loopClosures: the growth closes loops of three free edges by their third point and loops
+// of four by the better diagonal (not in the paper, whose G2S balls can hold a neighbouring vertex
+// on a curved or noisy surface, so that such loops stay open). Measured on a sphere with noise of
+// half a spacing, 30,000 points, after the growth and sec. 4.2 alone: 93 holes with the closures,
+// 952 without (seed 1).
+TEST(G2SBuild, LoopClosuresAreWhatClosesTheGrowthsSmallLoops) {
+  const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 30000, 0.5));
+  g2s::Params p = defaults();
+  p.maxHoleEdges = 0;
+  p.removeSmallHandles = false;
+  const auto with = run(cloud, p);
+  p.loopClosures = false;
+  const auto without = run(cloud, p);
+  expectValidOutput(cloud, with);
+  expectValidOutput(cloud, without);
+  RecordProperty("holes_with", int(with->stat.holes));
+  RecordProperty("holes_without", int(without->stat.holes));
+  EXPECT_GT(without->stat.holes, 5 * with->stat.holes);
+}
+
+// Params::mergeClumps: a dense clump (a twentieth of the points on one spot) is meshed as one
+// point; without it the growth meshes the clump point by point (measured on 20,000 points: 7
+// holes, 5 times the time, against none).
+TEST(G2SBuild, ClumpMergingIsWhatKeepsADenseClumpFromOpeningHoles) {
+  CloudSpec spec;
+  spec.count = 20000;
+  spec.clusterFraction = 0.05;
+  const Mesh cloud = cloudMesh(spec);
+  g2s::Params p = defaults();
+  const auto with = run(cloud, p);
+  p.mergeClumps = false;
+  const auto without = run(cloud, p);
+  expectValidOutput(cloud, with);
+  expectValidOutput(cloud, without);
+  EXPECT_EQ(with->stat.clumps, 1u);
+  EXPECT_EQ(with->stat.holes, 0u);
+  EXPECT_EQ(without->stat.clumps, 0u);
+  RecordProperty("holes_without", int(without->stat.holes));
+  EXPECT_GT(without->stat.holes, 0u);
+}
+
 TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
   struct Case {
     double thickness;

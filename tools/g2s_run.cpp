@@ -10,6 +10,8 @@
 //          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
 //          --random-seed S  --threads T (crossing-face test; 0 = automatic)
 //          --no-thin-rules (the paper's candidate choice at thin parts: g2s::Params::thinPartRules)
+//          --no-loop-closures (no ear or four-edge loop closure in the growth: g2s::Params::loopClosures)
+//          --no-clump-merge (dense clumps meshed point by point: g2s::Params::mergeClumps)
 //          --repeat R (best of R runs)  --measure (topology and quality of the result)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (g2s::Stat::seconds, wall clock);
@@ -46,6 +48,7 @@ static void usage() {
                "               [--rings R --segments S] [--inner-radius r] [--thickness T]\n"
                "       [--near-triples K]\n"
                "       [--k K] [--max-radius F] [--n N] [--m M] [--no-cleanup] [--holes E] [--keep-handles] [--min-component-faces F] [--random-seed S] [--threads T] [--no-thin-rules]\n"
+               "       [--no-loop-closures] [--no-clump-merge]\n"
                "       [--repeat R] [--measure] [-o out.ply]\n");
 }
 
@@ -105,6 +108,8 @@ int main(int argc, char** argv) {
       else if (a == "--keep-handles") params.removeSmallHandles = false;
       else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
       else if (a == "--no-thin-rules") params.thinPartRules = false;
+      else if (a == "--no-loop-closures") params.loopClosures = false;
+      else if (a == "--no-clump-merge") params.mergeClumps = false;
       else if (a == "--threads") params.threads = std::atoi(value());
       else if (a == "--random-seed") params.randomSeed = std::strtoull(value(), nullptr, 10);
       else if (a == "--repeat") repeat = std::max(1, std::atoi(value()));

@@ -29,6 +29,12 @@ struct Params {
                                      // into the material between two close sheets (a closed part a few
                                      // spacings thick), and close the rim loops this leaves (g2s_mesher.cpp,
                                      // kSheetGap; g2s_thin.cpp); off: the paper's candidate choice
+  bool loopClosures = true;          // not in the paper: during the growth, a free edge on a loop of three free
+                                     // edges takes the loop's third point (unless an unused point lies inside),
+                                     // and one on a loop of four whose search finds nothing closes it by the
+                                     // better diagonal (Mesher::findCandidate, quadClosure); off: the G2S search alone
+  bool mergeClumps = true;           // not in the paper: dense clumps of points (a scanner dwelling on a spot)
+                                     // meshed as one point (Mesher::kClumpNeighbours, g2s_clumps.cpp)
   std::uint64_t randomSeed = 1;      // seed-point choice, sec. 3.1 step 3.1
   int threads = 0;                   // threads for the crossing-face test (0 = automatic, at most
                                      // growth::kMaxThreads); the mesh is the same for any number

@@ -159,7 +159,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
     }
   }
   if (!(spacing_ > 0)) spacing_ = std::max(grid_.cellSize() / kCellSpacings, 1e-300);
-  mergeClumps();
+  if (params_.mergeClumps) mergeClumps();
   const size_t n = grid_.size();
   pts_ = grid_.points().data();
   grid_.setVisitCounter(&visited_);
@@ -321,7 +321,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // G2S or not. On a curved or noisy surface the G2S ball of such a triangle can hold a vertex of
   // a neighbouring triangle barely inside (the Gabriel test is not symmetric across an edge as
   // the 2D Delaunay circle test is), which would otherwise leave a three-edge hole.
-  if (ears && freeEdges_[b] >= 2) {
+  if (ears && params_.loopClosures && freeEdges_[b] >= 2) {
     std::int64_t ear = -1;
     pem_.anyOutOnly(b, [&](std::uint32_t p) {
       if (p != a && p != c && pem_.used(p, a) && !pem_.used(a, p)) ear = p;
@@ -343,7 +343,7 @@ Candidate Mesher::findCandidate(std::uint32_t a, std::uint32_t b, std::uint32_t 
     }
   }
   const Candidate grown = search(a, b, c, dir, frontNormal, frontNorm);
-  if (grown.valid() || freeEdges_[b] < 2 || freeEdges_[a] < 2) return grown;
+  if (grown.valid() || !params_.loopClosures || freeEdges_[b] < 2 || freeEdges_[a] < 2) return grown;
   return quadClosure(a, b, c, frontNormal, frontNorm);
 }
 
