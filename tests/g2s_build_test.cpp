@@ -733,7 +733,7 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     long euler = 2;  // measured: 2, the plate's topology
   };
   // Seed 10 and the 100k seed 1 sampling are the rim crossings the under-a-sheet rule stops
-  // (g2s_mesher.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
+  // (g2s_growth.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
   // The 100k seed 2 sampling keeps a hole of 3 edges round a spike at a corner without the hole
   // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap. Seed 7 kept a rim loop of
   // 7 edges with a handle beside it until the wider closure (Mesher::widenHoles: the faces on the
@@ -928,7 +928,7 @@ TEST(G2SBuild, RimHolesThatNoClosureClosesAreGrownIntoAgain) {
 // point of a bottom edge's search sphere was a top point 3 spacings behind and 4.3 ahead (a fold of
 // 35 degrees), taken directly as the single point of its region, and the whole top grew on from it
 // inside out (26,506 faces of the large faces facing in). The fold-across-a-gap rule
-// (g2s_mesher.cpp, kGapFoldCos) refuses it: the bottom sheet goes on beyond the gap.
+// (g2s_growth.cpp, kGapFoldCos) refuses it: the bottom sheet goes on beyond the gap.
 TEST(G2SBuild, ThinSlabWithAGapInASheetFacesOutward) {
   CloudSpec spec;
   spec.shape = Shape::Slab;
@@ -966,7 +966,7 @@ TEST(G2SBuild, RimLoopsOfAThinSlabAreClosedAfterTheGrowth) {
   EXPECT_LE(cs.facesRemoved, 6u); // measured: 4 (most before the closures, see closeRimLoops)
 }
 
-// The thin-part rules (g2s_mesher.cpp, kSheetGap) never act on clean samplings of smooth closed
+// The thin-part rules (g2s_growth.cpp, kSheetGap) never act on clean samplings of smooth closed
 // surfaces: their meshes are those of the paper's growth alone.
 TEST(G2SBuild, ThinPartRulesStayOutOfCleanClouds) {
   for (Shape shape : {Shape::Sphere, Shape::Torus, Shape::Genus2}) {

@@ -289,7 +289,7 @@ TEST(G2SPriority, FlatnessPriorityReducesTwistingOnThinParts) {
   // height: two close faces meeting at a sharp rim), m = 8 flatness classes must leave fewer
   // boundary edges than a single class (size priority only) over three clouds, and on none of them
   // more than 2 % above it. (Measured, m = 8 against m = 1: 909 / 1,003, 923 / 908, 226 / 911; the
-  // under-a-sheet rules, g2s_mesher.cpp kUnderGap and after a crossing, stop some of the crossings
+  // under-a-sheet rules, g2s_growth.cpp kUnderGap and after a crossing, stop some of the crossings
   // of the single class too: before the first, 906 / 1,001, 905 / 923, 907 / 980; before the
   // second, 902 / 1,003, 907 / 902, 916 / 993.)
   size_t total[2] = {0, 0};

@@ -27,7 +27,7 @@ struct Params {
                                      // always stays): triangles among stray points; 0 keeps all
   bool thinPartRules = true;         // not in the paper: during the growth, refuse candidates that fold or cross
                                      // into the material between two close sheets (a closed part a few
-                                     // spacings thick), and close the rim loops this leaves (g2s_mesher.cpp,
+                                     // spacings thick), and close the rim loops this leaves (g2s_growth.cpp,
                                      // kSheetGap; g2s_thin.cpp); off: the paper's candidate choice
   bool loopClosures = true;          // not in the paper: during the growth, a free edge on a loop of three free
                                      // edges takes the loop's third point (unless an unused point lies inside),
@@ -77,7 +77,7 @@ struct Stat {
   size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
   size_t componentFacesDropped = 0;       // and their faces
   size_t thinPartRefusals = 0;            // candidates refused by the thin-part rules (not in the paper:
-                                          // a fold or crossing into a part's material, g2s_mesher.cpp)
+                                          // a fold or crossing into a part's material, g2s_growth.cpp)
   size_t edgesLeftAtFullPoints = 0;       // front edges left open: a point had no room for another
                                           // edge (more than PointEdgeMap::kMaxEntries neighbours)
   double spacing = 0;                     // mean nearest-neighbour spacing (growth::meanSpacing)

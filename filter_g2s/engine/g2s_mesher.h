@@ -6,6 +6,10 @@
 //   queue (sec. 4.1), with topological tests on the point–edge map  →  re-seeding until no valid
 //   seed is left  →  non-manifold vertex elimination (sec. 4.2, growth/manifold_cleanup.h).
 //
+// The growth is in g2s_growth.cpp; set-up, sec. 4.2, orientation and the results in g2s_mesher.cpp;
+// the passes after the growth in g2s_repair.cpp (crossing faces, holes), g2s_handles.cpp (wider
+// closure, regrowth, handles) and g2s_thin.cpp (rims of thin parts).
+//
 // Everything is flat arrays indexed by point: the points in the spatial hash's cell order
 // (MortonGrid, g2s_grid.h), the point–edge map (growth::PointEdgeMap), per-point edge statistics,
 // the triangles, and a bucketed queue of free edges (growth::BucketQueue, one FIFO per priority
@@ -249,7 +253,7 @@ public:
   // Front edges left open because a candidate had no room for another edge at one of its points
   // (PointEdgeMap::kMaxEntries): the local degradation that replaces a failure.
   size_t edgesLeftAtFullPoints() const { return edgesLeftAtFullPoints_; }
-  // Thin parts (g2s_mesher.cpp, kSheetGap): candidates refused as folds across a part, and G2S
+  // Thin parts (g2s_growth.cpp, kSheetGap): candidates refused as folds across a part, and G2S
   // balls found empty but for points of another sheet.
   size_t foldsRefused() const { return foldsRefused_; }
   size_t otherSheetBalls() const { return otherSheetBalls_; }
@@ -351,7 +355,7 @@ private:
   void gather(const P3& centre, double radius);     // fills near_ with the points of a ball
   // grid_.anyInBall, over near_ where the ball lies inside the gathered one.
   template <class F> bool anyInBall(const P3& c, double radius, F&& stop) const;
-  // Thin parts (see kSheetGap in g2s_mesher.cpp). The G2S ball of candidate (b, a, p) holds no
+  // Thin parts (see kSheetGap in g2s_growth.cpp). The G2S ball of candidate (b, a, p) holds no
   // point but points far off its plane, of another sheet (a flat candidate only).
   // local: the mean edge length at a and b.
   // inside: a point found inside the ball by emptyBall. gatherRadius, gatherCentre: the ball
@@ -363,7 +367,7 @@ private:
   // (of radius `radius` for edge a→b, direction dir) holds a point farther ahead near the front's plane.
   GROWTH_G2S_COLD bool foldsAcrossThePart(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t p,
                                           const P3& dir, const P3& frontNormal, double frontNorm, double radius) const;
-  // After a crossing ("after a crossing" at kChildGap in g2s_mesher.cpp): a candidate kUnderGap or more
+  // After a crossing ("after a crossing" at kChildGap in g2s_growth.cpp): a candidate kUnderGap or more
   // behind the front triangle marks its points, and the triangles grown on from marked points for
   // kCrossingMark generations are refused when underASheetAfterCrossing. True: refused.
   bool refusedAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
@@ -385,10 +389,10 @@ private:
   // The triangle (b, a, p) lies under a sheet of the mesh facing the same way, beyond an empty layer.
   GROWTH_G2S_COLD bool underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uint32_t p,
                                                 const P3& frontNormal, double frontNorm) const;
-  static constexpr double kCrossingGap = 0.5;         // = kUnderGap (g2s_mesher.cpp)
+  static constexpr double kCrossingGap = 0.5;         // = kUnderGap (g2s_growth.cpp)
   static constexpr std::uint8_t kCrossingMark = 4;    // the generations checked after a crossing
   // Candidate (b, a, p), p kUnderGap or more behind the front triangle, would lie in the material
-  // under a sheet of the mesh facing the same way (see kUnderGap in g2s_mesher.cpp).
+  // under a sheet of the mesh facing the same way (see kUnderGap in g2s_growth.cpp).
   GROWTH_G2S_COLD bool growsUnderASheet(std::uint32_t a, std::uint32_t b, std::uint32_t p, const P3& frontNormal,
                                         double frontNorm) const;
   // Candidate (b, a, p) folds across a gap of the front's sheet to another sheet parallel to it

@@ -1,6 +1,6 @@
 // Robust G2S: the holes left at the rims of thin closed parts (Mesher::closeRimLoops; issue 13
 // item 5, not in the paper). In a file of its own, like g2s_clumps.cpp: it runs once, after the
-// growth and only when a thin-part rule of g2s_mesher.cpp acted, and keeps out of the growth's
+// growth and only when a thin-part rule of g2s_growth.cpp acted, and keeps out of the growth's
 // inlined queries.
 //
 // Why the rims stay open (measured on the closed slab 3 spacings thick, `g2s_run --shape slab
@@ -53,7 +53,7 @@ constexpr size_t kMaxRimLoopEdges = 16;
 // kThinFrom to kThinTo spacings (growth::meanSpacing) along the triangle's normal (either way) and
 // within kThinSide spacings of that line, a used point's triangle faces the other way (normals
 // more than 120 degrees apart, kFacingApartCos): the other sheet of a part 2-5 spacings thick.
-// kThinFrom is g2s_mesher.cpp's kFoldGap.
+// kThinFrom is g2s_growth.cpp's kFoldGap.
 constexpr double kThinFrom = 2.0, kThinTo = 5.0, kThinSide = 2.0;
 constexpr double kFacingApartCos = -0.5;
 // A triangle of the closure folds by at most about 148 degrees (this cosine) against the mesh
