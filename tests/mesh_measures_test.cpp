@@ -1,3 +1,4 @@
+#include <growth/meshlab/points.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
@@ -13,7 +14,7 @@
 
 using growth::MeshMeasures;
 using growth::measure;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 
@@ -21,7 +22,7 @@ namespace {
 void makeMesh(CMeshO& m, const std::vector<Point3d>& v, const std::vector<std::array<int, 3>>& f) {
   m.Clear();
   auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(m, v.size());
-  for (size_t i = 0; i < v.size(); ++i, ++vi) vi->P() = vcg::Point3f::Construct(v[i]);
+  for (size_t i = 0; i < v.size(); ++i, ++vi) vi->P() = growth::meshlab::toPoint3f(v[i]);
   // Corners set by hand: Allocator::AddFace asserts they are distinct, and some faces here repeat one.
   auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(m, f.size());
   for (size_t i = 0; i < f.size(); ++i, ++fi)

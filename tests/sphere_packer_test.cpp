@@ -24,7 +24,7 @@
 #include <stdexcept>
 
 namespace sp = growth::spherepack;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

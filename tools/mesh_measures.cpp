@@ -94,14 +94,14 @@ int main(int argc, char** argv) {
 
   CMeshO mesh;
   if (!load(meshPath, mesh)) return 1;
-  std::vector<vcg::Point3d> cloud;
+  std::vector<growth::Vec3d> cloud;
   if (!cloudPath.empty()) {
     CMeshO c;
     if (!load(cloudPath, c)) return 1;
     cloud.reserve(c.vert.size());
     for (const auto& v : c.vert) {
       if (v.IsD()) continue;
-      const vcg::Point3d p = vcg::Point3d::Construct(v.cP());
+      const growth::Vec3d p = growth::Vec3d::Construct(v.cP());
       if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) cloud.push_back(p);
     }
   }

@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
                   m.components, m.unreferencedVertices, m.eulerCharacteristic, m.selfIntersectingPairs);
       if (generated) {
         double worst = 0;
-        for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, vcg::Point3d::Construct(v.cP())));
+        for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, growth::Vec3d::Construct(v.cP())));
         std::printf("max_distance_to_shape: %.6g\n", worst);
       }
     }

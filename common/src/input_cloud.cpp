@@ -16,7 +16,7 @@
 namespace growth {
 
 namespace {
-bool finite3(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite3(const Vec3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 } // namespace
 
 InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
@@ -40,7 +40,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   for (size_t i = 0; i < mesh.vert.size(); ++i) {
     const auto& v = mesh.vert[i];
     if (v.IsD()) continue;
-    const vcg::Point3d p = vcg::Point3d::Construct(v.cP());
+    const Vec3d p = Vec3d::Construct(v.cP());
     if (!finite3(p)) {
       ++nonFinite;
       continue;
@@ -48,11 +48,11 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     if (std::abs(p[0]) > kMaxAbsCoordinate || std::abs(p[1]) > kMaxAbsCoordinate || std::abs(p[2]) > kMaxAbsCoordinate)
       ++huge;
     if (withNormals) {
-      vcg::Point3d n = vcg::Point3d::Construct(v.cN());
+      Vec3d n = Vec3d::Construct(v.cN());
       const double len = n.Norm();
       if (!finite3(n) || !(len > 1e-12)) {
         ++badNormals;
-        n = vcg::Point3d(0, 0, 0);
+        n = Vec3d(0, 0, 0);
       } else {
         n /= len;
       }
@@ -105,7 +105,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     };
     size_t w = 0;
     for (size_t i = 0; i < n; ++i) {
-      const vcg::Point3d p = c.points[i];
+      const Vec3d p = c.points[i];
       std::uint64_t h = bits(p[0]) * 0x9E3779B97F4A7C15ull;
       h = (h ^ (h >> 29) ^ bits(p[1])) * 0xBF58476D1CE4E5B9ull;
       h = (h ^ (h >> 31) ^ bits(p[2])) * 0x94D049BB133111EBull;
@@ -152,14 +152,14 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   {
     double magnitude = 0; // the largest |coordinate|, from the box
     for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(c.box.min[k]), std::abs(c.box.max[k])});
-    const vcg::Point3d a = c.points[0];
+    const Vec3d a = c.points[0];
     size_t far = 0;
     double best = -1;
     for (size_t i = 1; i < c.points.size(); ++i) {
       const double d = (c.points[i] - a).SquaredNorm();
       if (d > best) best = d, far = i;
     }
-    const vcg::Point3d dir = (c.points[far] - a).Normalize();
+    const Vec3d dir = (c.points[far] - a).Normalize();
     const double tol = std::max(1e-9 * c.box.Diag(), 4.0 * double(std::numeric_limits<float>::epsilon()) * magnitude);
     bool collinear = true;
     for (const auto& p : c.points) {

@@ -268,7 +268,7 @@ Params suggestParams(const CMeshO&) {
   return p;
 }
 
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, vcg::CallBackPos* cb) {
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, CallBackPos* cb) {
   Stopwatch watch;
   out.Clear();
   stat = Stat();

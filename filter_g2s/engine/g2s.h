@@ -2,8 +2,7 @@
 // Robust G2S mesh growing: Di Angelo, Di Stefano, Giaccari, "A Fast Mesh-Growing Algorithm for
 // Manifold Surface Reconstruction" (sections 3 and 4). Interpolating: the output's vertices are
 // the input points; no normals needed.
-#include <cstring> // wrap/callback.h uses strcpy without including <cstring>
-#include <wrap/callback.h>
+#include <growth/progress.h>
 
 #include <cstdint>
 #include <string>
@@ -107,7 +106,7 @@ Params suggestParams(const CMeshO& cloud);
 // empty `out` and a warning. Throws growth::Error on bad input or parameters and
 // growth::Cancelled on cancel (out is then empty).
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
-           vcg::CallBackPos* cb = nullptr);
+           CallBackPos* cb = nullptr);
 
 } // namespace g2s
 } // namespace growth

@@ -35,7 +35,7 @@ constexpr size_t kOrientationSamples = 4096;
 
 // Share of the sampled points (a fixed stride) whose nearest other point has a normal with a
 // negative product with theirs. `cell`: the grid's cell size (about the spacing).
-double oppositeNeighbourShare(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+double oppositeNeighbourShare(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                               double cell) {
   if (points.size() < 2 || !(cell > 0)) return 0;
   PointGrid grid;
@@ -75,7 +75,10 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
     // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
     reserveHuge(out.vert, used.size(), /*populate=*/true);
     auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
-    for (size_t i = 0; i < used.size(); ++i, ++vi) vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
+    for (size_t i = 0; i < used.size(); ++i, ++vi) {
+      const Vec3d& p = g.position(used[i]);
+      vi->P() = CMeshO::CoordType(p[0], p[1], p[2]);
+    }
     out.face.EnableQuality();
     reserveHuge(out.face, faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
     prefault(out.face.QV.data(), faces.size() * sizeof(out.face.QV[0]));
@@ -84,15 +87,15 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
     for (size_t k = 0; k < faces.size(); ++k, ++fi) {
       const auto& f = faces[k];
       for (int j = 0; j < 3; ++j) fi->V(j) = &out.vert[size_t(remap[f[j]])];
-      const vcg::Point3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
+      const Vec3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
       const double l1 = (b - a).SquaredNorm(), l2 = (c - b).SquaredNorm(), l3 = (a - c).SquaredNorm();
       const double area2 = ((b - a) ^ (c - a)).Norm();
       const double q = (l1 + l2 + l3) > 0 ? 2 * std::sqrt(3.0) * area2 / (l1 + l2 + l3) : 0;
       fi->Q() = static_cast<CMeshO::ScalarType>(q);
       qsum += q;
       // The smallest edge as the layer stores it (rounded to CMeshO's scalar), not as computed.
-      const vcg::Point3d sa = vcg::Point3d::Construct(fi->V(0)->cP()), sb = vcg::Point3d::Construct(fi->V(1)->cP()),
-                         sc = vcg::Point3d::Construct(fi->V(2)->cP());
+      const Vec3d sa = Vec3d::Construct(fi->V(0)->cP()), sb = Vec3d::Construct(fi->V(1)->cP()),
+                         sc = Vec3d::Construct(fi->V(2)->cP());
       minEdge = std::min(minEdge, std::sqrt(std::min((sb - sa).SquaredNorm(),
                                                      std::min((sc - sb).SquaredNorm(), (sa - sc).SquaredNorm()))));
     }

@@ -32,7 +32,7 @@ std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, St
   // makeManifold() then takes care of a vertex whose fan this splits.
   size_t w = 0;
   for (const Triangle& f : faces) {
-    const vcg::Point3d a = asStored<CMeshO::ScalarType>(g.position(f[0])),
+    const Vec3d a = asStored<CMeshO::ScalarType>(g.position(f[0])),
                        b = asStored<CMeshO::ScalarType>(g.position(f[1])),
                        c = asStored<CMeshO::ScalarType>(g.position(f[2]));
     if (nearlyCollinear(a, b, c)) ++st.flatFacesRemoved;

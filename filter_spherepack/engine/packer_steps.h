@@ -53,7 +53,7 @@ struct Renumbering {
 
 // A starting pair (sec. 3.3): two positions on splats, between d and 2d apart.
 struct StartPair {
-  vcg::Point3d s1, s2;
+  Vec3d s1, s2;
   std::uint32_t splat1 = 0, splat2 = 0;
 };
 
@@ -91,9 +91,9 @@ void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>&
 // packer_start.cpp, sec. 3.3: the starting pairs.
 // side: the normal of the side asked for (the box's layer facing it, in a two-sided box; zero:
 // the first layer).
-bool projectOntoClosestSplat(const vcg::Point3d& x, const vcg::Point3d& side, const InputCloud& in,
+bool projectOntoClosestSplat(const Vec3d& x, const Vec3d& side, const InputCloud& in,
                              const std::vector<float>& radius, const BoxGrid& grid, const Renumbering& order,
-                             bool searchAll, vcg::Point3d& proj, std::uint32_t& splat);
+                             bool searchAll, Vec3d& proj, std::uint32_t& splat);
 StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                          const Renumbering& order, double d, double s, const Params& params);
 
@@ -104,19 +104,19 @@ StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius,
 template <class Free>
 bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                  const Renumbering& order, double d, Free&& free, StartPair& out) {
-  const vcg::Point3d& p = in.points[i];
+  const Vec3d& p = in.points[i];
   const int box = grid.boxOf(p, in.normals[i]);
   if (box < 0) return false;
   int around = 0;
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box) && around < 4; ++it)
     around += (in.points[*it] - p).SquaredNorm() <= d * d ? 1 : 0;
   if (around < 4 || !free(p)) return false;
-  vcg::Point3d e1, e2;
+  Vec3d e1, e2;
   tangentFrame(in.normals[i], e1, e2);
   for (int k = 0; k < 12; ++k) {
     const double phi = 2 * 3.14159265358979323846 * k / 12;
-    const vcg::Point3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
-    vcg::Point3d q;
+    const Vec3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+    Vec3d q;
     std::uint32_t sq = 0;
     if (!projectOntoClosestSplat(target, in.normals[i], in, radius, grid, order, false, q, sq)) continue;
     const double dist = (q - p).Norm();

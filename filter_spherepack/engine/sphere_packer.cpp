@@ -30,7 +30,7 @@ std::string fmt(double v) {
 
 using namespace detail;
 
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads, const std::vector<vcg::Point3d>* normals) {
+CloudScale cloudScale(const std::vector<Vec3d>& points, int threads, const std::vector<Vec3d>* normals) {
   CloudScale sc;
   // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
   // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
@@ -122,7 +122,7 @@ Params suggestParams(const CMeshO& cloud) {
 }
 
 // The method's phases in the paper's order; each phase's time goes to its Stat::seconds* field.
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, CallBackPos* cb) {
   Stopwatch watch;
   out.Clear();
   st = Stat();

@@ -12,9 +12,8 @@
 // shared with Robust G2S. The method's steps that tie them together, one file per paper section
 // (the initialization of sec. 3.3, the growth loop of sec. 3.4–3.6, ...), are the packer_*.cpp
 // files beside it (packer_steps.h lists them); build() in sphere_packer.cpp runs them in order.
-#include <vcg/space/point3.h>
-#include <cstring> // wrap/callback.h uses strcpy without including <cstring>
-#include <wrap/callback.h>
+#include <growth/vec3.h>
+#include <growth/progress.h>
 
 #include <string>
 #include <vector>
@@ -31,7 +30,7 @@ struct Params {
   int windowSize = 8;            // w, sec. 4.2
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
-  vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
+  Vec3d startPoint[2] = {Vec3d(0, 0, 0), Vec3d(0, 0, 0)};
   int minComponentFaces = 50;    // connected pieces of the output with fewer faces are dropped (the
                                  // largest always stays): flaps of misregistered scan layers, bits
                                  // of stray points; 0 keeps all
@@ -65,8 +64,8 @@ struct CloudScale {
 };
 // `threads`: for the estimates (0 = automatic); the scale is the same for any number. With the
 // normals, neighbours on another sheet of a thin part are left out (SamplingOptions::normals).
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0,
-                      const std::vector<vcg::Point3d>* normals = nullptr);
+CloudScale cloudScale(const std::vector<Vec3d>& points, int threads = 0,
+                      const std::vector<Vec3d>* normals = nullptr);
 
 // Defaults.
 // d = max(1.8 × sqrt(area per point), 3ν): at the sampling's resolution (a packing of spheres of
@@ -175,7 +174,7 @@ Params suggestParams(const CMeshO& cloud);
 // per-vertex normals and per-face quality Q_t. Throws growth::Error on bad input or parameters
 // and growth::Cancelled when cb returns false; `out` is then left empty.
 void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
-           vcg::CallBackPos* cb = nullptr);
+           CallBackPos* cb = nullptr);
 
 } // namespace spherepack
 } // namespace growth

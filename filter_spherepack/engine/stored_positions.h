@@ -6,7 +6,7 @@
 // The rounding is kept through an empty asm statement: GCC 12.2 at -O2 and -O3 folds
 // double(float(x)) back to x in vectorised loops (measured on these machines: a loop over 200k
 // points left every coordinate unrounded; -O1 and -fno-tree-vectorize rounded them).
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <vector>
 
@@ -25,13 +25,13 @@ inline double asStored(double x) {
 }
 
 template <class Scalar>
-inline vcg::Point3d asStored(const vcg::Point3d& p) {
-  return vcg::Point3d(asStored<Scalar>(p[0]), asStored<Scalar>(p[1]), asStored<Scalar>(p[2]));
+inline Vec3d asStored(const Vec3d& p) {
+  return Vec3d(asStored<Scalar>(p[0]), asStored<Scalar>(p[1]), asStored<Scalar>(p[2]));
 }
 
 template <class Scalar>
-std::vector<vcg::Point3d> asStored(const std::vector<vcg::Point3d>& pos) {
-  std::vector<vcg::Point3d> out(pos.size());
+std::vector<Vec3d> asStored(const std::vector<Vec3d>& pos) {
+  std::vector<Vec3d> out(pos.size());
   for (size_t i = 0; i < pos.size(); ++i) out[i] = asStored<Scalar>(pos[i]);
   return out;
 }

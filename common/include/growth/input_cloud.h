@@ -4,8 +4,7 @@
 // The engine computes in double (MeshLab stores float): the live vertices are copied into double
 // arrays once. Bad input is refused with a growth::Error whose message says what is wrong and what
 // to do in MeshLab; nothing in the layer is changed.
-#include <vcg/space/box3.h>
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <string>
 #include <vector>
@@ -15,11 +14,11 @@ class CMeshO;
 namespace growth {
 
 struct InputCloud {
-  std::vector<vcg::Point3d> points;
-  std::vector<vcg::Point3d> normals;   // unit length (zero where unusable, with readNormals); empty
+  std::vector<Vec3d> points;
+  std::vector<Vec3d> normals;   // unit length (zero where unusable, with readNormals); empty
                                        // when normals were not asked for
   std::vector<int> vertexIndex;        // index of each point in the layer's vertex vector
-  vcg::Box3d box;
+  Box3d box;
   size_t duplicatesDropped = 0;        // exact repeats of an earlier point (first one kept)
   size_t layerFaces = 0;
 };

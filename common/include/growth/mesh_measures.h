@@ -35,7 +35,7 @@
 //   (Robust G2S, sec. 5). The mean is over all input points; the points used as vertices by an
 //   interpolating mesher contribute 0, so it is the paper's "distance of the unmeshed points"
 //   spread over the whole cloud.
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <array>
 #include <cstddef>
@@ -126,12 +126,12 @@ struct MeshMeasures {
 };
 
 // All measures at once. `cloud`: the input points (e.g. growth::readCloud(...).points), or null.
-MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud = nullptr,
+MeshMeasures measure(const CMeshO& mesh, const std::vector<Vec3d>* cloud = nullptr,
                      const MeasureOptions& options = MeasureOptions());
 
 // --- Single triangles (lengths in any unit) ---
-double triangleQuality(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c); // Q_t
-double triangleQF(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c);      // QF
+double triangleQuality(const Vec3d& a, const Vec3d& b, const Vec3d& c); // Q_t
+double triangleQF(const Vec3d& a, const Vec3d& b, const Vec3d& c);      // QF
 
 // --- Topology only, for tests (each call analyses the whole mesh once) ---
 struct MeshTopology {
@@ -162,7 +162,7 @@ public:
   // Distance to the nearest face; +infinity when the mesh has no face. `hint` (optional), on entry
   // a triangle likely near p or -1, on return the nearest triangle: passing the previous answer
   // speeds up queries made in spatial order.
-  double distance(const vcg::Point3d& p, int* hint = nullptr) const;
+  double distance(const Vec3d& p, int* hint = nullptr) const;
 
 private:
   struct Node {
@@ -171,19 +171,19 @@ private:
     int count;   // leaf: number of triangles (> 0); inner: 0
   };
   struct Item {
-    vcg::Point3d centroid;
+    Vec3d centroid;
     int face;
   };
   void build(int node, int begin, int end, std::vector<Item>& items);
-  double squaredDistanceToTriangle(const vcg::Point3d& p, int t) const;
+  double squaredDistanceToTriangle(const Vec3d& p, int t) const;
 
-  std::vector<vcg::Point3d> vert_;
+  std::vector<Vec3d> vert_;
   std::vector<std::array<int, 3>> tri_;
   std::vector<Node> nodes_;
 };
 
 // Distance statistics of `cloud` to `mesh` (fields hasCloud … pointsFartherThanSpacing of
 // MeshMeasures are filled).
-void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out);
+void measureCloudDistance(const CMeshO& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out);
 
 } // namespace growth
