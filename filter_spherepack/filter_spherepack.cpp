@@ -1,6 +1,6 @@
 #include "filter_spherepack.h"
 
-#include "sphere_packer.h"
+#include "filter_spherepack_layer.h"
 
 #include <growth/error.h>
 

@@ -1,8 +1,9 @@
 #include "harness.h"
 
-#include "g2s.h"
-#include "sphere_packer.h"
+#include "filter_g2s_layer.h"
+#include "filter_spherepack_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 

@@ -1,8 +1,9 @@
 // Robust G2S end to end through the engine entry point g2s::build on MeshLab meshes: the
 // experiments of sec. 5 on generated clouds, output properties, bad input, cancel, determinism.
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 #include "g2s_mesher.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/meshlab/points.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>

@@ -1,8 +1,9 @@
 // Robust G2S on clouds with far points and dense clusters (issue 13, item 2): the spacing it
 // measures and logs is growth::meanSpacing (the one mesh_measures and the benchmark use), and
 // one point far away changes neither it nor the mesh's holes.
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>

@@ -1,3 +1,4 @@
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>

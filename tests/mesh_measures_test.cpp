@@ -1,3 +1,4 @@
+#include <growth/meshlab/layer.h>
 #include <growth/meshlab/points.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
@@ -477,7 +478,7 @@ TEST(MeshMeasures, HistogramsCountEveryValue) {
 TEST(MeshDistance, KnownDistancesToASquare) {
   CMeshO m;
   openSquare(m);
-  const growth::MeshDistance d(m);
+  const growth::MeshDistance d(growth::meshlab::meshArrays(m));
   EXPECT_NEAR(d.distance(Point3d(0.25, 0.25, 0)), 0.0, 1e-12);
   EXPECT_NEAR(d.distance(Point3d(0.5, 0.5, 0.3)), 0.3, 1e-12);
   EXPECT_NEAR(d.distance(Point3d(0.5, 0.5, -0.3)), 0.3, 1e-12);
@@ -488,7 +489,7 @@ TEST(MeshDistance, KnownDistancesToASquare) {
 
 TEST(MeshDistance, EmptyMeshIsInfinitelyFar) {
   CMeshO m;
-  const growth::MeshDistance d(m);
+  const growth::MeshDistance d(growth::meshlab::meshArrays(m));
   EXPECT_TRUE(d.empty());
   EXPECT_TRUE(std::isinf(d.distance(Point3d(0, 0, 0))));
 }
@@ -508,7 +509,7 @@ TEST(MeshDistance, HierarchyAgreesWithBruteForce) {
   }
   CMeshO m;
   makeMesh(m, v, f);
-  const growth::MeshDistance index(m);
+  const growth::MeshDistance index(growth::meshlab::meshArrays(m));
   // Brute force from the float-stored coordinates, as the index sees them.
   std::vector<Point3d> stored;
   for (const auto& vert : m.vert) stored.push_back(Point3d::Construct(vert.cP()));

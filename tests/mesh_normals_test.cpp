@@ -1,7 +1,8 @@
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/mesh_normals.h>
 
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>

@@ -9,6 +9,7 @@
 // the indexes agree). Timings are wall clock, best of 3.
 #include "g2s_grid.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/meshlab/points.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>

@@ -5,6 +5,7 @@
 // PREFIX_angles.csv (degrees), PREFIX_edges.csv and PREFIX_quality.csv (Q_t) as "lo,hi,count";
 // --edge-max fixes the edge histogram's range to [0, L] (default 3·E_avg) so that several meshes
 // can be compared bin by bin.
+#include <growth/meshlab/layer.h>
 #include <growth/mesh_measures.h>
 
 #include <common/ml_mesh_type.h>

@@ -12,6 +12,7 @@
 // process CPU time (cpu_ms, less sensitive to other load on the machine); *_ratio lines compare
 // with the expected values: the area per point with area / points, the spacing with the Poisson
 // median 0.4697 sqrt(area / points), the noise with the generator's bound (nu) or sigma.
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/cloud_scale.h>
 #include <growth/error.h>

@@ -8,6 +8,7 @@
 //   self_intersections_time <mesh.ply> [--repeat R] [--threads T] [--remove]
 #include <cstring> // (vcglib's headers use strcpy without including it)
 
+#include <growth/meshlab/layer.h>
 #include <growth/manifold_cleanup.h>
 #include <growth/self_intersections.h>
 

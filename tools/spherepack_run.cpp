@@ -11,8 +11,9 @@
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (Stat::seconds).
-#include "sphere_packer.h"
+#include "filter_spherepack_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>

@@ -1,9 +1,6 @@
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
-#include <common/ml_mesh_type.h>
-#include <vcg/complex/algorithms/update/bounding.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -547,15 +544,15 @@ void writePly(const std::string& path, const Cloud& cloud) {
     throw Error("cannot write " + path);
 }
 
-void toMesh(const Cloud& cloud, CMeshO& mesh) {
-  mesh.Clear();
-  auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(mesh, cloud.points.size());
-  for (size_t i = 0; i < cloud.points.size(); ++i, ++vi) {
-    const Vec3d &p = cloud.points[i], &n = cloud.normals[i];
-    vi->P() = vcg::Point3f(float(p[0]), float(p[1]), float(p[2]));
-    vi->N() = vcg::Point3f(float(n[0]), float(n[1]), float(n[2]));
-  }
-  vcg::tri::UpdateBounding<CMeshO>::Box(mesh);
+CloudArrays toArrays(const Cloud& cloud) {
+  // Rounded to float, as a layer stores them.
+  auto asFloat = [](const Vec3d& p) { return Vec3d(double(float(p[0])), double(float(p[1])), double(float(p[2]))); };
+  CloudArrays a;
+  a.points.reserve(cloud.points.size());
+  a.normals.reserve(cloud.normals.size());
+  for (const Vec3d& p : cloud.points) a.points.push_back(asFloat(p));
+  for (const Vec3d& n : cloud.normals) a.normals.push_back(asFloat(n));
+  return a;
 }
 
 } // namespace growth

@@ -6,7 +6,6 @@
 #include <growth/point_grid.h>
 #include <growth/self_intersections.h>
 
-#include <common/ml_mesh_type.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -59,24 +58,16 @@ struct Compact {
   std::vector<char> proper;               // face has three distinct vertices
 };
 
-Compact compact(const CMeshO& mesh) {
+Compact compact(const MeshArrays& mesh) {
   Compact c;
-  // The arrays are written whole (all but deleted elements): made resident in one call each
-  // (huge_pages.h), not page by page.
-  std::vector<int> index;
-  assignHuge(index, mesh.vert.size(), -1);
-  reserveHuge(c.vert, static_cast<size_t>(std::max(mesh.vn, 0)), /*populate=*/true);
-  for (size_t i = 0; i < mesh.vert.size(); ++i) {
-    if (mesh.vert[i].IsD()) continue;
-    index[i] = static_cast<int>(c.vert.size());
-    c.vert.push_back(Vec3d::Construct(mesh.vert[i].cP()));
-  }
-  reserveHuge(c.face, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
-  reserveHuge(c.proper, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
-  for (const auto& f : mesh.face) {
-    if (f.IsD()) continue;
+  c.vert = mesh.vertices;
+  const size_t n = c.vert.size();
+  // The arrays are written whole: made resident in one call each (huge_pages.h), not page by page.
+  reserveHuge(c.face, mesh.faces.size(), /*populate=*/true);
+  reserveHuge(c.proper, mesh.faces.size(), /*populate=*/true);
+  for (const auto& f : mesh.faces) {
     std::array<int, 3> t;
-    for (int k = 0; k < 3; ++k) t[k] = index[vcg::tri::Index(mesh, f.cV(k))];
+    for (int k = 0; k < 3; ++k) t[k] = f[k] < n ? static_cast<int>(f[k]) : -1; // (a deleted vertex)
     c.face.push_back(t);
     c.proper.push_back(t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
   }
@@ -323,25 +314,25 @@ double triangleQF(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
 
 // --- Topology ---
 
-MeshTopology measureTopology(const CMeshO& mesh) {
+MeshTopology measureTopology(const MeshArrays& mesh) {
   const Compact c = compact(mesh);
   return topology(c, buildEdges(c));
 }
 
-size_t countBoundaryEdges(const CMeshO& m) { return measureTopology(m).boundaryEdges; }
-size_t countNonManifoldEdges(const CMeshO& m) { return measureTopology(m).nonManifoldEdges; }
-size_t countNonManifoldVertices(const CMeshO& m) { return measureTopology(m).nonManifoldVertices; }
-size_t countBoundaryLoops(const CMeshO& m) { return measureTopology(m).boundaryLoops; }
-size_t countComponents(const CMeshO& m) { return measureTopology(m).components; }
-size_t countInconsistentEdges(const CMeshO& m) { return measureTopology(m).inconsistentEdges; }
-bool isConsistentlyOriented(const CMeshO& m) { return measureTopology(m).inconsistentEdges == 0; }
-size_t countDegenerateFaces(const CMeshO& m) { return measureTopology(m).degenerateFaces; }
-size_t countDuplicateFaces(const CMeshO& m) { return measureTopology(m).duplicateFaces; }
-size_t countSelfIntersections(const CMeshO& m) { return selfIntersectingPairs(compact(m)); }
+size_t countBoundaryEdges(const MeshArrays& m) { return measureTopology(m).boundaryEdges; }
+size_t countNonManifoldEdges(const MeshArrays& m) { return measureTopology(m).nonManifoldEdges; }
+size_t countNonManifoldVertices(const MeshArrays& m) { return measureTopology(m).nonManifoldVertices; }
+size_t countBoundaryLoops(const MeshArrays& m) { return measureTopology(m).boundaryLoops; }
+size_t countComponents(const MeshArrays& m) { return measureTopology(m).components; }
+size_t countInconsistentEdges(const MeshArrays& m) { return measureTopology(m).inconsistentEdges; }
+bool isConsistentlyOriented(const MeshArrays& m) { return measureTopology(m).inconsistentEdges == 0; }
+size_t countDegenerateFaces(const MeshArrays& m) { return measureTopology(m).degenerateFaces; }
+size_t countDuplicateFaces(const MeshArrays& m) { return measureTopology(m).duplicateFaces; }
+size_t countSelfIntersections(const MeshArrays& m) { return selfIntersectingPairs(compact(m)); }
 
 // --- Distance of points to the mesh ---
 
-MeshDistance::MeshDistance(const CMeshO& mesh) {
+MeshDistance::MeshDistance(const MeshArrays& mesh) {
   Compact c = compact(mesh);
   vert_ = std::move(c.vert);
   std::vector<Item> items;
@@ -504,7 +495,7 @@ double MeshDistance::distance(const Vec3d& p, int* hint) const {
   return std::sqrt(best);
 }
 
-void measureCloudDistance(const CMeshO& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out) {
+void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out) {
   out.hasCloud = true;
   out.cloudPoints = cloud.size();
   out.cloudSpacing = cloud.size() >= 2 ? meanSpacing(cloud) : MeshMeasures::kNaN;
@@ -543,7 +534,7 @@ void measureCloudDistance(const CMeshO& mesh, const std::vector<Vec3d>& cloud, M
 
 // --- Everything ---
 
-MeshMeasures measure(const CMeshO& mesh, const std::vector<Vec3d>* cloud, const MeasureOptions& options) {
+MeshMeasures measure(const MeshArrays& mesh, const std::vector<Vec3d>* cloud, const MeasureOptions& options) {
   MeshMeasures m;
   const Compact c = compact(mesh);
   const Edges e = buildEdges(c);

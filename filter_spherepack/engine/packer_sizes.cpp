@@ -7,8 +7,6 @@
 #include <growth/morton.h>
 #include <growth/radix_order.h>
 
-#include <common/ml_mesh_type.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,13 +16,13 @@ namespace spherepack {
 namespace detail {
 
 // Input: the cloud's points and normals, checked (what sec. 3.1 assumes of the input).
-InputCloud readInput(const CMeshO& cloud, Stat& st) {
+InputCloud readInput(CloudArrays cloud, Stat& st) {
   CloudCheck check;
   check.needNormals = true;
   check.allowFaces = false;
   check.minPoints = 3;
-  InputCloud in = readCloud(cloud, check);
-  st.inputPoints = static_cast<size_t>(cloud.vn);
+  st.inputPoints = cloud.points.size();
+  InputCloud in = readCloud(std::move(cloud), check);
   st.duplicatesDropped = in.duplicatesDropped;
   return in;
 }

@@ -8,6 +8,7 @@
 #include "borders.h"
 #include "box_grid.h"
 #include <growth/input_cloud.h>
+#include <growth/mesh_arrays.h>
 #include <growth/progress.h>
 #include "region_triangulation.h"
 #include "splats.h"
@@ -66,7 +67,7 @@ struct Sizes {
 };
 
 // packer_sizes.cpp, sec. 3.1, 4.3 and 5.3: the input checked, the sizes d and s, the spatial order.
-InputCloud readInput(const CMeshO& cloud, Stat& st);
+InputCloud readInput(CloudArrays cloud, Stat& st);
 Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st);
 Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints);
 // Points this many d (along an axis) from the bulk of the cloud or more can be left out when the
@@ -136,12 +137,15 @@ size_t unreachedPoints(const Growth& growth, size_t points);
 
 // packer_regions.cpp, sec. 3.7: the regions triangulated; the clean-up (manifold, no intersecting
 // faces, no small pieces).
-std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st);
-void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
+// `floatStorage`: the output layer stores float coordinates (CloudArrays::floatStorage); the
+// checks that must hold on the saved mesh are made on the positions rounded so.
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, bool floatStorage, Stat& st);
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, bool floatStorage,
+                  Stat& st);
 void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
 
 // packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, and the report.
-void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, MeshArrays& out,
                Stat& st);
 void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
             bool noFaces, Stat& st);

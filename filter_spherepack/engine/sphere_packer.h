@@ -13,12 +13,11 @@
 // (the initialization of sec. 3.3, the growth loop of sec. 3.4–3.6, ...), are the packer_*.cpp
 // files beside it (packer_steps.h lists them); build() in sphere_packer.cpp runs them in order.
 #include <growth/vec3.h>
+#include <growth/mesh_arrays.h>
 #include <growth/progress.h>
 
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 namespace spherepack {
@@ -162,19 +161,19 @@ struct Stat {
                                  //           the other box normals, on another thread meanwhile
   double secondsTriangulation = 0; //         regions (sec. 3.7)
   double secondsCleanup = 0;     //           manifold and intersection clean-up
-  double secondsOutput = 0;      //           writing the mesh, its normals, the topology check
+  double secondsOutput = 0;      //           writing the mesh (with the glue's: its layer and normals), the topology check
   std::vector<std::string> warnings;
 };
 
 // Defaults derived from the cloud (d and s from its sampling and noise), so that the filter works
 // without tuning. Never throws: an unusable cloud gives the static defaults.
-Params suggestParams(const CMeshO& cloud);
+Params suggestParams(const CloudArrays& cloud);
 
-// Builds the mesh of the live vertices (with normals) of `cloud` into `out` (cleared first), with
-// per-vertex normals and per-face quality Q_t. Throws growth::Error on bad input or parameters
-// and growth::Cancelled when cb returns false; `out` is then left empty.
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
-           CallBackPos* cb = nullptr);
+// Builds the mesh of the points (with normals) of `cloud` (a layer's live vertices,
+// growth/mesh_arrays.h) into `out` (cleared first), with per-face quality Q_t. Throws growth::Error
+// on bad input or parameters and growth::Cancelled when cb returns false; `out` is then left empty.
+// The glue writes `out` into a layer, with its normals (growth/meshlab/layer.h).
+void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& stat, CallBackPos* cb = nullptr);
 
 } // namespace spherepack
 } // namespace growth

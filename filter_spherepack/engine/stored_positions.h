@@ -1,5 +1,5 @@
 #pragma once
-// Positions as a MeshLab layer stores them (CMeshO's scalar: float in MeshLab 2020.09 and the GUI,
+// Positions as a MeshLab layer stores them (its scalar: float in MeshLab 2020.09 and the GUI,
 // double in PyMeshLab), for checks that must hold on the output as it is saved, not only on the
 // engine's doubles: two faces that nearly touch in double can intersect once rounded to float.
 //
@@ -34,6 +34,12 @@ std::vector<Vec3d> asStored(const std::vector<Vec3d>& pos) {
   std::vector<Vec3d> out(pos.size());
   for (size_t i = 0; i < pos.size(); ++i) out[i] = asStored<Scalar>(pos[i]);
   return out;
+}
+
+// As stored by a layer of float (CloudArrays::floatStorage) or double coordinates.
+inline Vec3d asStored(const Vec3d& p, bool floatStorage) { return floatStorage ? asStored<float>(p) : p; }
+inline std::vector<Vec3d> asStored(const std::vector<Vec3d>& pos, bool floatStorage) {
+  return floatStorage ? asStored<float>(pos) : pos;
 }
 
 } // namespace growth

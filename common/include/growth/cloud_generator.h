@@ -14,13 +14,12 @@
 // outliers. Normals are always those of the exact surface at the unperturbed sample.
 // The same spec gives the same cloud on every machine (own random number transforms, not the
 // implementation-defined std:: distributions).
+#include <growth/mesh_arrays.h>
 #include <growth/vec3.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 
@@ -93,8 +92,8 @@ const char* shapeName(Shape s);
 // Binary little-endian PLY with float x y z nx ny nz, which MeshLab reads.
 void writePly(const std::string& path, const Cloud& cloud);
 
-// Fills a MeshLab mesh (vertices and normals only) with the cloud.
-void toMesh(const Cloud& cloud, CMeshO& mesh);
+// The cloud as the engines' input (the points and normals of a layer stored in float).
+CloudArrays toArrays(const Cloud& cloud);
 
 // A small seeded generator with portable transforms (splitmix64-seeded xoshiro256**).
 class Random {

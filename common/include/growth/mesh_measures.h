@@ -1,8 +1,8 @@
 #pragma once
 // Mesh quality measures: the instrument the tests, the filters' logs and the benchmark share.
 //
-// Everything is computed in double on a CMeshO (MeshLab stores float), ignoring deleted faces and
-// vertices. Definitions:
+// Everything is computed in double on a mesh's arrays (MeshArrays; the glue's overloads for a
+// MeshLab layer, growth/meshlab/layer.h, ignore its deleted faces and vertices). Definitions:
 // - Q_t = 4·√3·A / (l1² + l2² + l3²), Q_avg its mean, Q_RMS the RMS deviation in % of Q_avg
 //   (sphere-packing paper, sec. 5; equals vcglib's QualityMeanRatio). 1 for the equilateral
 //   triangle, √3/2 for the right isosceles one.
@@ -35,6 +35,7 @@
 //   (Robust G2S, sec. 5). The mean is over all input points; the points used as vertices by an
 //   interpolating mesher contribute 0, so it is the paper's "distance of the unmeshed points"
 //   spread over the whole cloud.
+#include <growth/mesh_arrays.h>
 #include <growth/vec3.h>
 
 #include <array>
@@ -42,8 +43,6 @@
 #include <limits>
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 
@@ -126,7 +125,7 @@ struct MeshMeasures {
 };
 
 // All measures at once. `cloud`: the input points (e.g. growth::readCloud(...).points), or null.
-MeshMeasures measure(const CMeshO& mesh, const std::vector<Vec3d>* cloud = nullptr,
+MeshMeasures measure(const MeshArrays& mesh, const std::vector<Vec3d>* cloud = nullptr,
                      const MeasureOptions& options = MeasureOptions());
 
 // --- Single triangles (lengths in any unit) ---
@@ -139,25 +138,25 @@ struct MeshTopology {
          components = 0, inconsistentEdges = 0, degenerateFaces = 0, duplicateFaces = 0,
          unreferencedVertices = 0, edges = 0;
 };
-MeshTopology measureTopology(const CMeshO& mesh);
+MeshTopology measureTopology(const MeshArrays& mesh);
 
-size_t countBoundaryEdges(const CMeshO& mesh);
-size_t countNonManifoldEdges(const CMeshO& mesh);
-size_t countNonManifoldVertices(const CMeshO& mesh);
-size_t countBoundaryLoops(const CMeshO& mesh);
-size_t countComponents(const CMeshO& mesh);
-size_t countInconsistentEdges(const CMeshO& mesh);
-bool isConsistentlyOriented(const CMeshO& mesh);
-size_t countDegenerateFaces(const CMeshO& mesh);
-size_t countDuplicateFaces(const CMeshO& mesh);
-size_t countSelfIntersections(const CMeshO& mesh); // self-intersecting face pairs
+size_t countBoundaryEdges(const MeshArrays& mesh);
+size_t countNonManifoldEdges(const MeshArrays& mesh);
+size_t countNonManifoldVertices(const MeshArrays& mesh);
+size_t countBoundaryLoops(const MeshArrays& mesh);
+size_t countComponents(const MeshArrays& mesh);
+size_t countInconsistentEdges(const MeshArrays& mesh);
+bool isConsistentlyOriented(const MeshArrays& mesh);
+size_t countDegenerateFaces(const MeshArrays& mesh);
+size_t countDuplicateFaces(const MeshArrays& mesh);
+size_t countSelfIntersections(const MeshArrays& mesh); // self-intersecting face pairs
 
 // Exact distance from points to the nearest live face of a mesh, in double, through a bounding
 // volume hierarchy over the faces (built once; a query costs about log(faces)). The mesh may be
 // changed or destroyed after construction: the index keeps its own copy.
 class MeshDistance {
 public:
-  explicit MeshDistance(const CMeshO& mesh);
+  explicit MeshDistance(const MeshArrays& mesh);
   bool empty() const { return tri_.empty(); }
   // Distance to the nearest face; +infinity when the mesh has no face. `hint` (optional), on entry
   // a triangle likely near p or -1, on return the nearest triangle: passing the previous answer
@@ -184,6 +183,6 @@ private:
 
 // Distance statistics of `cloud` to `mesh` (fields hasCloud … pointsFartherThanSpacing of
 // MeshMeasures are filled).
-void measureCloudDistance(const CMeshO& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out);
+void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out);
 
 } // namespace growth
