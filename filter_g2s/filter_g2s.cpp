@@ -1,6 +1,6 @@
 #include "filter_g2s.h"
 
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
 #include <growth/error.h>
 

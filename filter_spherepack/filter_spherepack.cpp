@@ -1,6 +1,6 @@
 #include "filter_spherepack.h"
 
-#include "sphere_packer.h"
+#include "filter_spherepack_layer.h"
 
 #include <growth/error.h>
 
@@ -78,9 +78,9 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
       "Pieces with fewer faces are dropped (second scan layers, stray points); 0 keeps all."));
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
       "Start the growth from the two points below, not near the highest point."));
-  parlst.addParam(RichPoint("startPoint1", Point3m::Construct(def.startPoint[0]), "Starting point 1",
+  parlst.addParam(RichPoint("startPoint1", Point3m(def.startPoint[0][0], def.startPoint[0][1], def.startPoint[0][2]), "Starting point 1",
       "First start point (used only with 'Use given starting points')."));
-  parlst.addParam(RichPoint("startPoint2", Point3m::Construct(def.startPoint[1]), "Starting point 2",
+  parlst.addParam(RichPoint("startPoint2", Point3m(def.startPoint[1][0], def.startPoint[1][1], def.startPoint[1][2]), "Starting point 2",
       "Second start point, between d and 2d from the first."));
 }
 
@@ -106,8 +106,8 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   p.maxBorderLength = par.getInt("maxBorderLength");
   p.minComponentFaces = par.getInt("minComponentFaces");
   p.useStartPoints = par.getBool("useStartPoints");
-  p.startPoint[0] = vcg::Point3d::Construct(par.getPoint3m("startPoint1"));
-  p.startPoint[1] = vcg::Point3d::Construct(par.getPoint3m("startPoint2"));
+  p.startPoint[0] = growth::Vec3d::Construct(par.getPoint3m("startPoint1"));
+  p.startPoint[1] = growth::Vec3d::Construct(par.getPoint3m("startPoint2"));
 
   growth::spherepack::Stat st;
   CMeshO result;

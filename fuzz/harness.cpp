@@ -1,8 +1,9 @@
 #include "harness.h"
 
-#include "g2s.h"
-#include "sphere_packer.h"
+#include "filter_g2s_layer.h"
+#include "filter_spherepack_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
@@ -45,13 +46,13 @@ public:
     const std::uint64_t lo = u32();
     return lo | (std::uint64_t(u32()) << 32);
   }
-  vcg::Point3d unitPoint() {
+  growth::Vec3d unitPoint() {
     const double x = unit(), y = unit();
-    return vcg::Point3d(x, y, unit());
+    return growth::Vec3d(x, y, unit());
   }
-  vcg::Point3d rawPoint() {
+  growth::Vec3d rawPoint() {
     const double x = raw(), y = raw();
-    return vcg::Point3d(x, y, raw());
+    return growth::Vec3d(x, y, raw());
   }
   double unit() { return double(u16()) / 65535.0; }            // [0, 1]
   bool chance(int in256) { return u8() >= 256 - in256; }        // true with probability in256/256 (0: false)
@@ -239,7 +240,7 @@ Cloud makeCloud(Bytes& in) {
   const std::uint64_t seed = in.u64();
   Random rng(seed);
   Cloud c;
-  auto add = [&](const vcg::Point3d& p, const vcg::Point3d& n) {
+  auto add = [&](const growth::Vec3d& p, const growth::Vec3d& n) {
     c.points.push_back(p);
     c.normals.push_back(n);
   };
@@ -283,10 +284,10 @@ Cloud makeCloud(Bytes& in) {
   case kClusters: { // a few positions, each repeated with a jitter of 2^-k (0: exact copies)
     const size_t centres = 1 + in.u8() % 8;
     const double jitter = in.chance(64) ? 0.0 : in.pow2(-50, -1);
-    std::vector<vcg::Point3d> centre;
+    std::vector<growth::Vec3d> centre;
     for (size_t k = 0; k < centres; ++k) centre.push_back(rng.inBall(1.0));
     for (size_t i = 0; i < count; ++i) {
-      const vcg::Point3d p = centre[i % centres] + rng.inBall(jitter);
+      const growth::Vec3d p = centre[i % centres] + rng.inBall(jitter);
       add(p, rng.unitVector());
     }
     break;
@@ -329,7 +330,7 @@ Cloud makeCloud(Bytes& in) {
       const double sign = in.chance(128) ? -1 : 1;
       offset = sign * in.pow2(-20, 130);
     }
-    for (auto& p : c.points) p = p * scale + vcg::Point3d(offset, offset * 0.5, -offset);
+    for (auto& p : c.points) p = p * scale + growth::Vec3d(offset, offset * 0.5, -offset);
   }
   // Normals: noisy, flipped, zero or NaN on some points.
   if (in.chance(96)) {
@@ -341,8 +342,8 @@ Cloud makeCloud(Bytes& in) {
       switch (mode) {
       case 0: n = (n + rng.unitVector() * noise).Normalize(); break;
       case 1: n = -n; break;
-      case 2: n = vcg::Point3d(0, 0, 0); break;
-      default: n = vcg::Point3d(std::numeric_limits<double>::quiet_NaN(), 0, 0); break;
+      case 2: n = growth::Vec3d(0, 0, 0); break;
+      default: n = growth::Vec3d(std::numeric_limits<double>::quiet_NaN(), 0, 0); break;
       }
     }
   }
@@ -390,7 +391,7 @@ void runCloud(const std::uint8_t* data, size_t size) {
   CMeshO cloud;
   toMesh(c, cloud);
 
-  vcg::Box3d box;
+  growth::Box3d box;
   for (const auto& p : c.points)
     if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) box.Add(p);
   const double spacing = box.IsNull() ? 1.0 : box.Diag() / std::sqrt(double(c.points.size()));
@@ -412,7 +413,7 @@ void runCloud(const std::uint8_t* data, size_t size) {
       if (in.chance(32)) {
         q = in.rawPoint();
       } else {
-        const vcg::Point3d& p = c.points[in.u16() % c.points.size()];
+        const growth::Vec3d& p = c.points[in.u16() % c.points.size()];
         q = p + in.unitPoint() * spacing;
       }
     }

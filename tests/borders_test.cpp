@@ -12,7 +12,7 @@
 
 using growth::BorderGraph;
 using growth::HalfEdge;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 const Point3d kUp(0, 0, 1);

@@ -13,7 +13,7 @@
 
 using growth::BoxGrid;
 using growth::SphereSampling;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 std::vector<std::uint32_t> iota(size_t n) {

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <tuple>
 
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 TEST(ParentCircle, PointsAreAtDistanceDFromBothParents) {
   growth::Random rnd(4);

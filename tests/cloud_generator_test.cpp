@@ -1,3 +1,4 @@
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 #include <growth/point_grid.h>
@@ -46,7 +47,7 @@ TEST(CloudGenerator, NormalsAreOutwardAndOrthogonalToTheSurface) {
   const auto torus = growth::generateCloud(t);
   for (size_t i = 0; i < torus.points.size(); ++i) {
     // Moving along the normal moves away from the tube's centre circle at unit rate.
-    const vcg::Point3d q = torus.points[i] + torus.normals[i] * 0.01;
+    const growth::Vec3d q = torus.points[i] + torus.normals[i] * 0.01;
     EXPECT_NEAR(growth::distanceToShape(t, q), 0.01, 1e-9);
   }
 }
@@ -277,18 +278,18 @@ TEST(CloudGenerator, Genus2NormalsAreTheGradientOutwardAndOrthogonal) {
   const CloudSpec c = spec(Shape::Genus2, 3000, 4);
   const auto cloud = growth::generateCloud(c);
   for (size_t i = 0; i < cloud.points.size(); ++i) {
-    const vcg::Point3d& p = cloud.points[i];
-    const vcg::Point3d& n = cloud.normals[i];
+    const growth::Vec3d& p = cloud.points[i];
+    const growth::Vec3d& n = cloud.normals[i];
     EXPECT_LT(std::abs(growth::genus2Function(p)), 1e-12);
     // The gradient by central differences.
     const double e = 1e-6;
-    vcg::Point3d fd;
+    growth::Vec3d fd;
     for (int a = 0; a < 3; ++a) {
-      vcg::Point3d dp(0, 0, 0);
+      growth::Vec3d dp(0, 0, 0);
       dp[a] = e;
       fd[a] = (growth::genus2Function(p + dp) - growth::genus2Function(p - dp)) / (2 * e);
     }
-    vcg::Point3d g;
+    growth::Vec3d g;
     growth::genus2Function(p, &g);
     EXPECT_LT((g - fd).Norm(), 1e-7 * fd.Norm());
     EXPECT_LT((n - fd / fd.Norm()).Norm(), 1e-7);
@@ -392,14 +393,14 @@ TEST(CloudGenerator, LatLongSphereIsTheGridWithItsPoles) {
   c.longitudeSegments = 12;
   const auto cloud = growth::generateCloud(c);
   ASSERT_EQ(cloud.points.size(), size_t(7 * 12 + 2));
-  EXPECT_EQ(cloud.points.front(), vcg::Point3d(0, 0, 1));
-  EXPECT_EQ(cloud.points.back(), vcg::Point3d(0, 0, -1));
+  EXPECT_EQ(cloud.points.front(), growth::Vec3d(0, 0, 1));
+  EXPECT_EQ(cloud.points.back(), growth::Vec3d(0, 0, -1));
   for (size_t i = 0; i < cloud.points.size(); ++i) {
     EXPECT_LT(growth::distanceToShape(c, cloud.points[i]), 1e-15);
     EXPECT_NEAR((cloud.normals[i] - cloud.points[i]).Norm(), 0.0, 1e-15); // unit sphere: n = p
   }
   // Ring i (1-based) at polar angle pi*i/8, point j at longitude 2*pi*j/12.
-  const vcg::Point3d p = cloud.points[1 + 2 * 12 + 3]; // ring 3, point 3
+  const growth::Vec3d p = cloud.points[1 + 2 * 12 + 3]; // ring 3, point 3
   EXPECT_NEAR(std::acos(p[2]), M_PI * 3 / 8, 1e-12);
   EXPECT_NEAR(std::atan2(p[1], p[0]), 2 * M_PI * 3 / 12, 1e-12);
   EXPECT_DOUBLE_EQ(growth::shapeArea(c), 4 * M_PI);
@@ -417,7 +418,7 @@ TEST(CloudGenerator, HollowBallHasBothShellsUniformByAreaWithNormalsOutOfTheMate
   ASSERT_EQ(cloud.points.size(), 20000u);
   size_t inner = 0;
   for (size_t i = 0; i < cloud.points.size(); ++i) {
-    const vcg::Point3d& p = cloud.points[i];
+    const growth::Vec3d& p = cloud.points[i];
     EXPECT_LT(growth::distanceToShape(c, p), 1e-12);
     const bool isInner = p.Norm() < 0.9;
     inner += isInner;
@@ -437,8 +438,8 @@ TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
   ASSERT_EQ(cloud.points.size(), 40000u);
   size_t onSides = 0;
   for (size_t i = 0; i < cloud.points.size(); ++i) {
-    const vcg::Point3d& p = cloud.points[i];
-    const vcg::Point3d& n = cloud.normals[i];
+    const growth::Vec3d& p = cloud.points[i];
+    const growth::Vec3d& n = cloud.normals[i];
     EXPECT_LT(growth::distanceToShape(c, p), 1e-15);
     // On its face, with the face's outward normal.
     for (int a = 0; a < 3; ++a) {
@@ -451,7 +452,7 @@ TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
   // The four sides hold 8 h t / (8 h^2 + 8 h t) = 0.1 / 1.1 of the area.
   EXPECT_NEAR(double(onSides) / 40000.0, 0.1 / 1.1, 0.01);
   EXPECT_DOUBLE_EQ(growth::shapeArea(c), 8.0 + 0.8);
-  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, vcg::Point3d(0, 0, 0)), 0.05);
-  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, vcg::Point3d(0.5, 0, 0.25)), 0.2);
+  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, growth::Vec3d(0, 0, 0)), 0.05);
+  EXPECT_DOUBLE_EQ(growth::distanceToShape(c, growth::Vec3d(0.5, 0, 0.25)), 0.2);
   EXPECT_EQ(growth::parseShape("slab"), Shape::Slab);
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -12,7 +13,7 @@
 using growth::CloudSpec;
 using growth::SamplingEstimate;
 using growth::Shape;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 CloudSpec spec(Shape s, size_t n, std::uint64_t seed = 1) {

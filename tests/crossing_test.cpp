@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 TEST(SegmentsCross2D, ProperCrossingsOnly) {
   EXPECT_TRUE(growth::segmentsCross2D(0, 0, 1, 1, 0, 1, 1, 0));

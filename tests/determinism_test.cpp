@@ -9,9 +9,10 @@
 // apply. The clouds have 24,000 points so that every parallel phase of the packer really splits
 // its work on 2 threads (the box grid hands out parts of at least 8192 points) and the packer
 // takes its spatial order (from 20,000 points).
-#include "g2s.h"
-#include "sphere_packer.h"
+#include "filter_g2s_layer.h"
+#include "filter_spherepack_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
 

@@ -1,6 +1,7 @@
 // growth::Error and growth::Cancelled: the two ways the engine reports to its host. The MeshLab
 // glue tells them apart (a user-facing message versus a silent cancel), so they must stay
 // distinct types, and the message of an Error must reach the host unchanged.
+#include <growth/meshlab/layer.h>
 #include <growth/error.h>
 #include <growth/input_cloud.h>
 

@@ -12,7 +12,7 @@ using growth::orient2d;
 using growth::orient2dExact;
 using growth::orient3d;
 using growth::orient3dExact;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

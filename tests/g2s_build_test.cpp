@@ -1,8 +1,10 @@
 // Robust G2S end to end through the engine entry point g2s::build on MeshLab meshes: the
 // experiments of sec. 5 on generated clouds, output properties, bad input, cancel, determinism.
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 #include "g2s_mesher.h"
 
+#include <growth/meshlab/layer.h>
+#include <growth/meshlab/points.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -40,10 +42,10 @@ Mesh cloudMesh(const CloudSpec& spec) {
   return m;
 }
 
-Mesh pointsMesh(const std::vector<vcg::Point3d>& pts) {
+Mesh pointsMesh(const std::vector<growth::Vec3d>& pts) {
   growth::Cloud c;
   c.points = pts;
-  c.normals.assign(pts.size(), vcg::Point3d(0, 0, 1));
+  c.normals.assign(pts.size(), growth::Vec3d(0, 0, 1));
   Mesh m(new CMeshO);
   growth::toMesh(c, *m);
   return m;
@@ -103,8 +105,8 @@ void expectValidOutput(const Mesh& cloudPtr, const std::unique_ptr<Result>& resu
   // Per-face quality Q_t in (0, 1], equal to the measure (float storage).
   ASSERT_TRUE(r.mesh.face.IsQualityEnabled() || r.mesh.fn == 0);
   for (const auto& f : r.mesh.face) {
-    const double q = growth::triangleQuality(vcg::Point3d::Construct(f.cP(0)), vcg::Point3d::Construct(f.cP(1)),
-                                             vcg::Point3d::Construct(f.cP(2)));
+    const double q = growth::triangleQuality(growth::Vec3d::Construct(f.cP(0)), growth::Vec3d::Construct(f.cP(1)),
+                                             growth::Vec3d::Construct(f.cP(2)));
     EXPECT_NEAR(f.cQ(), q, 1e-5);
     EXPECT_GT(f.cQ(), 0);
     EXPECT_LE(f.cQ(), 1 + 1e-6);
@@ -129,7 +131,7 @@ TEST(G2SBuild, CleanSphereIsClosedWithTwoFacesPerPoint) {
   // Closed surfaces face outwards: positive signed volume.
   double vol = 0;
   for (const auto& f : r->mesh.face)
-    vol += vcg::Point3d::Construct(f.cP(0)) * (vcg::Point3d::Construct(f.cP(1)) ^ vcg::Point3d::Construct(f.cP(2)));
+    vol += growth::Vec3d::Construct(f.cP(0)) * (growth::Vec3d::Construct(f.cP(1)) ^ growth::Vec3d::Construct(f.cP(2)));
   EXPECT_GT(vol, 0);
 }
 
@@ -248,7 +250,7 @@ TEST(G2SBuild, LatitudeLongitudeSphereMeshesClosed) {
 TEST(G2SBuild, ScanLineSamplingIsSeededAndMeshed) {
   for (double jitter : {0.0, 0.001}) {
     SCOPED_TRACE(jitter);
-    std::vector<vcg::Point3d> pts;
+    std::vector<growth::Vec3d> pts;
     growth::Random rng(7);
     const double along = 0.01, across = 0.03;
     for (int j = 0; j < 34; ++j)
@@ -272,7 +274,7 @@ TEST(G2SBuild, ScanLineSamplingIsSeededAndMeshed) {
 // estimated without a consistent orientation), the majority still decides; without normals the
 // mesh is the same but for its orientation.
 TEST(G2SBuild, OpenPiecesFaceTheWayTheLayersNormalsPoint) {
-  std::vector<vcg::Point3d> pts;
+  std::vector<growth::Vec3d> pts;
   growth::Random rng(11);
   for (int j = 0; j < 60; ++j)
     for (int i = 0; i < 60; ++i) {
@@ -285,7 +287,7 @@ TEST(G2SBuild, OpenPiecesFaceTheWayTheLayersNormalsPoint) {
     growth::Random flip(3);
     for (size_t i = 0; i < pts.size(); ++i) {
       const bool flipped = double(flip.next() % 1000) < 1000.0 * flippedFraction;
-      c.normals.push_back(vcg::Point3d(0, 0, flipped ? -up : up));
+      c.normals.push_back(growth::Vec3d(0, 0, flipped ? -up : up));
     }
     Mesh m(new CMeshO);
     growth::toMesh(c, *m);
@@ -294,8 +296,8 @@ TEST(G2SBuild, OpenPiecesFaceTheWayTheLayersNormalsPoint) {
   auto facing = [](const CMeshO& mesh, size_t& up, size_t& down) {
     up = down = 0;
     for (const auto& f : mesh.face) {
-      const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
-                         d = vcg::Point3d::Construct(f.cP(2));
+      const growth::Vec3d a = growth::Vec3d::Construct(f.cP(0)), b = growth::Vec3d::Construct(f.cP(1)),
+                         d = growth::Vec3d::Construct(f.cP(2));
       (((b - a) ^ (d - a))[2] > 0 ? up : down) += 1;
     }
   };
@@ -474,7 +476,7 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   std::vector<vcg::Point3f> corners; // of the live triangles, as the layer stores them
   for (size_t f = 0; f < all.size(); ++f)
     if (alive[f])
-      for (std::uint32_t v : all[f]) corners.push_back(vcg::Point3f::Construct(m.points()[v]));
+      for (std::uint32_t v : all[f]) corners.push_back(growth::meshlab::toPoint3f(m.points()[v]));
   ASSERT_GT(corners.size() / 3, size_t(8 * 8192)); // many blocks, and a partial last one
   ASSERT_EQ(size_t(r->mesh.fn), corners.size() / 3);
   for (size_t f = 0; f < r->mesh.face.size(); ++f)
@@ -482,7 +484,7 @@ TEST(G2SBuild, FacesAreTheMeshersLiveTrianglesInOrder) {
   // takeLiveTriangles: the same triangles in mesher indices; alive() and triangles() then empty.
   const std::vector<growth::Triangle> live = m.takeLiveTriangles();
   ASSERT_EQ(live.size(), corners.size() / 3);
-  for (size_t f = 0; f < live.size(); ++f) ASSERT_TRUE(vcg::Point3f::Construct(m.points()[live[f][1]]) == corners[3 * f + 1]);
+  for (size_t f = 0; f < live.size(); ++f) ASSERT_TRUE(growth::meshlab::toPoint3f(m.points()[live[f][1]]) == corners[3 * f + 1]);
   EXPECT_TRUE(m.triangles().empty());
   EXPECT_TRUE(m.alive().empty());
 }
@@ -526,12 +528,12 @@ TEST(G2SBuild, OrientComponentsKeepsThePointEdgeMapInStep) {
 struct Facing {
   size_t innerOut = 0, innerIn = 0, outerOut = 0, outerIn = 0;
 };
-Facing facing(const CMeshO& mesh, const vcg::Point3d& centre, double split) {
+Facing facing(const CMeshO& mesh, const growth::Vec3d& centre, double split) {
   Facing c;
   for (const auto& f : mesh.face) {
-    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
-                       d = vcg::Point3d::Construct(f.cP(2));
-    const vcg::Point3d g = (a + b + d) / 3.0 - centre;
+    const growth::Vec3d a = growth::Vec3d::Construct(f.cP(0)), b = growth::Vec3d::Construct(f.cP(1)),
+                       d = growth::Vec3d::Construct(f.cP(2));
+    const growth::Vec3d g = (a + b + d) / 3.0 - centre;
     const bool out = ((b - a) ^ (d - a)) * g > 0;
     if (g.Norm() < split) (out ? c.innerOut : c.innerIn) += 1;
     else (out ? c.outerOut : c.outerIn) += 1;
@@ -549,7 +551,7 @@ TEST(G2SBuild, HollowBallsInnerShellFacesIntoTheHollow) {
   EXPECT_EQ(r->stat.holes, 0u);
   EXPECT_EQ(r->stat.unusedPoints, 0u);
   EXPECT_EQ(r->topo.components, 2u);
-  const Facing c = facing(r->mesh, vcg::Point3d(0, 0, 0), 0.9);
+  const Facing c = facing(r->mesh, growth::Vec3d(0, 0, 0), 0.9);
   EXPECT_GT(c.innerIn, 5000u);
   EXPECT_EQ(c.innerOut, 0u); // the cavity's wall faces into the cavity
   EXPECT_GT(c.outerOut, 10000u);
@@ -559,7 +561,7 @@ TEST(G2SBuild, HollowBallsInnerShellFacesIntoTheHollow) {
 // Three nested spheres (radii 1, 0.75, 0.5: material, cavity, material again) and a fourth sphere
 // beside them: depth 0 faces out, depth 1 in, depth 2 out; the one beside, out.
 TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
-  std::vector<vcg::Point3d> pts;
+  std::vector<growth::Vec3d> pts;
   for (double radius : {1.0, 0.75, 0.5}) {
     CloudSpec spec;
     spec.shape = Shape::Sphere;
@@ -572,7 +574,7 @@ TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
   beside.shape = Shape::Sphere;
   beside.count = 1500;
   beside.sphereRadius = 0.5;
-  for (const auto& p : growth::generateCloud(beside).points) pts.push_back(p + vcg::Point3d(3, 0, 0));
+  for (const auto& p : growth::generateCloud(beside).points) pts.push_back(p + growth::Vec3d(3, 0, 0));
   const Mesh cloud = pointsMesh(pts);
   const auto r = run(cloud);
   expectValidOutput(cloud, r);
@@ -580,11 +582,11 @@ TEST(G2SBuild, NestedShellsAlternateAndShellsSideBySideFaceOut) {
   EXPECT_EQ(r->topo.components, 4u);
   size_t wrong = 0, faces = 0;
   for (const auto& f : r->mesh.face) {
-    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
-                       d = vcg::Point3d::Construct(f.cP(2));
-    vcg::Point3d g = (a + b + d) / 3.0;
+    const growth::Vec3d a = growth::Vec3d::Construct(f.cP(0)), b = growth::Vec3d::Construct(f.cP(1)),
+                       d = growth::Vec3d::Construct(f.cP(2));
+    growth::Vec3d g = (a + b + d) / 3.0;
     const bool side = g[0] > 2;
-    if (side) g -= vcg::Point3d(3, 0, 0);
+    if (side) g -= growth::Vec3d(3, 0, 0);
     const double rad = g.Norm();
     const bool wantOut = side || rad > 0.9 || rad < 0.6;
     const bool out = ((b - a) ^ (d - a)) * g > 0;
@@ -617,10 +619,10 @@ SlabFacing slabFacing(const CMeshO& mesh, double h, double t) {
   SlabFacing c;
   const double core = h - 0.5 * t;
   for (const auto& f : mesh.face) {
-    const vcg::Point3d a = vcg::Point3d::Construct(f.cP(0)), b = vcg::Point3d::Construct(f.cP(1)),
-                       d = vcg::Point3d::Construct(f.cP(2));
-    const vcg::Point3d n = (b - a) ^ (d - a), g = (a + b + d) / 3.0;
-    const vcg::Point3d out(g[0] - std::max(-core, std::min(core, g[0])), g[1] - std::max(-core, std::min(core, g[1])), g[2]);
+    const growth::Vec3d a = growth::Vec3d::Construct(f.cP(0)), b = growth::Vec3d::Construct(f.cP(1)),
+                       d = growth::Vec3d::Construct(f.cP(2));
+    const growth::Vec3d n = (b - a) ^ (d - a), g = (a + b + d) / 3.0;
+    const growth::Vec3d out(g[0] - std::max(-core, std::min(core, g[0])), g[1] - std::max(-core, std::min(core, g[1])), g[2]);
     if (n * out > 0) continue;
     (std::max(std::abs(g[0]), std::abs(g[1])) > h - 2 * t ? c.inwardAtRims : c.inward) += 1;
   }
@@ -986,8 +988,8 @@ TEST(G2SBuild, ThinPartRulesStayOutOfCleanClouds) {
 
 TEST(G2SBuild, CoplanarCloudGivesAPlanarTriangulation) {
   growth::Random rng(4);
-  std::vector<vcg::Point3d> pts;
-  for (int i = 0; i < 2000; ++i) pts.push_back(vcg::Point3d(rng.uniform(0, 1), rng.uniform(0, 1), 0.5));
+  std::vector<growth::Vec3d> pts;
+  for (int i = 0; i < 2000; ++i) pts.push_back(growth::Vec3d(rng.uniform(0, 1), rng.uniform(0, 1), 0.5));
   const Mesh cloud = pointsMesh(pts);
   const auto r = run(cloud);
   expectValidOutput(cloud, r);
@@ -1002,7 +1004,7 @@ TEST(G2SBuild, DuplicatePointsAreDroppedAndGiveTheSameMesh) {
   spec.shape = Shape::Sphere;
   spec.count = 2000;
   const auto pts = growth::generateCloud(spec).points;
-  std::vector<vcg::Point3d> doubled(pts);
+  std::vector<growth::Vec3d> doubled(pts);
   doubled.insert(doubled.end(), pts.begin(), pts.end());
   const auto a = run(pointsMesh(pts)), b = run(pointsMesh(doubled));
   EXPECT_EQ(b->stat.duplicatesDropped, pts.size());
@@ -1017,16 +1019,16 @@ TEST(G2SBuild, BadInputGivesAClearError) {
   const g2s::Params p = g2s::suggestParams(empty);
   EXPECT_THROW(g2s::build(empty, out, p, st), growth::Error);
   EXPECT_EQ(out.fn, 0);
-  EXPECT_THROW(g2s::build(*pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0)}), out, p, st), growth::Error);
-  EXPECT_THROW(g2s::build(*pointsMesh({vcg::Point3d(1, 1, 1), vcg::Point3d(1, 1, 1), vcg::Point3d(1, 1, 1),
-                                      vcg::Point3d(1, 1, 1)}),
+  EXPECT_THROW(g2s::build(*pointsMesh({growth::Vec3d(0, 0, 0), growth::Vec3d(1, 0, 0)}), out, p, st), growth::Error);
+  EXPECT_THROW(g2s::build(*pointsMesh({growth::Vec3d(1, 1, 1), growth::Vec3d(1, 1, 1), growth::Vec3d(1, 1, 1),
+                                      growth::Vec3d(1, 1, 1)}),
                           out, p, st),
                growth::Error);
-  std::vector<vcg::Point3d> line;
-  for (int i = 0; i < 50; ++i) line.push_back(vcg::Point3d(i, 2 * i, 3 * i));
+  std::vector<growth::Vec3d> line;
+  for (int i = 0; i < 50; ++i) line.push_back(growth::Vec3d(i, 2 * i, 3 * i));
   EXPECT_THROW(g2s::build(*pointsMesh(line), out, p, st), growth::Error);
-  std::vector<vcg::Point3d> withNan{vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0, 1, 0),
-                                    vcg::Point3d(std::numeric_limits<double>::quiet_NaN(), 0, 0)};
+  std::vector<growth::Vec3d> withNan{growth::Vec3d(0, 0, 0), growth::Vec3d(1, 0, 0), growth::Vec3d(0, 1, 0),
+                                    growth::Vec3d(std::numeric_limits<double>::quiet_NaN(), 0, 0)};
   try {
     g2s::build(*pointsMesh(withNan), out, p, st);
     FAIL() << "NaN accepted";
@@ -1042,15 +1044,15 @@ TEST(G2SBuild, TinyCloudsGiveAValidPossiblyEmptyResult) {
   g2s::Stat st;
   const g2s::Params p = defaults();
   // Three points: one triangle (or none); never a crash.
-  const Mesh three = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0.4, 0.8, 0)});
+  const Mesh three = pointsMesh({growth::Vec3d(0, 0, 0), growth::Vec3d(1, 0, 0), growth::Vec3d(0.4, 0.8, 0)});
   g2s::build(*three, out, p, st);
   EXPECT_LE(out.fn, 1);
   EXPECT_EQ(growth::measureTopology(out).nonManifoldVertices, 0u);
   // Points too scattered for any seed: empty, with a warning.
   // Two pairs far apart: each point's nearest neighbour is its partner, and no third point is
   // within k times that distance.
-  const Mesh sparse = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(100, 0, 0),
-                                    vcg::Point3d(100, 1, 0.5)});
+  const Mesh sparse = pointsMesh({growth::Vec3d(0, 0, 0), growth::Vec3d(1, 0, 0), growth::Vec3d(100, 0, 0),
+                                    growth::Vec3d(100, 1, 0.5)});
   g2s::build(*sparse, out, p, st);
   EXPECT_EQ(out.fn, 0);
   EXPECT_EQ(out.vn, 0);
@@ -1058,7 +1060,7 @@ TEST(G2SBuild, TinyCloudsGiveAValidPossiblyEmptyResult) {
 }
 
 TEST(G2SBuild, MeshLayerIsRefused) {
-  Mesh mesh = pointsMesh({vcg::Point3d(0, 0, 0), vcg::Point3d(1, 0, 0), vcg::Point3d(0, 1, 0)});
+  Mesh mesh = pointsMesh({growth::Vec3d(0, 0, 0), growth::Vec3d(1, 0, 0), growth::Vec3d(0, 1, 0)});
   vcg::tri::Allocator<CMeshO>::AddFace(*mesh, &mesh->vert[0], &mesh->vert[1], &mesh->vert[2]);
   CMeshO out;
   g2s::Stat st;

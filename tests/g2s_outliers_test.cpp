@@ -1,8 +1,9 @@
 // Robust G2S on clouds with far points and dense clusters (issue 13, item 2): the spacing it
 // measures and logs is growth::meanSpacing (the one mesh_measures and the benchmark use), and
 // one point far away changes neither it nor the mesh's holes.
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
@@ -24,7 +25,7 @@ namespace g2s = growth::g2s;
 namespace {
 
 struct Run {
-  std::vector<vcg::Point3d> points; // as the layer holds them (float), as mesh_measures reads them
+  std::vector<growth::Vec3d> points; // as the layer holds them (float), as mesh_measures reads them
   CMeshO mesh;
   g2s::Stat stat;
 };
@@ -34,7 +35,7 @@ std::unique_ptr<Run> run(const CloudSpec& spec) {
   const growth::Cloud cloud = growth::generateCloud(spec);
   CMeshO in;
   growth::toMesh(cloud, in);
-  for (const auto& v : in.vert) r->points.push_back(vcg::Point3d::Construct(v.cP()));
+  for (const auto& v : in.vert) r->points.push_back(growth::Vec3d::Construct(v.cP()));
   CMeshO none;
   g2s::build(in, r->mesh, g2s::suggestParams(none), r->stat);
   return r;
@@ -107,7 +108,7 @@ namespace {
 // (uniform in that ball, drawn from `seed`), appended.
 void addClump(growth::Cloud& cloud, size_t at, size_t size, double spacing, std::uint64_t seed) {
   growth::Random rng(seed);
-  const vcg::Point3d centre = cloud.points[at];
+  const growth::Vec3d centre = cloud.points[at];
   for (size_t i = 0; i < size; ++i) {
     cloud.points.push_back(centre + rng.inBall(0.01 * spacing));
     cloud.normals.push_back(cloud.normals[at]);
@@ -178,7 +179,7 @@ TEST(G2SOutliers, TwoSheetsHalfASpacingApartAreNotAClump) {
   // spacing.
   for (double apart : {0.5, 0.2}) {
     CloudSpec s = spec(Shape::Slab, 20000);
-    std::vector<vcg::Point3d> sheet;
+    std::vector<growth::Vec3d> sheet;
     for (const auto& p : growth::generateCloud(s).points) sheet.push_back(p);
     s.slabThickness = apart * growth::meanSpacing(sheet);
     const auto r = run(s);

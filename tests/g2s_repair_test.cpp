@@ -2,8 +2,9 @@
 // the output has no intersecting face pairs, and the hole pass closes small holes while keeping the
 // mesh manifold, consistently oriented and free of intersections; both are deterministic, and a
 // clean closed cloud is left exactly as the paper's method meshes it.
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>

@@ -1,3 +1,4 @@
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -138,9 +139,9 @@ TEST(InputCloud, ALineInFloatIsALine) {
   CMeshO line;
   for (int i = 0; i < 200; ++i) addPoint(line, 0.01f * float(i), 0.02f * float(i), -0.03f * float(i));
   bool offLine = false; // the float points are not exactly on one line in double
-  const vcg::Point3d a = vcg::Point3d::Construct(line.vert[0].P()), b = vcg::Point3d::Construct(line.vert[199].P());
+  const growth::Vec3d a = growth::Vec3d::Construct(line.vert[0].P()), b = growth::Vec3d::Construct(line.vert[199].P());
   for (const auto& v : line.vert)
-    offLine |= ((vcg::Point3d::Construct(v.P()) - a) ^ (b - a)).Norm() > 1e-9 * (b - a).SquaredNorm();
+    offLine |= ((growth::Vec3d::Construct(v.P()) - a) ^ (b - a)).Norm() > 1e-9 * (b - a).SquaredNorm();
   EXPECT_TRUE(offLine);
   EXPECT_NE(errorOf(line, {}).find("one straight line"), std::string::npos);
   // Far from the origin (a geo-referenced line): the same.
@@ -174,11 +175,11 @@ TEST(InputCloud, AMeshIsRefusedUnlessAllowed) {
 }
 
 TEST(InputCloud, MeanSpacingOfAGrid) {
-  std::vector<vcg::Point3d> pts;
+  std::vector<growth::Vec3d> pts;
   for (int i = 0; i < 40; ++i)
     for (int j = 0; j < 40; ++j) pts.emplace_back(0.5 * i, 0.5 * j, 0);
   EXPECT_NEAR(growth::meanSpacing(pts), 0.5, 1e-12);
-  EXPECT_EQ(growth::meanSpacing({vcg::Point3d(0, 0, 0)}), 0.0);
+  EXPECT_EQ(growth::meanSpacing({growth::Vec3d(0, 0, 0)}), 0.0);
 }
 
 // The mean spacing is robust: one point far away, or 1 % of outliers scattered in a box around
@@ -201,14 +202,14 @@ TEST(InputCloud, MeanSpacingIgnoresFarPointsAndOutliers) {
   }
   EXPECT_NEAR(s0, sum / double(n), 1e-12 * s0);
 
-  std::vector<vcg::Point3d> far = clean.points;
-  far.push_back(vcg::Point3d(1e4, 0, 0)); // the same samples, and one more: the far point
+  std::vector<growth::Vec3d> far = clean.points;
+  far.push_back(growth::Vec3d(1e4, 0, 0)); // the same samples, and one more: the far point
   EXPECT_NEAR(growth::meanSpacing(far), s0, 1e-12 * s0);
   growth::CloudSpec noisy = spec;
   noisy.outlierFraction = 0.01;
   EXPECT_NEAR(growth::meanSpacing(growth::generateCloud(noisy).points), s0, 0.01 * s0);
   // The robust box holds the cloud, not the far point.
-  const vcg::Box3d box = growth::robustBox(far);
-  EXPECT_TRUE(box.IsIn(vcg::Point3d(0.99, 0, 0)));
-  EXPECT_FALSE(box.IsIn(vcg::Point3d(1e4, 0, 0)));
+  const growth::Box3d box = growth::robustBox(far);
+  EXPECT_TRUE(box.IsIn(growth::Vec3d(0.99, 0, 0)));
+  EXPECT_FALSE(box.IsIn(growth::Vec3d(1e4, 0, 0)));
 }

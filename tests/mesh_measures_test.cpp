@@ -1,3 +1,5 @@
+#include <growth/meshlab/layer.h>
+#include <growth/meshlab/points.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
@@ -13,7 +15,7 @@
 
 using growth::MeshMeasures;
 using growth::measure;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 
@@ -21,7 +23,7 @@ namespace {
 void makeMesh(CMeshO& m, const std::vector<Point3d>& v, const std::vector<std::array<int, 3>>& f) {
   m.Clear();
   auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(m, v.size());
-  for (size_t i = 0; i < v.size(); ++i, ++vi) vi->P() = vcg::Point3f::Construct(v[i]);
+  for (size_t i = 0; i < v.size(); ++i, ++vi) vi->P() = growth::meshlab::toPoint3f(v[i]);
   // Corners set by hand: Allocator::AddFace asserts they are distinct, and some faces here repeat one.
   auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(m, f.size());
   for (size_t i = 0; i < f.size(); ++i, ++fi)
@@ -476,7 +478,7 @@ TEST(MeshMeasures, HistogramsCountEveryValue) {
 TEST(MeshDistance, KnownDistancesToASquare) {
   CMeshO m;
   openSquare(m);
-  const growth::MeshDistance d(m);
+  const growth::MeshDistance d(growth::meshlab::meshArrays(m));
   EXPECT_NEAR(d.distance(Point3d(0.25, 0.25, 0)), 0.0, 1e-12);
   EXPECT_NEAR(d.distance(Point3d(0.5, 0.5, 0.3)), 0.3, 1e-12);
   EXPECT_NEAR(d.distance(Point3d(0.5, 0.5, -0.3)), 0.3, 1e-12);
@@ -487,7 +489,7 @@ TEST(MeshDistance, KnownDistancesToASquare) {
 
 TEST(MeshDistance, EmptyMeshIsInfinitelyFar) {
   CMeshO m;
-  const growth::MeshDistance d(m);
+  const growth::MeshDistance d(growth::meshlab::meshArrays(m));
   EXPECT_TRUE(d.empty());
   EXPECT_TRUE(std::isinf(d.distance(Point3d(0, 0, 0))));
 }
@@ -507,7 +509,7 @@ TEST(MeshDistance, HierarchyAgreesWithBruteForce) {
   }
   CMeshO m;
   makeMesh(m, v, f);
-  const growth::MeshDistance index(m);
+  const growth::MeshDistance index(growth::meshlab::meshArrays(m));
   // Brute force from the float-stored coordinates, as the index sees them.
   std::vector<Point3d> stored;
   for (const auto& vert : m.vert) stored.push_back(Point3d::Construct(vert.cP()));

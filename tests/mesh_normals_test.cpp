@@ -1,7 +1,8 @@
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/mesh_normals.h>
 
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
@@ -10,12 +11,21 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 namespace {
 
 using Mesh = std::unique_ptr<CMeshO>; // CMeshO can be neither copied nor moved
+
+// The angle between two vectors (-1 when one is zero), as vcglib's Angle.
+double angleBetween(const growth::Vec3d& a, const growth::Vec3d& b) {
+  const double w = a.Norm() * b.Norm();
+  if (w == 0) return -1;
+  return std::acos(std::max(-1.0, std::min(1.0, (a * b) / w)));
+}
 
 // A Robust G2S mesh of a generated cloud (noisy, so with uneven and some near-degenerate faces).
 Mesh g2sMesh(growth::Shape shape, size_t n, double sigmaSpacings) {
@@ -58,14 +68,14 @@ TEST(MeshNormals, MatchVcglibAngleWeightedNormals) {
     // the angles, 1 on a flat fan. Where the faces fold around the vertex (a noisy point inside
     // the triangle of its three neighbours) the sum nearly cancels and a relative error of the
     // weights grows by 1 / that ratio, so the tolerance does too.
-    std::vector<vcg::Point3d> sum(m->vert.size(), vcg::Point3d(0, 0, 0));
+    std::vector<growth::Vec3d> sum(m->vert.size(), growth::Vec3d(0, 0, 0));
     std::vector<double> angles(m->vert.size(), 0.0);
     for (const CFaceO& f : m->face) {
-      const vcg::Point3d p[3] = {vcg::Point3d::Construct(f.cP(0)), vcg::Point3d::Construct(f.cP(1)),
-                                 vcg::Point3d::Construct(f.cP(2))};
-      const vcg::Point3d n = ((p[1] - p[0]) ^ (p[2] - p[0])).Normalize();
+      const growth::Vec3d p[3] = {growth::Vec3d::Construct(f.cP(0)), growth::Vec3d::Construct(f.cP(1)),
+                                 growth::Vec3d::Construct(f.cP(2))};
+      const growth::Vec3d n = ((p[1] - p[0]) ^ (p[2] - p[0])).Normalize();
       for (int k = 0; k < 3; ++k) {
-        const double angle = vcg::Angle(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
+        const double angle = angleBetween(p[(k + 1) % 3] - p[k], p[(k + 2) % 3] - p[k]);
         const size_t v = size_t(vcg::tri::Index(*m, f.cV(k)));
         sum[v] += n * angle;
         angles[v] += angle;

@@ -14,7 +14,7 @@
 
 namespace sp = growth::spherepack;
 namespace detail = growth::spherepack::detail;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

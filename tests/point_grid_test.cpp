@@ -8,7 +8,7 @@
 #include <limits>
 
 using growth::PointGrid;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 // Brute-force references.

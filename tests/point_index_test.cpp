@@ -10,7 +10,7 @@
 #include <vector>
 
 using MortonGrid = growth::PointIndex;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

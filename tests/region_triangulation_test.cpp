@@ -7,7 +7,7 @@
 #include <cmath>
 #include <set>
 
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 using growth::Triangle;
 
 namespace {
@@ -159,15 +159,15 @@ TEST(RegionTriangulation, BordersLongerThanTheLimitStayHoles) {
 // A face is too flat to output when its largest angle exceeds 179° (or two vertices coincide):
 // the audit's face with edges d, d, 2d has 180°.
 TEST(RegionTriangulation, NearlyCollinearFacesAreRecognised) {
-  const vcg::Point3d a(0, 0, 0), c(2, 0, 0);
-  EXPECT_TRUE(growth::nearlyCollinear(a, vcg::Point3d(1, 0, 0), c));
+  const growth::Vec3d a(0, 0, 0), c(2, 0, 0);
+  EXPECT_TRUE(growth::nearlyCollinear(a, growth::Vec3d(1, 0, 0), c));
   EXPECT_TRUE(growth::nearlyCollinear(a, a, c));
   // Middle vertex 0.005 off the line: 179.43°; 0.02 off: 177.7°.
-  EXPECT_TRUE(growth::nearlyCollinear(a, vcg::Point3d(1, 0.005, 0), c));
-  EXPECT_FALSE(growth::nearlyCollinear(a, vcg::Point3d(1, 0.02, 0), c));
-  EXPECT_FALSE(growth::nearlyCollinear(a, vcg::Point3d(1, std::sqrt(3.0), 0), c));
+  EXPECT_TRUE(growth::nearlyCollinear(a, growth::Vec3d(1, 0.005, 0), c));
+  EXPECT_FALSE(growth::nearlyCollinear(a, growth::Vec3d(1, 0.02, 0), c));
+  EXPECT_FALSE(growth::nearlyCollinear(a, growth::Vec3d(1, std::sqrt(3.0), 0), c));
   // The same at 10^6 from the origin (the test works on differences).
-  const vcg::Point3d o(1e6, 1e6, 1e6);
-  EXPECT_TRUE(growth::nearlyCollinear(a + o, vcg::Point3d(1, 0.005, 0) + o, c + o));
-  EXPECT_FALSE(growth::nearlyCollinear(a + o, vcg::Point3d(1, 0.02, 0) + o, c + o));
+  const growth::Vec3d o(1e6, 1e6, 1e6);
+  EXPECT_TRUE(growth::nearlyCollinear(a + o, growth::Vec3d(1, 0.005, 0) + o, c + o));
+  EXPECT_FALSE(growth::nearlyCollinear(a + o, growth::Vec3d(1, 0.02, 0) + o, c + o));
 }

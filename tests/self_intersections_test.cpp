@@ -16,7 +16,7 @@ using growth::Triangle;
 using growth::facesIntersect;
 using growth::findSelfIntersections;
 using growth::removeSelfIntersections;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

@@ -1,9 +1,10 @@
 // The sphere-packing mesher end to end (sections 3 and 4 of the paper; section 5.2 for the test
 // clouds): the guarantees on generated clouds, determinism, noise, open surfaces, bad input,
 // progress and cancel.
-#include "sphere_packer.h"
+#include "filter_spherepack_layer.h"
 #include "region_triangulation.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -24,7 +25,7 @@
 #include <stdexcept>
 
 namespace sp = growth::spherepack;
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 namespace {
 

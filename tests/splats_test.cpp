@@ -11,7 +11,7 @@
 #include <cmath>
 #include <numeric>
 
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 TEST(Splats, TangentFrameIsOrthonormalAndRightHanded) {
   growth::Random rnd(1);
@@ -268,7 +268,7 @@ struct FanScratch {
   std::vector<char> alive;
 };
 
-double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+double fanRadius(const growth::Vec3d& p, const growth::Vec3d& n, const std::vector<growth::Vec3d>& neighbours,
                  std::vector<int>* keptOut, FanScratch& scratch) {
   std::vector<Q>& fan = scratch.fan;
   std::vector<int>&prev = scratch.prev, &next = scratch.next, &work = scratch.work;
@@ -276,13 +276,13 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
   fan.clear();
   if (keptOut != nullptr) keptOut->clear();
 
-  vcg::Point3d e1, e2;
+  growth::Vec3d e1, e2;
   tangentFrame(n, e1, e2);
   // Rotation about p onto T_p inside the plane spanned by n and p_i - p: the tangential part of
   // p_i - p, rescaled to the full distance |p_i - p|.
   // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
   for (size_t i = 0; i < neighbours.size(); ++i) {
-    const vcg::Point3d v = neighbours[i] - p;
+    const growth::Vec3d v = neighbours[i] - p;
     const double len2 = v.SquaredNorm();
     const double h = v * n;
     const double tlen2 = len2 - h * h;
@@ -381,7 +381,7 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
   return radius;
 }
 
-double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+double localSplatRadius(const growth::Vec3d& p, const growth::Vec3d& n, const std::vector<growth::Vec3d>& neighbours,
                         std::vector<int>* keptOut) {
   FanScratch scratch;
   return fanRadius(p, n, neighbours, keptOut, scratch);

@@ -11,11 +11,11 @@
 // A loop over many points (the case GCC 12 vectorises, where double(float(x)) was folded to x):
 // every coordinate is rounded to float, and double storage leaves it as it is.
 TEST(StoredPositions, EveryCoordinateIsRoundedInALongLoop) {
-  std::vector<vcg::Point3d> p(200000);
+  std::vector<growth::Vec3d> p(200000);
   for (size_t i = 0; i < p.size(); ++i)
-    p[i] = vcg::Point3d(-0.014897726704867475 + 1e-9 * double(i), 0.16640705533776953, 1.0 / 3.0);
-  const std::vector<vcg::Point3d> f = growth::asStored<float>(p);
-  const std::vector<vcg::Point3d> d = growth::asStored<double>(p);
+    p[i] = growth::Vec3d(-0.014897726704867475 + 1e-9 * double(i), 0.16640705533776953, 1.0 / 3.0);
+  const std::vector<growth::Vec3d> f = growth::asStored<float>(p);
+  const std::vector<growth::Vec3d> d = growth::asStored<double>(p);
   // A double holds a float value (of normal magnitude) when its 29 lowest mantissa bits are zero;
   // checked on the bits, since a float round trip in the check itself could be folded the same way.
   auto isFloat = [](double x) {

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-using vcg::Point3d;
+using Point3d = growth::Vec3d;
 
 TEST(VertexGrid, BallQueriesMatchBruteForceWhileGrowing) {
   growth::VertexGrid g;

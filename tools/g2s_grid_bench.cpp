@@ -9,6 +9,8 @@
 // the indexes agree). Timings are wall clock, best of 3.
 #include "g2s_grid.h"
 
+#include <growth/meshlab/layer.h>
+#include <growth/meshlab/points.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/input_cloud.h>
@@ -28,7 +30,7 @@
 #include <string>
 #include <vector>
 
-using P3 = vcg::Point3d;
+using P3 = growth::Vec3d;
 
 namespace {
 double seconds(const std::function<void()>& f, int repeat = 3) {
@@ -131,14 +133,14 @@ int main(int argc, char** argv) {
     const double tq = seconds([&] {
       hits = 0;
       for (const P3& c : centre) {
-        vcg::tri::GetInSphereVertex(mesh, g, CMeshO::CoordType::Construct(c), CMeshO::ScalarType(radius), found, dist, where);
+        vcg::tri::GetInSphereVertex(mesh, g, growth::meshlab::toPoint<CMeshO::CoordType>(c), CMeshO::ScalarType(radius), found, dist, where);
         hits += found.size();
       }
     });
     const double tn = seconds([&] {
       for (size_t q = 0; q < queries / 4; ++q) {
         CMeshO::ScalarType d = std::numeric_limits<CMeshO::ScalarType>::max();
-        vcg::tri::GetClosestVertex(mesh, g, CMeshO::CoordType::Construct(centre[q]), d, d);
+        vcg::tri::GetClosestVertex(mesh, g, growth::meshlab::toPoint<CMeshO::CoordType>(centre[q]), d, d);
       }
     });
     std::printf("%-28s %10.1f %12.1f %12.2f %12.1f\n", "vcg GridStaticPtr (float)", tb * 1e3,
@@ -146,7 +148,7 @@ int main(int argc, char** argv) {
   }
   {
     std::vector<vcg::Point3f> fp;
-    for (const P3& p : pts) fp.push_back(vcg::Point3f::Construct(p));
+    for (const P3& p : pts) fp.push_back(growth::meshlab::toPoint3f(p));
     std::unique_ptr<vcg::KdTree<float>> tree;
     const double tb = seconds([&] { tree.reset(new vcg::KdTree<float>(vcg::ConstDataWrapper<vcg::Point3f>(&fp[0], fp.size()))); });
     std::vector<unsigned int> idx;
@@ -157,7 +159,7 @@ int main(int argc, char** argv) {
       for (const P3& c : centre) {
         idx.clear();
         d2.clear();
-        tree->doQueryDist(vcg::Point3f::Construct(c), float(radius), idx, d2);
+        tree->doQueryDist(growth::meshlab::toPoint3f(c), float(radius), idx, d2);
         hits += idx.size();
       }
     });
@@ -165,7 +167,7 @@ int main(int argc, char** argv) {
       for (size_t q = 0; q < queries / 4; ++q) {
         unsigned int i;
         float d;
-        tree->doQueryClosest(vcg::Point3f::Construct(centre[q]), i, d);
+        tree->doQueryClosest(growth::meshlab::toPoint3f(centre[q]), i, d);
       }
     });
     std::printf("%-28s %10.1f %12.1f %12.2f %12.1f\n", "vcg KdTree (float)", tb * 1e3, tq * 1e9 / double(queries),

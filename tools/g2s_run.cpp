@@ -18,9 +18,10 @@
 // cpu_seconds is the process CPU time spent in the engine (less sensitive to other load);
 // engine_page_faults_first_run counts the minor page faults of the first run (each costs several
 // microseconds of kernel time on a virtual machine).
-#include "g2s.h"
+#include "filter_g2s_layer.h"
 #include "g2s_near.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>

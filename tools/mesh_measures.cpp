@@ -5,6 +5,7 @@
 // PREFIX_angles.csv (degrees), PREFIX_edges.csv and PREFIX_quality.csv (Q_t) as "lo,hi,count";
 // --edge-max fixes the edge histogram's range to [0, L] (default 3·E_avg) so that several meshes
 // can be compared bin by bin.
+#include <growth/meshlab/layer.h>
 #include <growth/mesh_measures.h>
 
 #include <common/ml_mesh_type.h>
@@ -94,14 +95,14 @@ int main(int argc, char** argv) {
 
   CMeshO mesh;
   if (!load(meshPath, mesh)) return 1;
-  std::vector<vcg::Point3d> cloud;
+  std::vector<growth::Vec3d> cloud;
   if (!cloudPath.empty()) {
     CMeshO c;
     if (!load(cloudPath, c)) return 1;
     cloud.reserve(c.vert.size());
     for (const auto& v : c.vert) {
       if (v.IsD()) continue;
-      const vcg::Point3d p = vcg::Point3d::Construct(v.cP());
+      const growth::Vec3d p = growth::Vec3d::Construct(v.cP());
       if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) cloud.push_back(p);
     }
   }

@@ -6,6 +6,7 @@
 //   normals_time <mesh.ply>
 #include <cstring> // (vcglib's headers use strcpy without including it)
 
+#include <growth/meshlab/layer.h>
 #include <growth/mesh_normals.h>
 
 #include <vcg/complex/algorithms/update/normal.h>

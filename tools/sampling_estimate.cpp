@@ -12,6 +12,7 @@
 // process CPU time (cpu_ms, less sensitive to other load on the machine); *_ratio lines compare
 // with the expected values: the area per point with area / points, the spacing with the Poisson
 // median 0.4697 sqrt(area / points), the noise with the generator's bound (nu) or sigma.
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 #include <growth/cloud_scale.h>
 #include <growth/error.h>
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
     }
     if (in.empty() && !generated) throw growth::Error("no input (a PLY file or --shape)");
 
-    std::vector<vcg::Point3d> points;
+    std::vector<growth::Vec3d> points;
     if (generated) {
       if (noiseSpacings > 0 || gaussSpacings > 0) {
         growth::CloudSpec clean = spec;
@@ -90,12 +91,12 @@ int main(int argc, char** argv) {
       if (err != 0 && vcg::tri::io::ImporterPLY<CMeshO>::ErrorCritical(err))
         throw growth::Error(std::string("cannot read ") + in + ": " + vcg::tri::io::ImporterPLY<CMeshO>::ErrorMsg(err));
       for (const auto& v : m.vert)
-        if (!v.IsD()) points.push_back(vcg::Point3d::Construct(v.cP()));
+        if (!v.IsD()) points.push_back(growth::Vec3d::Construct(v.cP()));
     }
     if (far && !points.empty()) {
-      vcg::Box3d box;
+      growth::Box3d box;
       for (const auto& p : points) box.Add(p);
-      points.push_back(box.max + vcg::Point3d(1, 1, 1) * (1e4 * box.Diag()));
+      points.push_back(box.max + growth::Vec3d(1, 1, 1) * (1e4 * box.Diag()));
     }
 
     growth::SamplingEstimate e;

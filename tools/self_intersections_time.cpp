@@ -8,6 +8,7 @@
 //   self_intersections_time <mesh.ply> [--repeat R] [--threads T] [--remove]
 #include <cstring> // (vcglib's headers use strcpy without including it)
 
+#include <growth/meshlab/layer.h>
 #include <growth/manifold_cleanup.h>
 #include <growth/self_intersections.h>
 
@@ -46,12 +47,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   // Live vertices and faces, renumbered.
-  std::vector<vcg::Point3d> pos;
+  std::vector<growth::Vec3d> pos;
   std::vector<int> index(m.vert.size(), -1);
   for (size_t i = 0; i < m.vert.size(); ++i)
     if (!m.vert[i].IsD()) {
       index[i] = int(pos.size());
-      pos.push_back(vcg::Point3d::Construct(m.vert[i].cP()));
+      pos.push_back(growth::Vec3d::Construct(m.vert[i].cP()));
     }
   std::vector<growth::Triangle> faces;
   for (const CFaceO& f : m.face) {

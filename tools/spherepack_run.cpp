@@ -11,8 +11,9 @@
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (Stat::seconds).
-#include "sphere_packer.h"
+#include "filter_spherepack_layer.h"
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_scale.h>
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
@@ -164,7 +165,7 @@ int main(int argc, char** argv) {
                   m.components, m.unreferencedVertices, m.eulerCharacteristic, m.selfIntersectingPairs);
       if (generated) {
         double worst = 0;
-        for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, vcg::Point3d::Construct(v.cP())));
+        for (const auto& v : mesh.vert) worst = std::max(worst, growth::distanceToShape(spec, growth::Vec3d::Construct(v.cP())));
         std::printf("max_distance_to_shape: %.6g\n", worst);
       }
     }

@@ -1,9 +1,6 @@
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
-#include <common/ml_mesh_type.h>
-#include <vcg/complex/algorithms/update/bounding.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -32,29 +29,29 @@ void patchGradient(double x, double y, double& hx, double& hy) {
 
 // Exact surface sample: position, normal, and the z range used for the non-uniform density.
 struct Sample {
-  vcg::Point3d p, n;
+  Vec3d p, n;
 };
 
 // ---- Genus 2 ----------------------------------------------------------------------------------
 
 // One torus T = (rho - R)^2 + z^2 - r^2 around the axis through (cx, 0, 0), and its gradient.
-double torusFunction(const vcg::Point3d& p, double cx, vcg::Point3d& g) {
+double torusFunction(const Vec3d& p, double cx, Vec3d& g) {
   const double x = p[0] - cx, rho = std::sqrt(x * x + p[1] * p[1]);
   const double radial = rho - kGenus2Major;
   // On the axis (inside the hole, far from the surface) the radial direction is undefined.
   const double k = rho > 0 ? 2 * radial / rho : 0.0;
-  g = vcg::Point3d(k * x, k * p[1], 2 * p[2]);
+  g = Vec3d(k * x, k * p[1], 2 * p[2]);
   return radial * radial + p[2] * p[2] - kGenus2Minor * kGenus2Minor;
 }
 
 // p moved onto F = 0 by Newton steps along the gradient, until a step is below 1e-15 of the size.
-vcg::Point3d genus2Project(vcg::Point3d q) {
+Vec3d genus2Project(Vec3d q) {
   for (int it = 0; it < 50; ++it) {
-    vcg::Point3d g;
+    Vec3d g;
     const double f = genus2Function(q, &g);
     const double g2 = g.SquaredNorm();
     if (!(g2 > 0)) break;
-    const vcg::Point3d step = g * (f / g2);
+    const Vec3d step = g * (f / g2);
     q -= step;
     if (step.SquaredNorm() <= 1e-30 * (1.0 + q.SquaredNorm())) break;
   }
@@ -67,7 +64,7 @@ vcg::Point3d genus2Project(vcg::Point3d q) {
 // about 0.1 s. Finer grids only cost time: the rejection below removes the triangulation's error
 // (a grid of 0.04 gives the same area to 4e-7).
 struct Genus2Mesh {
-  std::vector<vcg::Point3d> corner;   // 3 per triangle
+  std::vector<Vec3d> corner;   // 3 per triangle
   std::vector<double> cumulativeArea; // flat areas, summed in triangle order
   double surfaceArea = 0;             // of the surface (the triangles' areas times the map's scale)
   double zmin = 0, zmax = 0;          // of the surface
@@ -76,24 +73,24 @@ struct Genus2Mesh {
 // The area scale of the map triangle -> surface at barycentric (u, v) of triangle abc (surface
 // area over flat area): forward differences of the projection along an orthonormal frame of the
 // triangle's plane, steps of 1e-7. 0 for a degenerate triangle (no plane).
-double genus2AreaScale(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c, double u, double v,
-                       vcg::Point3d& onSurface) {
-  const vcg::Point3d e1 = b - a, e2 = c - a, q = a + e1 * u + e2 * v;
+double genus2AreaScale(const Vec3d& a, const Vec3d& b, const Vec3d& c, double u, double v,
+                       Vec3d& onSurface) {
+  const Vec3d e1 = b - a, e2 = c - a, q = a + e1 * u + e2 * v;
   onSurface = genus2Project(q);
-  vcg::Point3d normal = e1 ^ e2;
+  Vec3d normal = e1 ^ e2;
   const double e1n = e1.Norm(), nn = normal.Norm();
   if (!(nn > 0) || !(e1n > 0)) return 0.0;
-  const vcg::Point3d s = e1 / e1n, t = (normal / nn) ^ s;
+  const Vec3d s = e1 / e1n, t = (normal / nn) ^ s;
   const double step = 1e-7;
-  const vcg::Point3d ps = genus2Project(q + s * step), pt = genus2Project(q + t * step);
+  const Vec3d ps = genus2Project(q + s * step), pt = genus2Project(q + t * step);
   return ((ps - onSurface) ^ (pt - onSurface)).Norm() / (step * step);
 }
 
 Genus2Mesh buildGenus2Mesh() {
   const double h = 0.08;
-  const vcg::Point3d lo(-3.6, -2.0, -1.0);
+  const Vec3d lo(-3.6, -2.0, -1.0);
   const int nx = int(7.2 / h) + 2, ny = int(4.0 / h) + 2, nz = int(2.0 / h) + 2;
-  auto node = [&](int i, int j, int k) { return vcg::Point3d(lo[0] + i * h, lo[1] + j * h, lo[2] + k * h); };
+  auto node = [&](int i, int j, int k) { return Vec3d(lo[0] + i * h, lo[1] + j * h, lo[2] + k * h); };
   std::vector<double> f(size_t(nx) * ny * nz);
   auto at = [&](int i, int j, int k) -> double& { return f[(size_t(i) * ny + j) * nz + k]; };
   for (int i = 0; i < nx; ++i)
@@ -102,10 +99,10 @@ Genus2Mesh buildGenus2Mesh() {
 
   Genus2Mesh m;
   // Where the segment from an inside corner to an outside one crosses F = 0 (linearly).
-  auto cross = [](const vcg::Point3d& pin, double fin, const vcg::Point3d& pout, double fout) {
+  auto cross = [](const Vec3d& pin, double fin, const Vec3d& pout, double fout) {
     return pin + (pout - pin) * (fin / (fin - fout));
   };
-  auto add = [&](const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+  auto add = [&](const Vec3d& a, const Vec3d& b, const Vec3d& c) {
     m.corner.push_back(a);
     m.corner.push_back(b);
     m.corner.push_back(c);
@@ -134,7 +131,7 @@ Genus2Mesh buildGenus2Mesh() {
           if (nin == 1) add(e(in[0], out[0]), e(in[0], out[1]), e(in[0], out[2]));
           else if (nin == 3) add(e(in[0], out[0]), e(in[1], out[0]), e(in[2], out[0]));
           else {
-            const vcg::Point3d a = e(in[0], out[0]), b = e(in[0], out[1]), c = e(in[1], out[1]), d = e(in[1], out[0]);
+            const Vec3d a = e(in[0], out[0]), b = e(in[0], out[1]), c = e(in[1], out[1]), d = e(in[1], out[0]);
             add(a, b, c);
             add(a, c, d);
           }
@@ -146,7 +143,7 @@ Genus2Mesh buildGenus2Mesh() {
   m.zmin = 1e300;
   m.zmax = -1e300;
   for (size_t t = 0; t < triangles; ++t) {
-    const vcg::Point3d &a = m.corner[3 * t], &b = m.corner[3 * t + 1], &c = m.corner[3 * t + 2];
+    const Vec3d &a = m.corner[3 * t], &b = m.corner[3 * t + 1], &c = m.corner[3 * t + 2];
     // Slivers with no numerically usable plane are never picked.
     const double flat = 0.5 * ((b - a) ^ (c - a)).Norm();
     const double area = flat > 1e-12 * h * h ? flat : 0.0;
@@ -157,7 +154,7 @@ Genus2Mesh buildGenus2Mesh() {
     double scale = 0;
     const double mid[3][2] = {{0.5, 0}, {0.5, 0.5}, {0, 0.5}};
     for (int e = 0; e < 3 && area > 0; ++e) {
-      vcg::Point3d onSurface;
+      Vec3d onSurface;
       scale += genus2AreaScale(a, b, c, mid[e][0], mid[e][1], onSurface);
       m.zmin = std::min(m.zmin, onSurface[2]);
       m.zmax = std::max(m.zmax, onSurface[2]);
@@ -186,10 +183,10 @@ Sample sampleGenus2(Random& rng) {
         m.cumulativeArea.size() - 1);
     double u = rng.uniform(), v = rng.uniform();
     if (u + v > 1) u = 1 - u, v = 1 - v;
-    vcg::Point3d p;
+    Vec3d p;
     const double scale = genus2AreaScale(m.corner[3 * t], m.corner[3 * t + 1], m.corner[3 * t + 2], u, v, p);
     if (rng.uniform() * kGenus2MaxAreaScale > scale) continue;
-    vcg::Point3d g;
+    Vec3d g;
     genus2Function(p, &g);
     return {p, g / g.Norm()};
   }
@@ -198,7 +195,7 @@ Sample sampleGenus2(Random& rng) {
 Sample sampleSurface(const CloudSpec& s, Random& rng) {
   switch (s.shape) {
   case Shape::Sphere: {
-    const vcg::Point3d n = rng.unitVector();
+    const Vec3d n = rng.unitVector();
     return {n * s.sphereRadius, n};
   }
   case Shape::Torus: {
@@ -207,8 +204,8 @@ Sample sampleSurface(const CloudSpec& s, Random& rng) {
       const double u = rng.uniform(0, 2 * kPi), v = rng.uniform(0, 2 * kPi);
       const double w = (s.torusMajor + s.torusMinor * std::cos(v)) / (s.torusMajor + s.torusMinor);
       if (rng.uniform() > w) continue;
-      const vcg::Point3d n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
-      const vcg::Point3d c(s.torusMajor * std::cos(u), s.torusMajor * std::sin(u), 0);
+      const Vec3d n(std::cos(v) * std::cos(u), std::cos(v) * std::sin(u), std::sin(v));
+      const Vec3d c(s.torusMajor * std::cos(u), s.torusMajor * std::sin(u), 0);
       return {c + n * s.torusMinor, n};
     }
   }
@@ -221,22 +218,22 @@ Sample sampleSurface(const CloudSpec& s, Random& rng) {
       patchGradient(x, y, hx, hy);
       const double area = std::sqrt(1.0 + hx * hx + hy * hy);
       if (rng.uniform() * maxArea > area) continue;
-      vcg::Point3d n(-hx, -hy, 1.0);
+      Vec3d n(-hx, -hy, 1.0);
       n /= n.Norm();
-      return {vcg::Point3d(x, y, patchHeight(x, y)), n};
+      return {Vec3d(x, y, patchHeight(x, y)), n};
     }
   }
   case Shape::Genus2: return sampleGenus2(rng);
   case Shape::LatLongSphere: {
     // The grid is laid out in generateCloud; this is for the dense cluster's centre.
-    const vcg::Point3d n = rng.unitVector();
+    const Vec3d n = rng.unitVector();
     return {n * s.sphereRadius, n};
   }
   case Shape::HollowBall: {
     // Uniform by area over both spheres: the inner one with probability r^2 / (R^2 + r^2).
     const double R = s.sphereRadius, r = s.innerRadius;
     const bool inner = rng.uniform() * (R * R + r * r) < r * r;
-    const vcg::Point3d n = rng.unitVector();
+    const Vec3d n = rng.unitVector();
     return inner ? Sample{n * r, -n} : Sample{n * R, n};
   }
   case Shape::Slab: {
@@ -247,15 +244,15 @@ Sample sampleSurface(const CloudSpec& s, Random& rng) {
     const double u = rng.uniform(-1, 1), v = rng.uniform(-1, 1);
     if (pick < 2 * big) {
       const double sign = pick < big ? 1.0 : -1.0;
-      return {vcg::Point3d(u * h, v * h, sign * 0.5 * t), vcg::Point3d(0, 0, sign)};
+      return {Vec3d(u * h, v * h, sign * 0.5 * t), Vec3d(0, 0, sign)};
     }
     const int side = std::min(3, int((pick - 2 * big) / small));
     const double z = v * 0.5 * t;
     switch (side) {
-    case 0: return {vcg::Point3d(h, u * h, z), vcg::Point3d(1, 0, 0)};
-    case 1: return {vcg::Point3d(-h, u * h, z), vcg::Point3d(-1, 0, 0)};
-    case 2: return {vcg::Point3d(u * h, h, z), vcg::Point3d(0, 1, 0)};
-    default: return {vcg::Point3d(u * h, -h, z), vcg::Point3d(0, -1, 0)};
+    case 0: return {Vec3d(h, u * h, z), Vec3d(1, 0, 0)};
+    case 1: return {Vec3d(-h, u * h, z), Vec3d(-1, 0, 0)};
+    case 2: return {Vec3d(u * h, h, z), Vec3d(0, 1, 0)};
+    default: return {Vec3d(u * h, -h, z), Vec3d(0, -1, 0)};
     }
   }
   }
@@ -303,12 +300,12 @@ double Random::gaussian() {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * kPi * u2);
 }
 
-vcg::Point3d Random::unitVector() {
+Vec3d Random::unitVector() {
   const double z = uniform(-1, 1), a = uniform(0, 2 * kPi), r = std::sqrt(std::max(0.0, 1 - z * z));
-  return vcg::Point3d(r * std::cos(a), r * std::sin(a), z);
+  return Vec3d(r * std::cos(a), r * std::sin(a), z);
 }
 
-vcg::Point3d Random::inBall(double radius) {
+Vec3d Random::inBall(double radius) {
   // The radius is drawn before the direction (here and below, draws that were once the unsequenced
   // operands of one expression are made statements in the order GCC evaluated them, so the seeded
   // clouds are the same with every compiler, clang included).
@@ -342,22 +339,22 @@ Cloud generateCloud(const CloudSpec& spec) {
       throw Error("a latitude-longitude sphere needs at least 1 ring of at least 3 points");
     if (spec.nonUniform) throw Error("a latitude-longitude sphere is a fixed grid: it has no non-uniform density");
     const double R = spec.sphereRadius;
-    auto add = [&](const vcg::Point3d& n) {
-      vcg::Point3d p = n * R;
+    auto add = [&](const Vec3d& n) {
+      Vec3d p = n * R;
       if (spec.noiseBound > 0) p += rng.inBall(spec.noiseBound);
-      if (spec.gaussianSigma > 0) p += vcg::Point3d(rng.gaussian(), rng.gaussian(), rng.gaussian()) * spec.gaussianSigma;
+      if (spec.gaussianSigma > 0) p += Vec3d(rng.gaussian(), rng.gaussian(), rng.gaussian()) * spec.gaussianSigma;
       c.points.push_back(p);
       c.normals.push_back(n);
     };
-    add(vcg::Point3d(0, 0, 1));
+    add(Vec3d(0, 0, 1));
     for (int i = 1; i <= spec.latitudeRings; ++i) {
       const double theta = kPi * double(i) / double(spec.latitudeRings + 1);
       for (int j = 0; j < spec.longitudeSegments; ++j) {
         const double phi = 2 * kPi * double(j) / double(spec.longitudeSegments);
-        add(vcg::Point3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
+        add(Vec3d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)));
       }
     }
-    add(vcg::Point3d(0, 0, -1));
+    add(Vec3d(0, 0, -1));
   }
   while (c.points.size() < surfaceCount) {
     Sample s = sampleSurface(spec, rng);
@@ -368,19 +365,19 @@ Cloud generateCloud(const CloudSpec& spec) {
     if (spec.noiseBound > 0) s.p += rng.inBall(spec.noiseBound);
     if (spec.gaussianSigma > 0) {
       const double gz = rng.gaussian(), gy = rng.gaussian(), gx = rng.gaussian();
-      s.p += vcg::Point3d(gx, gy, gz) * spec.gaussianSigma;
+      s.p += Vec3d(gx, gy, gz) * spec.gaussianSigma;
     }
     c.points.push_back(s.p);
     c.normals.push_back(s.n);
   }
   if (outliers > 0) {
-    vcg::Point3d lo = c.points[0], hi = c.points[0];
+    Vec3d lo = c.points[0], hi = c.points[0];
     for (const auto& p : c.points)
       for (int a = 0; a < 3; ++a) {
         lo[a] = std::min(lo[a], p[a]);
         hi[a] = std::max(hi[a], p[a]);
       }
-    const vcg::Point3d margin = (hi - lo) * 0.05;
+    const Vec3d margin = (hi - lo) * 0.05;
     lo -= margin;
     hi += margin;
     for (size_t i = 0; i < outliers; ++i) {
@@ -403,14 +400,14 @@ Cloud generateCloud(const CloudSpec& spec) {
   }
   for (size_t i = 0; i < spec.farPoints; ++i) {
     // 10^4 times the shape's size away, in a random direction.
-    const vcg::Point3d dir = rng.unitVector();
+    const Vec3d dir = rng.unitVector();
     c.points.push_back(dir * (1e4 * shapeSize(spec)));
     c.normals.push_back(dir);
   }
   return c;
 }
 
-double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
+double distanceToShape(const CloudSpec& s, const Vec3d& p) {
   switch (s.shape) {
   case Shape::Sphere:
   case Shape::LatLongSphere: return std::abs(p.Norm() - s.sphereRadius);
@@ -434,14 +431,14 @@ double distanceToShape(const CloudSpec& s, const vcg::Point3d& p) {
   case Shape::Genus2: {
     // Alternately onto the surface and along it to the foot of p (the tangential part of p - q
     // removed): converges to the closest point when p is near the surface.
-    vcg::Point3d q = genus2Project(p);
+    Vec3d q = genus2Project(p);
     for (int it = 0; it < 50; ++it) {
-      vcg::Point3d g;
+      Vec3d g;
       genus2Function(q, &g);
       const double gn = g.Norm();
       if (!(gn > 0)) break;
-      const vcg::Point3d n = g / gn, d = p - q;
-      const vcg::Point3d tangential = d - n * (d * n);
+      const Vec3d n = g / gn, d = p - q;
+      const Vec3d tangential = d - n * (d * n);
       q = genus2Project(q + tangential);
       if (tangential.SquaredNorm() <= 1e-30 * (1.0 + d.SquaredNorm())) break;
     }
@@ -490,8 +487,8 @@ double shapeArea(const CloudSpec& s) {
   return 0;
 }
 
-double genus2Function(const vcg::Point3d& p, vcg::Point3d* gradient) {
-  vcg::Point3d g1, g2;
+double genus2Function(const Vec3d& p, Vec3d* gradient) {
+  Vec3d g1, g2;
   const double t1 = torusFunction(p, -kGenus2Offset, g1), t2 = torusFunction(p, kGenus2Offset, g2);
   // smin = min - k h^3 / 6; d smin / d min = 1 - h^2 / 2, d smin / d other = h^2 / 2.
   const double lo = std::min(t1, t2);
@@ -547,14 +544,15 @@ void writePly(const std::string& path, const Cloud& cloud) {
     throw Error("cannot write " + path);
 }
 
-void toMesh(const Cloud& cloud, CMeshO& mesh) {
-  mesh.Clear();
-  auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(mesh, cloud.points.size());
-  for (size_t i = 0; i < cloud.points.size(); ++i, ++vi) {
-    vi->P() = vcg::Point3f::Construct(cloud.points[i]);
-    vi->N() = vcg::Point3f::Construct(cloud.normals[i]);
-  }
-  vcg::tri::UpdateBounding<CMeshO>::Box(mesh);
+CloudArrays toArrays(const Cloud& cloud) {
+  // Rounded to float, as a layer stores them.
+  auto asFloat = [](const Vec3d& p) { return Vec3d(double(float(p[0])), double(float(p[1])), double(float(p[2]))); };
+  CloudArrays a;
+  a.points.reserve(cloud.points.size());
+  a.normals.reserve(cloud.normals.size());
+  for (const Vec3d& p : cloud.points) a.points.push_back(asFloat(p));
+  for (const Vec3d& n : cloud.normals) a.normals.push_back(asFloat(n));
+  return a;
 }
 
 } // namespace growth

@@ -15,7 +15,7 @@
 namespace growth {
 
 namespace {
-using Point = vcg::Point3d;
+using Point = Vec3d;
 constexpr double kPi = 3.14159265358979323846;
 
 bool finite(const Point& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
@@ -240,11 +240,11 @@ double medianKth2(const std::vector<Local>& m) {
 }
 } // namespace
 
-SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, int threads) {
+SamplingEstimate estimateSampling(const std::vector<Vec3d>& points, int threads) {
   return estimateSampling(points, SamplingOptions(), threads);
 }
 
-SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const SamplingOptions& options,
+SamplingEstimate estimateSampling(const std::vector<Vec3d>& points, const SamplingOptions& options,
                                   int threads) {
   SamplingEstimate est;
   const size_t n = points.size();
@@ -400,16 +400,16 @@ SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const
 }
 
 namespace {
-bool finite3(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite3(const Vec3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 } // namespace
 
-double roughSpacing(const vcg::Box3d& box, size_t n) {
+double roughSpacing(const Box3d& box, size_t n) {
   if (n < 2 || box.IsNull()) return 0;
   return box.Diag() / std::sqrt(double(n));
 }
 
-vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
-  vcg::Box3d box;
+Box3d robustBox(const std::vector<Vec3d>& points, size_t maxSamples) {
+  Box3d box;
   const size_t stride = std::max<size_t>(1, points.size() / std::max<size_t>(1, maxSamples));
   std::vector<double> c[3];
   for (size_t i = 0; i < points.size(); i += stride)
@@ -427,19 +427,19 @@ vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples)
     hi[a] = at(0.99);
     extent = std::max(extent, hi[a] - lo[a]);
   }
-  box.Add(vcg::Point3d(lo[0] - extent, lo[1] - extent, lo[2] - extent));
-  box.Add(vcg::Point3d(hi[0] + extent, hi[1] + extent, hi[2] + extent));
+  box.Add(Vec3d(lo[0] - extent, lo[1] - extent, lo[2] - extent));
+  box.Add(Vec3d(hi[0] + extent, hi[1] + extent, hi[2] + extent));
   return box;
 }
 
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples) {
+double meanSpacing(const std::vector<Vec3d>& points, size_t maxSamples) {
   return meanSpacing(points, maxSamples, 0);
 }
 
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads) {
+double meanSpacing(const std::vector<Vec3d>& points, size_t maxSamples, int threads) {
   if (points.size() < 2) return 0;
   // Cells from the bulk of the cloud (a far point would make them huge, and a cell hold everything).
-  const vcg::Box3d box = robustBox(points, maxSamples);
+  const Box3d box = robustBox(points, maxSamples);
   if (box.IsNull()) return 0;
   size_t inside = 0;
   for (const auto& p : points) inside += box.IsIn(p) ? 1 : 0;

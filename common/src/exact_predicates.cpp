@@ -94,7 +94,7 @@ private:
 
 // Adds sign·det[p; q; r] (rows of three coordinates) to `sum`: the six products of the cofactor
 // expansion along the first row.
-void addDet3(ExactSum& sum, const vcg::Point3d& p, const vcg::Point3d& q, const vcg::Point3d& r, bool negate) {
+void addDet3(ExactSum& sum, const Vec3d& p, const Vec3d& q, const Vec3d& r, bool negate) {
   sum.addProduct(p[0], q[1], r[2], negate);
   sum.addProduct(p[0], q[2], r[1], !negate);
   sum.addProduct(p[1], q[2], r[0], negate);
@@ -117,7 +117,7 @@ int orient2dExact(double ax, double ay, double bx, double by, double cx, double 
   return sum.sign();
 }
 
-int orient3dExact(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c, const vcg::Point3d& d) {
+int orient3dExact(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
   // det[a−d; b−d; c−d] = det of the 4×4 matrix with rows (a, 1), (b, 1), (c, 1), (d, 1); along
   // its last column: det(a,b,c) − det(a,b,d) + det(a,c,d) − det(b,c,d).
   ExactSum sum;

@@ -3,8 +3,6 @@
 #include <growth/input_cloud.h>
 #include <growth/point_grid.h>
 
-#include <common/ml_mesh_type.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -16,31 +14,39 @@
 namespace growth {
 
 namespace {
-bool finite3(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite3(const Vec3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 } // namespace
 
-InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
+InputCloud readCloud(CloudArrays layer, const CloudCheck& check) {
   InputCloud c;
-  c.layerFaces = static_cast<size_t>(mesh.fn);
-  if (mesh.vn <= 0)
+  const size_t vn = layer.points.size();
+  c.layerFaces = layer.layerFaces;
+  if (vn == 0)
     throw Error("The current layer has no vertices: load or select a point cloud layer first.");
-  if (mesh.fn > 0 && !check.allowFaces) {
+  if (layer.layerFaces > 0 && !check.allowFaces) {
     std::ostringstream s;
-    s << "The current layer is a mesh (" << mesh.fn << " faces), not a point cloud. This filter "
+    s << "The current layer is a mesh (" << layer.layerFaces << " faces), not a point cloud. This filter "
       << "reconstructs a surface from points: run it on a point cloud layer, or remove the faces "
       << "first (Filters > Selection > Select All, then Filters > Selection > Delete Selected Faces).";
     throw Error(s.str());
   }
 
+  // The layer's arrays are filtered in place (finite points kept, normals checked).
   size_t nonFinite = 0, huge = 0, badNormals = 0;
-  reserveHuge(c.points, static_cast<size_t>(mesh.vn), true);
-  reserveHuge(c.vertexIndex, static_cast<size_t>(mesh.vn), true);
+  c.points = std::move(layer.points);
+  c.vertexIndex = std::move(layer.vertexIndex);
+  if (c.vertexIndex.empty()) {
+    reserveHuge(c.vertexIndex, vn, true);
+    for (size_t i = 0; i < vn; ++i) c.vertexIndex.push_back(static_cast<int>(i));
+  }
   const bool withNormals = check.needNormals || check.readNormals;
-  if (withNormals) reserveHuge(c.normals, static_cast<size_t>(mesh.vn), true);
-  for (size_t i = 0; i < mesh.vert.size(); ++i) {
-    const auto& v = mesh.vert[i];
-    if (v.IsD()) continue;
-    const vcg::Point3d p = vcg::Point3d::Construct(v.cP());
+  if (withNormals) {
+    c.normals = std::move(layer.normals);
+    if (c.normals.size() != vn) c.normals.assign(vn, Vec3d(0, 0, 0));
+  }
+  size_t w = 0;
+  for (size_t i = 0; i < vn; ++i) {
+    const Vec3d p = c.points[i];
     if (!finite3(p)) {
       ++nonFinite;
       continue;
@@ -48,22 +54,33 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     if (std::abs(p[0]) > kMaxAbsCoordinate || std::abs(p[1]) > kMaxAbsCoordinate || std::abs(p[2]) > kMaxAbsCoordinate)
       ++huge;
     if (withNormals) {
-      vcg::Point3d n = vcg::Point3d::Construct(v.cN());
-      const double len = n.Norm();
-      if (!finite3(n) || !(len > 1e-12)) {
-        ++badNormals;
-        n = vcg::Point3d(0, 0, 0);
+      Vec3d n = c.normals[i];
+      if (check.normalsAsStored && !check.needNormals) {
+        if (!finite3(n) || !(n.SquaredNorm() > 0)) {
+          ++badNormals;
+          n = Vec3d(0, 0, 0);
+        }
       } else {
-        n /= len;
+        const double len = n.Norm();
+        if (!finite3(n) || !(len > 1e-12)) {
+          ++badNormals;
+          n = Vec3d(0, 0, 0);
+        } else {
+          n /= len;
+        }
       }
-      c.normals.push_back(n);
+      c.normals[w] = n;
     }
-    c.points.push_back(p);
-    c.vertexIndex.push_back(static_cast<int>(i));
+    c.points[w] = p;
+    c.vertexIndex[w] = c.vertexIndex[i];
+    ++w;
   }
+  c.points.resize(w);
+  c.vertexIndex.resize(w);
+  if (withNormals) c.normals.resize(w);
   if (nonFinite > 0) {
     std::ostringstream s;
-    s << nonFinite << " of " << mesh.vn << " vertices have NaN or infinite coordinates. Delete them "
+    s << nonFinite << " of " << vn << " vertices have NaN or infinite coordinates. Delete them "
       << "first (select them with Filters > Selection > Conditional Vertex Selection, e.g. "
       << "'x!=x || y!=y || z!=z', then Filters > Selection > Delete Selected Vertices) and run the "
       << "filter again.";
@@ -71,7 +88,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   }
   if (huge > 0) {
     std::ostringstream s;
-    s << huge << " of " << mesh.vn << " vertices have a coordinate beyond +-" << kMaxAbsCoordinate
+    s << huge << " of " << vn << " vertices have a coordinate beyond +-" << kMaxAbsCoordinate
       << ", which this filter cannot mesh. Scale the layer down (Filters > Normals, Curvatures and "
       << "Orientation > Transform: Scale, Normalize) or delete those vertices, and run the filter again.";
     throw Error(s.str());
@@ -105,7 +122,7 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
     };
     size_t w = 0;
     for (size_t i = 0; i < n; ++i) {
-      const vcg::Point3d p = c.points[i];
+      const Vec3d p = c.points[i];
       std::uint64_t h = bits(p[0]) * 0x9E3779B97F4A7C15ull;
       h = (h ^ (h >> 29) ^ bits(p[1])) * 0xBF58476D1CE4E5B9ull;
       h = (h ^ (h >> 31) ^ bits(p[2])) * 0x94D049BB133111EBull;
@@ -133,10 +150,10 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
 
   if (c.points.size() < check.minPoints) {
     std::ostringstream s;
-    if (c.points.size() == 1 && mesh.vn == 1)
+    if (c.points.size() == 1 && vn == 1)
       s << "The layer has only 1 point; at least " << check.minPoints << " are needed to reconstruct a surface.";
     else if (c.points.size() == 1)
-      s << "All " << mesh.vn << " points of the layer are identical: there is no surface to reconstruct.";
+      s << "All " << vn << " points of the layer are identical: there is no surface to reconstruct.";
     else
       s << "The layer has only " << c.points.size() << " distinct points; at least " << check.minPoints
         << " are needed to reconstruct a surface.";
@@ -152,14 +169,14 @@ InputCloud readCloud(const CMeshO& mesh, const CloudCheck& check) {
   {
     double magnitude = 0; // the largest |coordinate|, from the box
     for (int k = 0; k < 3; ++k) magnitude = std::max({magnitude, std::abs(c.box.min[k]), std::abs(c.box.max[k])});
-    const vcg::Point3d a = c.points[0];
+    const Vec3d a = c.points[0];
     size_t far = 0;
     double best = -1;
     for (size_t i = 1; i < c.points.size(); ++i) {
       const double d = (c.points[i] - a).SquaredNorm();
       if (d > best) best = d, far = i;
     }
-    const vcg::Point3d dir = (c.points[far] - a).Normalize();
+    const Vec3d dir = (c.points[far] - a).Normalize();
     const double tol = std::max(1e-9 * c.box.Diag(), 4.0 * double(std::numeric_limits<float>::epsilon()) * magnitude);
     bool collinear = true;
     for (const auto& p : c.points) {

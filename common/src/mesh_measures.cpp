@@ -6,7 +6,6 @@
 #include <growth/point_grid.h>
 #include <growth/self_intersections.h>
 
-#include <common/ml_mesh_type.h>
 
 #include <algorithm>
 #include <cfloat>
@@ -54,29 +53,21 @@ private:
 
 // The mesh in compact double arrays: live vertices renumbered 0..n-1, live faces in order.
 struct Compact {
-  std::vector<vcg::Point3d> vert;
+  std::vector<Vec3d> vert;
   std::vector<std::array<int, 3>> face;   // all live faces
   std::vector<char> proper;               // face has three distinct vertices
 };
 
-Compact compact(const CMeshO& mesh) {
+Compact compact(const MeshArrays& mesh) {
   Compact c;
-  // The arrays are written whole (all but deleted elements): made resident in one call each
-  // (huge_pages.h), not page by page.
-  std::vector<int> index;
-  assignHuge(index, mesh.vert.size(), -1);
-  reserveHuge(c.vert, static_cast<size_t>(std::max(mesh.vn, 0)), /*populate=*/true);
-  for (size_t i = 0; i < mesh.vert.size(); ++i) {
-    if (mesh.vert[i].IsD()) continue;
-    index[i] = static_cast<int>(c.vert.size());
-    c.vert.push_back(vcg::Point3d::Construct(mesh.vert[i].cP()));
-  }
-  reserveHuge(c.face, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
-  reserveHuge(c.proper, static_cast<size_t>(std::max(mesh.fn, 0)), /*populate=*/true);
-  for (const auto& f : mesh.face) {
-    if (f.IsD()) continue;
+  c.vert = mesh.vertices;
+  const size_t n = c.vert.size();
+  // The arrays are written whole: made resident in one call each (huge_pages.h), not page by page.
+  reserveHuge(c.face, mesh.faces.size(), /*populate=*/true);
+  reserveHuge(c.proper, mesh.faces.size(), /*populate=*/true);
+  for (const auto& f : mesh.faces) {
     std::array<int, 3> t;
-    for (int k = 0; k < 3; ++k) t[k] = index[vcg::tri::Index(mesh, f.cV(k))];
+    for (int k = 0; k < 3; ++k) t[k] = f[k] < n ? static_cast<int>(f[k]) : -1; // (a deleted vertex)
     c.face.push_back(t);
     c.proper.push_back(t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && t[0] >= 0 && t[1] >= 0 && t[2] >= 0);
   }
@@ -85,7 +76,7 @@ Compact compact(const CMeshO& mesh) {
 
 // Zero height up to float storage: the mesh came from float coordinates, so a height below a few
 // float ulps of the coordinates' magnitude is rounding, not geometry.
-bool zeroArea(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+bool zeroArea(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const double twiceArea = ((b - a) ^ (c - a)).Norm();
   const double lmax = std::max({(b - a).Norm(), (c - b).Norm(), (a - c).Norm()});
   double mag = 0;
@@ -266,7 +257,7 @@ size_t selfIntersectingPairs(const Compact& c) {
   return findSelfIntersections(c.vert, faces, &alive).size();
 }
 
-double angleBetween(const vcg::Point3d& u, const vcg::Point3d& w) {
+double angleBetween(const Vec3d& u, const Vec3d& w) {
   return std::atan2((u ^ w).Norm(), u * w);
 }
 
@@ -305,14 +296,14 @@ size_t Histogram::total() const {
 
 // --- Single triangles ---
 
-double triangleQuality(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+double triangleQuality(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const double sum = (b - a).SquaredNorm() + (c - b).SquaredNorm() + (a - c).SquaredNorm();
   if (!(sum > 0)) return 0;
   const double area = 0.5 * ((b - a) ^ (c - a)).Norm();
   return 4.0 * std::sqrt(3.0) * area / sum;
 }
 
-double triangleQF(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+double triangleQF(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const double d1 = (b - a).Norm(), d2 = (c - b).Norm(), d3 = (a - c).Norm();
   const double p = 0.5 * (d1 + d2 + d3), dmax = std::max({d1, d2, d3});
   if (!(p > 0) || !(dmax > 0)) return 0;
@@ -323,25 +314,25 @@ double triangleQF(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point
 
 // --- Topology ---
 
-MeshTopology measureTopology(const CMeshO& mesh) {
+MeshTopology measureTopology(const MeshArrays& mesh) {
   const Compact c = compact(mesh);
   return topology(c, buildEdges(c));
 }
 
-size_t countBoundaryEdges(const CMeshO& m) { return measureTopology(m).boundaryEdges; }
-size_t countNonManifoldEdges(const CMeshO& m) { return measureTopology(m).nonManifoldEdges; }
-size_t countNonManifoldVertices(const CMeshO& m) { return measureTopology(m).nonManifoldVertices; }
-size_t countBoundaryLoops(const CMeshO& m) { return measureTopology(m).boundaryLoops; }
-size_t countComponents(const CMeshO& m) { return measureTopology(m).components; }
-size_t countInconsistentEdges(const CMeshO& m) { return measureTopology(m).inconsistentEdges; }
-bool isConsistentlyOriented(const CMeshO& m) { return measureTopology(m).inconsistentEdges == 0; }
-size_t countDegenerateFaces(const CMeshO& m) { return measureTopology(m).degenerateFaces; }
-size_t countDuplicateFaces(const CMeshO& m) { return measureTopology(m).duplicateFaces; }
-size_t countSelfIntersections(const CMeshO& m) { return selfIntersectingPairs(compact(m)); }
+size_t countBoundaryEdges(const MeshArrays& m) { return measureTopology(m).boundaryEdges; }
+size_t countNonManifoldEdges(const MeshArrays& m) { return measureTopology(m).nonManifoldEdges; }
+size_t countNonManifoldVertices(const MeshArrays& m) { return measureTopology(m).nonManifoldVertices; }
+size_t countBoundaryLoops(const MeshArrays& m) { return measureTopology(m).boundaryLoops; }
+size_t countComponents(const MeshArrays& m) { return measureTopology(m).components; }
+size_t countInconsistentEdges(const MeshArrays& m) { return measureTopology(m).inconsistentEdges; }
+bool isConsistentlyOriented(const MeshArrays& m) { return measureTopology(m).inconsistentEdges == 0; }
+size_t countDegenerateFaces(const MeshArrays& m) { return measureTopology(m).degenerateFaces; }
+size_t countDuplicateFaces(const MeshArrays& m) { return measureTopology(m).duplicateFaces; }
+size_t countSelfIntersections(const MeshArrays& m) { return selfIntersectingPairs(compact(m)); }
 
 // --- Distance of points to the mesh ---
 
-MeshDistance::MeshDistance(const CMeshO& mesh) {
+MeshDistance::MeshDistance(const MeshArrays& mesh) {
   Compact c = compact(mesh);
   vert_ = std::move(c.vert);
   std::vector<Item> items;
@@ -367,7 +358,7 @@ MeshDistance::MeshDistance(const CMeshO& mesh) {
     if (n.count > 0) {
       for (int t = n.first; t < n.first + n.count; ++t)
         for (int j = 0; j < 3; ++j) {
-          const vcg::Point3d& p = vert_[size_t(tri_[size_t(t)][j])];
+          const Vec3d& p = vert_[size_t(tri_[size_t(t)][j])];
           for (int k = 0; k < 3; ++k) {
             n.lo[k] = std::min(n.lo[k], p[k]);
             n.hi[k] = std::max(n.hi[k], p[k]);
@@ -392,9 +383,9 @@ void MeshDistance::build(int node, int begin, int end, std::vector<Item>& items)
     nodes_[size_t(node)].count = end - begin;
     return;
   }
-  vcg::Box3d cbox;
+  Box3d cbox;
   for (int i = begin; i < end; ++i) cbox.Add(items[size_t(i)].centroid);
-  const vcg::Point3d ext = cbox.Dim();
+  const Vec3d ext = cbox.Dim();
   const int axis = ext[0] >= ext[1] && ext[0] >= ext[2] ? 0 : ext[1] >= ext[2] ? 1 : 2;
   const int mid = begin + (end - begin) / 2;
   std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end, [axis](const Item& a, const Item& b) {
@@ -411,15 +402,15 @@ void MeshDistance::build(int node, int begin, int end, std::vector<Item>& items)
 }
 
 namespace {
-double squaredSegmentDistance(const vcg::Point3d& p, const vcg::Point3d& a, const vcg::Point3d& b) {
-  const vcg::Point3d ab = b - a;
+double squaredSegmentDistance(const Vec3d& p, const Vec3d& a, const Vec3d& b) {
+  const Vec3d ab = b - a;
   const double len2 = ab.SquaredNorm();
   double t = len2 > 0 ? ((p - a) * ab) / len2 : 0;
   t = std::min(1.0, std::max(0.0, t));
   return (p - (a + ab * t)).SquaredNorm();
 }
 
-double squaredBoxDistance(const vcg::Point3d& p, const double lo[3], const double hi[3]) {
+double squaredBoxDistance(const Vec3d& p, const double lo[3], const double hi[3]) {
   double d2 = 0;
   for (int k = 0; k < 3; ++k) {
     const double d = p[k] < lo[k] ? lo[k] - p[k] : p[k] > hi[k] ? p[k] - hi[k] : 0.0;
@@ -431,16 +422,16 @@ double squaredBoxDistance(const vcg::Point3d& p, const double lo[3], const doubl
 
 // Closest point on a triangle by Voronoi regions (Ericson, Real-Time Collision Detection, 5.1.5);
 // triangles without area (within double precision) are measured as their three segments.
-double MeshDistance::squaredDistanceToTriangle(const vcg::Point3d& p, int t) const {
-  const vcg::Point3d& a = vert_[size_t(tri_[size_t(t)][0])];
-  const vcg::Point3d& b = vert_[size_t(tri_[size_t(t)][1])];
-  const vcg::Point3d& c = vert_[size_t(tri_[size_t(t)][2])];
-  const vcg::Point3d ab = b - a, ac = c - a, ap = p - a;
+double MeshDistance::squaredDistanceToTriangle(const Vec3d& p, int t) const {
+  const Vec3d& a = vert_[size_t(tri_[size_t(t)][0])];
+  const Vec3d& b = vert_[size_t(tri_[size_t(t)][1])];
+  const Vec3d& c = vert_[size_t(tri_[size_t(t)][2])];
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
   if (!((ab ^ ac).SquaredNorm() > 1e-24 * ab.SquaredNorm() * ac.SquaredNorm()))
     return std::min({squaredSegmentDistance(p, a, b), squaredSegmentDistance(p, b, c), squaredSegmentDistance(p, c, a)});
   const double d1 = ab * ap, d2 = ac * ap;
   if (d1 <= 0 && d2 <= 0) return ap.SquaredNorm();
-  const vcg::Point3d bp = p - b;
+  const Vec3d bp = p - b;
   const double d3 = ab * bp, d4 = ac * bp;
   if (d3 >= 0 && d4 <= d3) return bp.SquaredNorm();
   const double vc = d1 * d4 - d3 * d2;
@@ -448,7 +439,7 @@ double MeshDistance::squaredDistanceToTriangle(const vcg::Point3d& p, int t) con
     const double v = d1 / (d1 - d3);
     return (p - (a + ab * v)).SquaredNorm();
   }
-  const vcg::Point3d cp = p - c;
+  const Vec3d cp = p - c;
   const double d5 = ab * cp, d6 = ac * cp;
   if (d6 >= 0 && d5 <= d6) return cp.SquaredNorm();
   const double vb = d5 * d2 - d1 * d6;
@@ -466,7 +457,7 @@ double MeshDistance::squaredDistanceToTriangle(const vcg::Point3d& p, int t) con
   return (p - (a + ab * v + ac * w)).SquaredNorm();
 }
 
-double MeshDistance::distance(const vcg::Point3d& p, int* hint) const {
+double MeshDistance::distance(const Vec3d& p, int* hint) const {
   if (nodes_.empty()) return std::numeric_limits<double>::infinity();
   // A triangle near p (the previous query's answer, for queries in spatial order) bounds the search
   // from the start, so most of the tree is pruned at once.
@@ -504,7 +495,7 @@ double MeshDistance::distance(const vcg::Point3d& p, int* hint) const {
   return std::sqrt(best);
 }
 
-void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out) {
+void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out) {
   out.hasCloud = true;
   out.cloudPoints = cloud.size();
   out.cloudSpacing = cloud.size() >= 2 ? meanSpacing(cloud) : MeshMeasures::kNaN;
@@ -516,13 +507,13 @@ void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& c
   }
   // Queries in Morton order, each starting from the previous answer. The sum is taken in the
   // cloud's own order afterwards so the result does not depend on the visiting order.
-  vcg::Box3d box;
+  Box3d box;
   for (const auto& p : cloud) box.Add(p);
-  const vcg::Point3d dim = box.Dim();
+  const Vec3d dim = box.Dim();
   const double scale = double((1 << 21) - 1) / std::max({dim[0], dim[1], dim[2], 1e-300});
   std::vector<std::pair<std::uint64_t, std::uint32_t>> order(cloud.size());
   for (size_t i = 0; i < cloud.size(); ++i) {
-    const vcg::Point3d q = (cloud[i] - box.min) * scale;
+    const Vec3d q = (cloud[i] - box.min) * scale;
     auto cell = [](double v) { return std::uint64_t(std::isfinite(v) ? std::min(std::max(v, 0.0), double((1 << 21) - 1)) : 0.0); };
     order[i] = {mortonCode(cell(q[0]), cell(q[1]), cell(q[2])), std::uint32_t(i)};
   }
@@ -543,7 +534,7 @@ void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& c
 
 // --- Everything ---
 
-MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud, const MeasureOptions& options) {
+MeshMeasures measure(const MeshArrays& mesh, const std::vector<Vec3d>* cloud, const MeasureOptions& options) {
   MeshMeasures m;
   const Compact c = compact(mesh);
   const Edges e = buildEdges(c);
@@ -551,7 +542,7 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   m.vertices = c.vert.size();
   m.faces = c.face.size();
   if (!c.vert.empty()) {
-    vcg::Box3d box;
+    Box3d box;
     for (const auto& p : c.vert) box.Add(p);
     m.boxDiagonal = box.Diag();
   }
@@ -605,9 +596,9 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
   double qfSum = 0, minAngle = std::numeric_limits<double>::infinity(), maxAngle = -minAngle;
   for (size_t f = 0; f < c.face.size(); ++f) {
     if (!c.proper[f]) continue;
-    const vcg::Point3d& a = c.vert[size_t(c.face[f][0])];
-    const vcg::Point3d& b = c.vert[size_t(c.face[f][1])];
-    const vcg::Point3d& d = c.vert[size_t(c.face[f][2])];
+    const Vec3d& a = c.vert[size_t(c.face[f][0])];
+    const Vec3d& b = c.vert[size_t(c.face[f][1])];
+    const Vec3d& d = c.vert[size_t(c.face[f][2])];
     q.push_back(triangleQuality(a, b, d));
     m.qualityHistogram.add(q.back());
     qfSum += triangleQF(a, b, d);
@@ -640,7 +631,7 @@ MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud,
 
   // Smallest distance between two vertices (the sphere packer guarantees d).
   if (options.minVertexDistance && c.vert.size() >= 2) {
-    vcg::Box3d box;
+    Box3d box;
     for (const auto& p : c.vert) box.Add(p);
     PointGrid grid;
     const double cell = m.edgeMean > 0 ? m.edgeMean : roughSpacing(box, c.vert.size());

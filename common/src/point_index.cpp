@@ -25,7 +25,7 @@ std::uint64_t mortonCompact(std::uint64_t v) {
   return v;
 }
 
-bool finite(const vcg::Point3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+bool finite(const Vec3d& p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 } // namespace
 
 void PointIndex::build(std::vector<P3> points, double cellSize) {

@@ -14,7 +14,7 @@ namespace growth {
 
 namespace {
 
-using Point = vcg::Point3d;
+using Point = Vec3d;
 
 // ---------------------------------------------------------------------------------------------
 // Exact tests on closed triangles, segments and points. Only signs of orient3d / orient2d and
@@ -364,7 +364,7 @@ using PairList = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
 } // namespace
 
-bool facesIntersect(const std::vector<vcg::Point3d>& pos, const Triangle& a, const Triangle& b) {
+bool facesIntersect(const std::vector<Vec3d>& pos, const Triangle& a, const Triangle& b) {
   if (!properFace(a) || !properFace(b)) return false;
   for (const Triangle* t : {&a, &b})
     for (std::uint32_t v : *t)
@@ -381,7 +381,7 @@ bool facesIntersect(const std::vector<vcg::Point3d>& pos, const Triangle& a, con
                         projectionAxis(pos[b[0]], pos[b[1]], pos[b[2]]), bPlane);
 }
 
-std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const std::vector<vcg::Point3d>& pos,
+std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const std::vector<Vec3d>& pos,
                                                                           const std::vector<Triangle>& faces,
                                                                           const std::vector<char>* alive, int threads) {
   if (alive && alive->size() != faces.size())
@@ -580,7 +580,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
   return result;
 }
 
-size_t removeSelfIntersections(const std::vector<vcg::Point3d>& pos, const std::vector<Triangle>& faces,
+size_t removeSelfIntersections(const std::vector<Vec3d>& pos, const std::vector<Triangle>& faces,
                                std::vector<char>& alive, int threads) {
   if (alive.size() != faces.size())
     throw Error("removeSelfIntersections: " + std::to_string(alive.size()) + " alive flags for " +

@@ -6,14 +6,11 @@
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
-#include <growth/mesh_normals.h>
 #include <growth/progress.h>
 #include <growth/stopwatch.h>
 
-#include <common/ml_mesh_type.h>
-#include <vcg/complex/algorithms/update/bounding.h>
-
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -41,12 +38,15 @@ void checkParams(const Params& p) {
     throw Error("The number of flatness priority levels m must be between 1 and 180 (default 8).");
 }
 
-// The distinct finite points of the layer (input checks: growth/input_cloud.h).
-InputCloud readPoints(const CMeshO& cloud, Stat& stat) {
+// The distinct finite points of the layer (input checks: growth/input_cloud.h), with the normals
+// as the layer stores them (zero where unusable), for orientComponents.
+InputCloud readPoints(CloudArrays cloud, Stat& stat) {
   CloudCheck check;
   check.minPoints = 3;
-  InputCloud input = readCloud(cloud, check);
-  stat.inputPoints = static_cast<size_t>(cloud.vn);
+  check.readNormals = true;
+  check.normalsAsStored = true;
+  stat.inputPoints = cloud.points.size();
+  InputCloud input = readCloud(std::move(cloud), check);
   stat.duplicatesDropped = input.duplicatesDropped;
   if (input.points.size() > PointEdgeMap::kMaxPoints)
     throw Error("The layer has more than " + std::to_string(PointEdgeMap::kMaxPoints) +
@@ -81,17 +81,16 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
 // The layer's vertex normals in the mesher's point order, where most points have a usable one
 // (finite, not zero); empty otherwise. Robust G2S needs none; orientComponents uses them for the
 // pieces that do not close.
-std::vector<P3> layerNormals(const CMeshO& cloud, const InputCloud& input, const Mesher& mesher) {
+std::vector<P3> layerNormals(const InputCloud& input, const Mesher& mesher) {
   std::vector<P3> normals;
   const std::vector<std::uint32_t>& order = mesher.order();
-  if (input.vertexIndex.empty()) return normals;
+  if (input.normals.size() != input.points.size()) return normals;
   normals.resize(order.size());
   size_t usable = 0;
   for (size_t i = 0; i < order.size(); ++i) {
-    const auto& n = cloud.vert[size_t(input.vertexIndex[order[i]])].cN();
-    const P3 v = P3(static_cast<double>(n[0]), static_cast<double>(n[1]), static_cast<double>(n[2]));
-    const bool ok = std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && v.SquaredNorm() > 0;
-    normals[i] = ok ? v : P3(0, 0, 0);
+    const P3& v = input.normals[order[i]];
+    const bool ok = v.SquaredNorm() > 0; // (readCloud left the unusable ones zero)
+    normals[i] = v;
     usable += ok;
   }
   if (2 * usable < order.size()) normals.clear();
@@ -119,7 +118,7 @@ void runPass(Mesher& mesher, Stat& stat, size_t& live, const char* name, F&& pas
 // Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
 // small holes closed; then the boundary counts and the orientation of every component (by the
 // layer's normals for the sheets, where it has them).
-void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, const InputCloud& input) {
+void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const InputCloud& input) {
   size_t live = mesher.liveTriangles();
   if (p.removeNonManifoldVertices) {
     runPass(mesher, stat, live, "non-manifold vertices (sec. 4.2)", [&] {
@@ -183,7 +182,7 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   stat.holes = boundary.loops;
   runPass(mesher, stat, live, "orientation", [&] {
     // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
-    const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(cloud, input, mesher) : std::vector<P3>();
+    const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(input, mesher) : std::vector<P3>();
     mesher.orientComponents(normals.empty() ? nullptr : &normals);
   });
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
@@ -191,16 +190,13 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const CMeshO& cloud, c
   releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
 }
 
-// The live triangles into `out`, on copies of the layer's points that they use (see build()).
-void writeMesh(const CMeshO& cloud, InputCloud& input, Mesher& mesher, CMeshO& out, Stat& stat, Progress& progress) {
-  // The live triangles, in order, taken out of the mesher (with alive() freed): they are
-  // consumed below while the output faces are written.
+// The live triangles into `out`, on the input points that they use (see build()).
+void writeMesh(InputCloud& input, Mesher& mesher, MeshArrays& out, Stat& stat, Progress& progress) {
+  // The live triangles, in order, taken out of the mesher (with alive() freed).
   std::vector<Triangle> tri = mesher.takeLiveTriangles();
   const std::vector<std::uint32_t>& order = mesher.order();
-  // Output vertices: the used points in the mesher's (spatially coherent) order, copied from the
-  // layer's own vertices (mesher point i is distinct point order[i], layer vertex
-  // vertexIndex[order[i]]): the input points bit for bit. The mesher's working state is freed
-  // first, so that its memory and the output layer's do not add up.
+  // Output vertices: the used points in the mesher's (spatially coherent) order (mesher point i
+  // is distinct point order[i]): the layer's points bit for bit.
   const size_t points = order.size();
   std::vector<std::uint32_t>& outIndex = mesher.scratch();
   outIndex.assign(points, 0);
@@ -213,44 +209,23 @@ void writeMesh(const CMeshO& cloud, InputCloud& input, Mesher& mesher, CMeshO& o
   const size_t faces = tri.size();
   stat.faces = faces;
   if (faces > 0) {
-    // Exact sizes reserved first, so the vectors are allocated once, with huge pages advised.
-    reserveHuge(out.vert, stat.vertices, true);
-    vcg::tri::Allocator<CMeshO>::AddVertices(out, stat.vertices);
+    reserveHuge(out.vertices, stat.vertices, true);
+    out.vertices.resize(stat.vertices);
     for (size_t i = 0; i < points; ++i)
-      if (outIndex[i] != ~0u) out.vert[outIndex[i]].P() = cloud.vert[size_t(input.vertexIndex[order[i]])].P();
+      if (outIndex[i] != ~0u) out.vertices[outIndex[i]] = input.points[order[i]];
     // Only outIndex is needed from here on.
     mesher.releaseOrder();
-    decltype(input.vertexIndex)().swap(input.vertexIndex);
-    out.face.EnableQuality();
-    reserveHuge(out.face, faces); // (vcglib's reserve reserves the quality vector too)
-    // The faces are added a block at a time, and the block's triangles are given back (whole
-    // pages, growth::discardPages) once it is written: the faces take four times the
-    // triangles' memory, so the two would otherwise add up at the peak. Within the reserved
-    // room no face moves. Blocks of 8192 faces (384 KiB of faces, 96 KiB of triangles): with
-    // 65536, a cloud of 30k points kept all its 720 KB of triangles to the end, and the
-    // meshlabserver peak on torus-30k was 420 kB higher.
-    constexpr size_t kBlock = size_t(1) << 13;
-    for (size_t first = 0; first < faces; first += kBlock) {
-      const size_t last = std::min(faces, first + kBlock);
-      // The block's room made resident at once (within the reserved capacity), block by block
-      // so that the faces do not take their memory before the triangles give theirs back.
-      prefault(out.face.data() + first, (last - first) * sizeof(CFaceO));
-      prefault(out.face.QV.data() + first, (last - first) * sizeof(out.face.QV[0]));
-      vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
-      for (size_t f = first; f < last; ++f) {
-        CFaceO& face = out.face[f];
-        for (int j = 0; j < 3; ++j) face.V(j) = &out.vert[outIndex[tri[f][j]]];
-        face.Q() = static_cast<CFaceO::QualityType>(triangleQuality(
-            P3::Construct(face.cP(0)), P3::Construct(face.cP(1)), P3::Construct(face.cP(2))));
-      }
-      discardPages(tri.data(), last * sizeof(Triangle));
-      progress.update(double(last) / double(faces));
+    std::vector<P3>().swap(input.points);
+    reserveHuge(out.faces, faces, true);
+    reserveHuge(out.faceQuality, faces, true);
+    for (size_t f = 0; f < faces; ++f) {
+      std::array<std::uint32_t, 3> t;
+      for (int j = 0; j < 3; ++j) t[j] = outIndex[tri[f][j]];
+      out.faces.push_back(t);
+      out.faceQuality.push_back(triangleQuality(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]]));
+      if (((f + 1) & 8191) == 0) progress.update(double(f + 1) / double(faces));
     }
     std::vector<Triangle>().swap(tri);
-    // What MeshLab expects of a new layer (its creation filters call UpdateBoxAndNormals): the
-    // bounding box, and face and angle-weighted vertex normals. Part of the filter's time.
-    vcg::tri::UpdateBounding<CMeshO>::Box(out);
-    updateNormals(out);
     progress.update(1.0);
   } else {
     stat.warnings.push_back("No seed triangle was found, so no surface was built: the points are too "
@@ -262,15 +237,15 @@ void writeMesh(const CMeshO& cloud, InputCloud& input, Mesher& mesher, CMeshO& o
 
 } // namespace
 
-Params suggestParams(const CMeshO&) {
+Params suggestParams(const CloudArrays&) {
   Params p;
   p.maxSearchRadiusFactor = kDefaultMaxSearchRadiusFactor;
   return p;
 }
 
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, vcg::CallBackPos* cb) {
+void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& stat, CallBackPos* cb) {
   Stopwatch watch;
-  out.Clear();
+  out = MeshArrays();
   stat = Stat();
   try {
     checkParams(params);
@@ -280,11 +255,11 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
 
     Progress progress(cb);
     progress.phase("Robust G2S: reading the points", 0, 3);
-    InputCloud input = readPoints(cloud, stat);
+    InputCloud input = readPoints(std::move(cloud), stat);
     // The mesher sorts the points into its grid's cell order and measures their spacing.
-    // input.vertexIndex (layer vertex of each distinct point) is kept for the output.
+    // input.points and input.normals are kept for the output and the orientation.
     progress.phase("Robust G2S: growing the mesh", 3, 92);
-    Mesher mesher(std::move(input.points), p);
+    Mesher mesher(std::vector<P3>(input.points), p);
     stat.spacing = mesher.spacing();
     stat.clumps = mesher.clumps();
     stat.clumpPointsMerged = mesher.clumpPointsMerged();
@@ -292,13 +267,13 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, v
     grow(mesher, stat, progress); // sec. 3
     stat.secondsGrowth = watch.lap();
     progress.phase("Robust G2S: removing non-manifold vertices", 92, 95);
-    cleanUp(mesher, p, stat, cloud, input); // sec. 4.2 and the repairs after it
+    cleanUp(mesher, p, stat, input); // sec. 4.2 and the repairs after it
     stat.secondsCleanup = watch.lap();
     progress.phase("Robust G2S: writing the mesh", 95, 100);
-    writeMesh(cloud, input, mesher, out, stat, progress);
+    writeMesh(input, mesher, out, stat, progress);
   } catch (...) {
     // Cancelled, bad input, out of memory: nothing of a partial result is kept.
-    out.Clear();
+    out = MeshArrays();
     throw;
   }
   stat.secondsOutput = watch.lap();

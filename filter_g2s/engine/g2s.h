@@ -2,14 +2,12 @@
 // Robust G2S mesh growing: Di Angelo, Di Stefano, Giaccari, "A Fast Mesh-Growing Algorithm for
 // Manifold Surface Reconstruction" (sections 3 and 4). Interpolating: the output's vertices are
 // the input points; no normals needed.
-#include <cstring> // wrap/callback.h uses strcpy without including <cstring>
-#include <wrap/callback.h>
+#include <growth/mesh_arrays.h>
+#include <growth/progress.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 namespace g2s {
@@ -89,7 +87,7 @@ struct Stat {
   double secondsSetup = 0;                // reading, checks, spacing, spatial order, grid
   double secondsGrowth = 0;               // seeds and front growth
   double secondsCleanup = 0;              // sec. 4.2, boundary and hole counts, orientation
-  double secondsOutput = 0;               // filling the output mesh, its bounding box and normals
+  double secondsOutput = 0;               // filling the output mesh (with the glue's: its layer, bounding box and normals)
   // The passes after the growth (and the rim pass inside it), in the order they ran: the live
   // faces each took out and added, and its time. Passes with nothing to do are listed with zeros.
   struct Pass {
@@ -103,17 +101,16 @@ struct Stat {
 };
 
 // Defaults derived from the cloud. Never throws: an unusable cloud gives the static defaults.
-Params suggestParams(const CMeshO& cloud);
+Params suggestParams(const CloudArrays& cloud);
 
-// Triangulates the live vertices of `cloud` into `out` (cleared first): out's vertices are copies
-// of the input points that the faces use, bit for bit (unused points are left out), in a
-// spatially coherent (Morton) order; faces consistently oriented (closed components outwards),
-// with per-face quality Q_t, face and vertex normals (growth::updateNormals) and the bounding
-// box. A cloud where no seed triangle exists gives an
-// empty `out` and a warning. Throws growth::Error on bad input or parameters and
-// growth::Cancelled on cancel (out is then empty).
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
-           vcg::CallBackPos* cb = nullptr);
+// Triangulates the points of `cloud` (a layer's live vertices, growth/mesh_arrays.h) into `out`
+// (cleared first): out's vertices are the input points that the faces use, bit for bit (unused
+// points are left out), in a spatially coherent (Morton) order; faces consistently oriented
+// (closed components outwards), with per-face quality Q_t. The layer's normals, where most points
+// have one, orient the open sheets. A cloud where no seed triangle exists gives an empty `out`
+// and a warning. Throws growth::Error on bad input or parameters and growth::Cancelled on cancel
+// (out is then empty). The glue writes `out` into a layer (growth/meshlab/layer.h).
+void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& stat, CallBackPos* cb = nullptr);
 
 } // namespace g2s
 } // namespace growth

@@ -7,8 +7,7 @@
 //   on the free edge's perpendicular bisector, on the side away from the front triangle.
 // - Flatness (sec. 4.1): the angle β between the normals of the front triangle and of the
 //   candidate triangle, both taken in the orientation of the growing mesh.
-#include <vcg/space/box3.h>
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,7 +15,7 @@
 namespace growth {
 namespace g2s {
 
-using P3 = vcg::Point3d;
+using P3 = Vec3d;
 
 // A point at squared distance d2 from a ball's centre lies strictly inside when d2 is below
 // radius2 by more than this relative margin. Points on the sphere (within rounding) do not count,

@@ -214,7 +214,7 @@ bool Mesher::passesCylinderTest(std::uint32_t a, std::uint32_t b, std::uint32_t 
   // cloud's bounding box or kMaxCylinderSlabs were walked (the bound on the work, see there); the
   // walk stops as soon as points on both sides were seen.
   const double step = 2.0 * radius, queryRadius = radius * std::sqrt(2.0);
-  vcg::Box3d bb = grid_.box();
+  Box3d bb = grid_.box();
   bb.Offset(queryRadius);
   bool above = false, below = false;
   auto bothSides = [&](std::uint32_t i, double) {

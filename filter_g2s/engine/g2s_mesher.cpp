@@ -30,7 +30,7 @@ Mesher::Mesher(std::vector<P3> points, const Params& params, double spacing)
     // would make the bounding box's guess huge), measure the spacing on the grid, and rebuild
     // only when the guess was far off. The robust box is the bulk's box widened by its extent on
     // every side: a third of its diagonal is the bulk's.
-    const vcg::Box3d bulk = robustBox(points, 4096);
+    const Box3d bulk = robustBox(points, 4096);
     size_t inside = 0;
     for (const P3& p : points) inside += bulk.IsIn(p) ? 1 : 0;
     const double guess = 0.5 * roughSpacing(bulk, std::max<size_t>(inside, 2)) / 3.0;
@@ -238,7 +238,7 @@ void Mesher::nestedShellSigns(const ComponentOf& component, size_t components, s
     if (!open[k]) closed.push_back(static_cast<std::uint32_t>(k));
   if (closed.size() < 2) return;
   // Their bounding boxes, and their faces grouped by component (a counting sort).
-  std::vector<vcg::Box3d> box(components);
+  std::vector<Box3d> box(components);
   std::vector<size_t> faces(components + 1, 0);
   for (size_t f = 0; f < tri_.size(); ++f) {
     if (!alive_[f]) continue;

@@ -19,10 +19,10 @@ void BorderGraph::reserve(size_t n) {
   frame_.reserve(n);
 }
 
-std::uint32_t BorderGraph::addVertex(const vcg::Point3d& position, const vcg::Point3d& normal) {
+std::uint32_t BorderGraph::addVertex(const Vec3d& position, const Vec3d& normal) {
   pos_.push_back(position);
   nrm_.push_back(normal);
-  vcg::Point3d e1, e2;
+  Vec3d e1, e2;
   tangentFrame(normal, e1, e2);
   frame_.push_back(Frame{e1, e2});
   rot_.emplace_back();
@@ -47,13 +47,13 @@ inline double ccw(double a, double b) {
 }
 } // namespace
 
-double BorderGraph::angleAt(std::uint32_t v, const vcg::Point3d& x) const {
+double BorderGraph::angleAt(std::uint32_t v, const Vec3d& x) const {
   const Frame& f = frame_[v];
-  const vcg::Point3d t = x - pos_[v];
+  const Vec3d t = x - pos_[v];
   return pseudoAngle(t * f.e1, t * f.e2);
 }
 
-int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {
+int BorderGraph::gapOf(std::uint32_t v, const Vec3d& target) const {
   const Rotation& r = rot_[v];
   if (r.degree == 0) return -1;
   if (r.degree == 1) return 0;
@@ -74,13 +74,13 @@ int BorderGraph::gapOf(std::uint32_t v, const vcg::Point3d& target) const {
   return best;
 }
 
-bool BorderGraph::gapContains(std::uint32_t v, int gap, const vcg::Point3d& target, const vcg::Point3d& n) const {
+bool BorderGraph::gapContains(std::uint32_t v, int gap, const Vec3d& target, const Vec3d& n) const {
   const Rotation& r = rot_[v];
   if (r.degree < 2) return true;
-  vcg::Point3d e1, e2;
+  Vec3d e1, e2;
   tangentFrame(n, e1, e2);
-  auto angle = [&](const vcg::Point3d& x) {
-    const vcg::Point3d t = x - pos_[v];
+  auto angle = [&](const Vec3d& x) {
+    const Vec3d t = x - pos_[v];
     return pseudoAngle(t * e1, t * e2);
   };
   const double a0 = angle(pos_[r.nb[gap]]), a1 = angle(pos_[r.nb[(gap + 1) % r.degree]]);
@@ -177,7 +177,7 @@ size_t BorderGraph::loneVertices() const {
 }
 
 size_t BorderGraph::memoryBytes() const {
-  return pos_.capacity() * sizeof(vcg::Point3d) * 2 + rot_.capacity() * sizeof(Rotation);
+  return pos_.capacity() * sizeof(Vec3d) * 2 + rot_.capacity() * sizeof(Rotation);
 }
 
 } // namespace growth

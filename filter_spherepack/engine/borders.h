@@ -21,7 +21,7 @@
 // the corners at a and b lie on the same border, and joins two borders into one otherwise; in the
 // rotation system both happen by inserting c into the two rotations. Sec. 4.2 bounds the walk that
 // tells the two cases apart by the window w: borderDistance() looks at most w steps each way.
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstdint>
 #include <vector>
@@ -43,13 +43,13 @@ public:
 
   void clear();
   void reserve(size_t vertices);
-  std::uint32_t addVertex(const vcg::Point3d& position, const vcg::Point3d& normal);
+  std::uint32_t addVertex(const Vec3d& position, const Vec3d& normal);
 
   size_t vertexCount() const { return pos_.size(); }
-  const vcg::Point3d& position(std::uint32_t v) const { return pos_[v]; }
-  const vcg::Point3d& normal(std::uint32_t v) const { return nrm_[v]; }
-  const std::vector<vcg::Point3d>& positions() const { return pos_; }
-  const std::vector<vcg::Point3d>& normals() const { return nrm_; }
+  const Vec3d& position(std::uint32_t v) const { return pos_[v]; }
+  const Vec3d& normal(std::uint32_t v) const { return nrm_[v]; }
+  const std::vector<Vec3d>& positions() const { return pos_; }
+  const std::vector<Vec3d>& normals() const { return nrm_; }
   int degree(std::uint32_t v) const { return rot_[v].degree; }
   std::uint32_t neighbour(std::uint32_t v, int k) const { return rot_[v].nb[k]; }
   bool hasEdge(std::uint32_t u, std::uint32_t v) const { return slotOf(u, v) >= 0; }
@@ -58,16 +58,16 @@ public:
   // Angle of the direction from v to x, projected onto the plane orthogonal to normal(v), in
   // v's tangent frame, as a pseudo-angle: a monotonic function of the polar angle in [0, 4) (a
   // full turn is 4), which gives the same cyclic order without the trigonometry.
-  double angleAt(std::uint32_t v, const vcg::Point3d& x) const;
+  double angleAt(std::uint32_t v, const Vec3d& x) const;
 
   // Corner of v whose gap contains the projected direction towards `target`: the slot k of its
   // outgoing half-edge; 0 for a vertex with one edge (one gap all around); -1 for a lone vertex.
-  int gapOf(std::uint32_t v, const vcg::Point3d& target) const;
+  int gapOf(std::uint32_t v, const Vec3d& target) const;
 
   // Whether the corner `gap` of v (as returned by gapOf) contains the direction towards `target`
   // when the edges are projected onto the plane orthogonal to another unit normal `n` instead of
   // normal(v). True for vertices with fewer than two edges (one gap all around).
-  bool gapContains(std::uint32_t v, int gap, const vcg::Point3d& target, const vcg::Point3d& n) const;
+  bool gapContains(std::uint32_t v, int gap, const Vec3d& target, const Vec3d& n) const;
 
   std::uint32_t target(HalfEdge h) const { return rot_[h.v].nb[h.slot]; }
   HalfEdge next(HalfEdge h) const;
@@ -109,9 +109,9 @@ private:
   }
   void insertAt(std::uint32_t v, int pos, std::uint32_t u);
 
-  std::vector<vcg::Point3d> pos_, nrm_;
+  std::vector<Vec3d> pos_, nrm_;
   struct Frame {
-    vcg::Point3d e1, e2; // tangentFrame(normal(v)), kept: angleAt() is asked for often
+    Vec3d e1, e2; // tangentFrame(normal(v)), kept: angleAt() is asked for often
   };
   std::vector<Frame> frame_;
   std::vector<Rotation> rot_;

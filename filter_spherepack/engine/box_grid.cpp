@@ -31,7 +31,7 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
       for (std::uint32_t y = 0; y < m; ++y)
         for (std::uint32_t x = 0; x < m; ++x) {
           const double u0 = -1.0 + double(x) * size, v0 = -1.0 + double(y) * size;
-          const vcg::Point3d c = faceDirection(face, u0 + 0.5 * size, v0 + 0.5 * size);
+          const Vec3d c = faceDirection(face, u0 + 0.5 * size, v0 + 0.5 * size);
           double minCos = 1;
           for (int k = 0; k < 4; ++k)
               minCos = std::min(minCos, faceDirection(face, u0 + (k & 1) * size, v0 + (k >> 1) * size) * c);
@@ -43,22 +43,22 @@ SphereSampling::SphereSampling(int level) : level_(std::max(0, std::min(level, 8
   }
 }
 
-vcg::Point3d SphereSampling::faceDirection(int face, double u, double v) const {
+Vec3d SphereSampling::faceDirection(int face, double u, double v) const {
   const int axis = face / 2;
   const double sign = (face % 2 == 0) ? 1.0 : -1.0;
-  vcg::Point3d d;
+  Vec3d d;
   d[axis] = sign;
   d[(axis + 1) % 3] = u;
   d[(axis + 2) % 3] = v;
   return d / d.Norm();
 }
 
-vcg::Point3d SphereSampling::leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
+Vec3d SphereSampling::leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
   const double m = double(std::uint32_t(1) << level_);
   return faceDirection(face, -1.0 + (2.0 * double(col) + 1.0) / m, -1.0 + (2.0 * double(row) + 1.0) / m);
 }
 
-vcg::Point3d SphereSampling::direction(size_t i) const {
+Vec3d SphereSampling::direction(size_t i) const {
   const size_t m = size_t(1) << level_;
   const int face = static_cast<int>(i / (m * m));
   const size_t r = i % (m * m);
@@ -71,11 +71,11 @@ vcg::Point3d SphereSampling::direction(size_t i) const {
 namespace {
 // min_k <normals[idx[k]], n>, stopping early once the running minimum is <= cutoff (the caller
 // then knows the value cannot matter).
-double minDot(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
-              const vcg::Point3d& n, double cutoff) {
+double minDot(const std::vector<Vec3d>& normals, const std::uint32_t* idx, size_t count,
+              const Vec3d& n, double cutoff) {
   double m = std::numeric_limits<double>::infinity();
   for (size_t k = 0; k < count; ++k) {
-    const vcg::Point3d& q = normals[idx[k]];
+    const Vec3d& q = normals[idx[k]];
     const double s = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
     if (s < m) {
       m = s;
@@ -86,13 +86,13 @@ double minDot(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx
 }
 } // namespace
 
-vcg::Point3d SphereSampling::maxMinDirectionBruteForce(const std::vector<vcg::Point3d>& normals,
+Vec3d SphereSampling::maxMinDirectionBruteForce(const std::vector<Vec3d>& normals,
                                                        const std::uint32_t* idx, size_t count,
                                                        double* minDotOut) const {
   double best = -std::numeric_limits<double>::infinity();
-  vcg::Point3d bestDir(0, 0, 1);
+  Vec3d bestDir(0, 0, 1);
   for (size_t i = 0; i < size(); ++i) {
-    const vcg::Point3d n = direction(i);
+    const Vec3d n = direction(i);
     const double m = minDot(normals, idx, count, n, -std::numeric_limits<double>::infinity());
     if (m > best) best = m, bestDir = n;
   }
@@ -100,7 +100,7 @@ vcg::Point3d SphereSampling::maxMinDirectionBruteForce(const std::vector<vcg::Po
   return bestDir;
 }
 
-vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+Vec3d SphereSampling::maxMinDirection(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
                                              size_t count, double* minDotOut) const {
   // Active set: with f_A(n) = min over a subset A of the normals, f <= f_A everywhere; so when the
   // argmax c of f_A over S_F has f(c) = f_A(c), c is the argmax of f as well. Start from the
@@ -108,17 +108,17 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
   // over S_F then runs on a handful of normals instead of all of the box's.
   if (count == 0) {
     if (minDotOut != nullptr) *minDotOut = 1;
-    return vcg::Point3d(0, 0, 1);
+    return Vec3d(0, 0, 1);
   }
   if (count <= 8) return branchAndBound(normals, idx, count, minDotOut, nullptr);
   std::vector<std::uint32_t>& active = active_;
   active.clear();
-  vcg::Point3d mean(0, 0, 0);
+  Vec3d mean(0, 0, 0);
   for (size_t k = 0; k < count; ++k) mean += normals[idx[k]];
   // Seed the active set with three far-apart normals: the one least aligned with the mean, the
   // one least aligned with it, and the one least aligned with those two (a guess at the normals
   // that span the optimal cap; the loop below adds whatever else is needed).
-  auto leastAligned = [&](const vcg::Point3d& dir) {
+  auto leastAligned = [&](const Vec3d& dir) {
     size_t best = 0;
     double bestDot = normals[idx[0]] * dir;
     for (size_t k = 1; k < count; ++k) {
@@ -133,7 +133,7 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
   active.push_back(a);
   if (b != a) active.push_back(b);
   if (c3 != a && c3 != b) active.push_back(c3);
-  vcg::Point3d c(0, 0, 0);
+  Vec3d c(0, 0, 0);
   for (bool warm = false;; warm = true) {
     double v = 0;
     c = branchAndBound(normals, active.data(), active.size(), &v, warm ? &c : nullptr);
@@ -159,9 +159,9 @@ vcg::Point3d SphereSampling::maxMinDirection(const std::vector<vcg::Point3d>& no
   }
 }
 
-bool SphereSampling::sumLeaf(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
-                             vcg::Point3d& dir) const {
-  vcg::Point3d m(0, 0, 0);
+bool SphereSampling::sumLeaf(const std::vector<Vec3d>& normals, const std::uint32_t* idx, size_t count,
+                             Vec3d& dir) const {
+  Vec3d m(0, 0, 0);
   for (size_t k = 0; k < count; ++k) m += normals[idx[k]];
   int axis = 0;
   for (int a = 1; a < 3; ++a)
@@ -178,16 +178,16 @@ bool SphereSampling::sumLeaf(const std::vector<vcg::Point3d>& normals, const std
   return true;
 }
 
-double SphereSampling::quickLowerBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+double SphereSampling::quickLowerBound(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
                                        size_t count) const {
   if (count == 0) return 1; // maxMinDirection's value for no normals
-  vcg::Point3d c;
+  Vec3d c;
   if (!sumLeaf(normals, idx, count, c)) return -std::numeric_limits<double>::infinity();
   return minDot(normals, idx, count, c, -std::numeric_limits<double>::infinity());
 }
 
-vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
-                                            size_t count, double* minDotOut, const vcg::Point3d* warm) const {
+Vec3d SphereSampling::branchAndBound(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
+                                            size_t count, double* minDotOut, const Vec3d* warm) const {
   // Best-first branch and bound over the quadtree of each cube face. For a cell with centre
   // direction c, every direction n of the cell is within the angle α of c (the largest angle
   // from c to the cell's corners: the angle to c is quasi-convex over the square, so its maximum
@@ -197,16 +197,16 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
   std::vector<Cell>& heap = heap_;
   heap.clear();
   double best = -std::numeric_limits<double>::infinity();
-  vcg::Point3d bestDir(0, 0, 1);
+  Vec3d bestDir(0, 0, 1);
   // The normal that decided the last evaluation is tried first: it usually decides the next one
   // too, so the cut-off is hit after a few products.
   size_t hint = 0;
-  auto value = [&](const vcg::Point3d& n, double cutoff) {
-    const vcg::Point3d& q0 = normals[idx[hint]];
+  auto value = [&](const Vec3d& n, double cutoff) {
+    const Vec3d& q0 = normals[idx[hint]];
     double m = q0[0] * n[0] + q0[1] * n[1] + q0[2] * n[2];
     if (m <= cutoff) return m;
     for (size_t k = 0; k < count; ++k) {
-      const vcg::Point3d& q = normals[idx[k]];
+      const Vec3d& q = normals[idx[k]];
       const double s = q[0] * n[0] + q[1] * n[1] + q[2] * n[2];
       if (s < m) {
         m = s;
@@ -219,7 +219,7 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
 
   // A good first guess: the leaf holding the direction of the summed normals.
   {
-    vcg::Point3d c;
+    Vec3d c;
     if (sumLeaf(normals, idx, count, c)) {
       best = value(c, -std::numeric_limits<double>::infinity());
       bestDir = c;
@@ -235,7 +235,7 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
   auto push = [&](int face, int depth, std::uint32_t x, std::uint32_t y) {
     const bool leaf = depth == level_;
     const CellInfo* info = leaf ? nullptr : &tables_->cell[cellIndex(face, depth, x, y)];
-    const vcg::Point3d c = leaf ? leafCentre(face, x, y) : info->centre;
+    const Vec3d c = leaf ? leafCentre(face, x, y) : info->centre;
     const double ca = leaf ? 1.0 : info->cosAlpha, sa = leaf ? 0.0 : info->sinAlpha;
     // value(c) <= cutoff = cos(min(π, acos(best) + α)) means cos(max(0, θ − α)) <= best.
     if (best != sinBestOf) sinBestOf = best, sinBest = std::sqrt(std::max(0.0, 1 - best * best));
@@ -273,7 +273,7 @@ vcg::Point3d SphereSampling::branchAndBound(const std::vector<vcg::Point3d>& nor
 namespace {
 // The points whose normals face `dir` (<n_p, dir> >= 0) moved to the front of idx, in order;
 // the others after them, in order, when `rest` is given (else dropped). Returns how many face it.
-size_t keepFacing(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count, const vcg::Point3d& dir,
+size_t keepFacing(const std::vector<Vec3d>& normals, std::uint32_t* idx, size_t count, const Vec3d& dir,
                   std::vector<std::uint32_t>* rest) {
   if (rest != nullptr) rest->clear();
   size_t w = 0;
@@ -286,38 +286,38 @@ size_t keepFacing(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, 
 }
 } // namespace
 
-size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+size_t filterBoxNormals(const std::vector<Vec3d>& normals, std::uint32_t* idx, size_t count,
                         double threshold) {
-  vcg::Point3d sum(0, 0, 0);
+  Vec3d sum(0, 0, 0);
   for (size_t k = 0; k < count; ++k) sum += normals[idx[k]];
   if (sum.Norm() < threshold) return count;
   return keepFacing(normals, idx, count, sum, nullptr);
 }
 
-BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+BoxLayers filterOrSplitBox(const std::vector<Vec3d>& normals, std::uint32_t* idx, size_t count,
                            std::vector<std::uint32_t>& scratch, double threshold) {
   BoxLayers r;
   r.firstEnd = count;
-  vcg::Point3d sum(0, 0, 0);
+  Vec3d sum(0, 0, 0);
   for (size_t k = 0; k < count; ++k) sum += normals[idx[k]];
-  vcg::Point3d dir = sum;
+  Vec3d dir = sum;
   const bool cancel = sum.Norm() < threshold;
   if (cancel) {
     // The normals cancel: the axis they spread along most (power iteration on Σ n nᵀ, from the
     // coordinate axis of its largest diagonal entry).
     double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     for (size_t k = 0; k < count; ++k) {
-      const vcg::Point3d& n = normals[idx[k]];
+      const Vec3d& n = normals[idx[k]];
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) m[i][j] += n[i] * n[j];
     }
     int a = 0;
     for (int i = 1; i < 3; ++i)
       if (m[i][i] > m[a][a]) a = i;
-    dir = vcg::Point3d(0, 0, 0);
+    dir = Vec3d(0, 0, 0);
     dir[a] = 1;
     for (int it = 0; it < 16; ++it) {
-      vcg::Point3d next(0, 0, 0);
+      Vec3d next(0, 0, 0);
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) next[i] += m[i][j] * dir[j];
       const double len = next.Norm();
@@ -348,9 +348,9 @@ const SphereSampling& boxNormalSampling() {
 
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
-         points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(vcg::Point3d) +
+         points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(Vec3d) +
          boxMinDot_.capacity() * sizeof(double) + boxNormal_.size() * 2 + pending_.capacity() * sizeof(std::uint32_t) +
-         twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(vcg::Point3d);
+         twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(Vec3d);
 }
 
 void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
@@ -365,7 +365,7 @@ void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
   while (state_[b].load(std::memory_order_acquire) != kDone) std::this_thread::yield(); // the other thread's
 }
 
-void BoxGrid::startNormals(int threads, const vcg::Point3d& from) {
+void BoxGrid::startNormals(int threads, const Vec3d& from) {
   stopNormals();
   if (pending_.empty() || parallelParts(pending_.size(), threads, 64) < 2) return;
   // Nearest boxes first (by their lower corners; ties by id).
@@ -374,7 +374,7 @@ void BoxGrid::startNormals(int threads, const vcg::Point3d& from) {
     for (size_t k = 0; k < pending_.size(); ++k) order[k] = {(pendingCorner_[k] - from).SquaredNorm(), pending_[k]};
     std::sort(order.begin(), order.end());
     for (size_t k = 0; k < order.size(); ++k) pending_[k] = order[k].second;
-    std::vector<vcg::Point3d>().swap(pendingCorner_);
+    std::vector<Vec3d>().swap(pendingCorner_);
   }
   // The copy (own scratch) is made here: once started, the caller may use sampling_.
   // After the deferred boxes, the others in id order until finishNormals() stops it: the caller
@@ -405,13 +405,13 @@ void BoxGrid::finishNormals() {
   for (const std::uint32_t b : pending_)
     if (state_[b].load(std::memory_order_acquire) != kDone) computeNormal(int(b), sampling_);
   std::vector<std::uint32_t>().swap(pending_);
-  std::vector<vcg::Point3d>().swap(pendingCorner_);
+  std::vector<Vec3d>().swap(pendingCorner_);
 }
 
 // build()'s passes over the points and the boxes, with their working arrays.
 class BoxGrid::Builder {
 public:
-  Builder(BoxGrid& g, const std::vector<vcg::Point3d>& pts, double side, Progress* progress, int threads,
+  Builder(BoxGrid& g, const std::vector<Vec3d>& pts, double side, Progress* progress, int threads,
           const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach)
       : g_(g), pts_(pts), side_(side), d2_(side * side), n_(pts.size()), progress_(progress), threads_(threads),
         listOrder_(listOrder), extraReach_(extraReach) {}
@@ -426,7 +426,7 @@ public:
   // Pass 2: the references filled in, points in list order inside each box.
   void fillReferences();
   // Sec. 4.1: the normal filter and the box normals, per box; then the lists compacted.
-  void filterAndNormals(const std::vector<vcg::Point3d>& normals, bool deferNormals);
+  void filterAndNormals(const std::vector<Vec3d>& normals, bool deferNormals);
   // The boxes holding input points, their normals left for startNormals() / finishNormals().
   void deferOwnBoxes();
 
@@ -439,7 +439,7 @@ private:
   }
   // Per axis the boxes within reach of p and the squared distance of p to each slab (the terms
   // of squaredDistanceToBox, in the same order, so the test is the same to the last bit).
-  void slabs(const vcg::Point3d& p, double reach, std::int64_t lo[3], std::int64_t hi[3], double sq[3][kSpan]) const {
+  void slabs(const Vec3d& p, double reach, std::int64_t lo[3], std::int64_t hi[3], double sq[3][kSpan]) const {
     for (int a = 0; a < 3; ++a) {
       lo[a] = g_.index_.coord(p[a] - reach, a);
       hi[a] = std::min(g_.index_.coord(p[a] + reach, a), lo[a] + kSpan - 1);
@@ -470,7 +470,7 @@ private:
   size_t listed(size_t t) const { return listOrder_ != nullptr ? size_t((*listOrder_)[t]) : t; }
 
   BoxGrid& g_;
-  const std::vector<vcg::Point3d>& pts_;
+  const std::vector<Vec3d>& pts_;
   const double side_, d2_;
   const size_t n_;
   Progress* const progress_;
@@ -489,7 +489,7 @@ private:
 };
 
 void BoxGrid::Builder::placeIndex() {
-  vcg::Point3d lo = pts_[0], hi = pts_[0];
+  Vec3d lo = pts_[0], hi = pts_[0];
   for (const auto& p : pts_)
     for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
   const double extent = std::max(hi[0] - lo[0], std::max(hi[1] - lo[1], hi[2] - lo[2]));
@@ -505,7 +505,7 @@ void BoxGrid::Builder::placeIndex() {
   // A margin of whole boxes below the points: the farthest reach (side + kMaxExtraReach·side)
   // stays at non-negative box coordinates.
   const double margin = (kMaxExtraReach + 2) * side_;
-  g_.index_ = BoxIndexer(lo - vcg::Point3d(margin, margin, margin), side_);
+  g_.index_ = BoxIndexer(lo - Vec3d(margin, margin, margin), side_);
 }
 
 void BoxGrid::Builder::ownBoxes() {
@@ -676,12 +676,12 @@ void BoxGrid::Builder::fillReferences() {
 // of the mesh lie on splats, so near the points: nearly all box normals the growth asks for are
 // of those boxes), and for the boxes the quick test below cannot clear of "d too large"; the
 // others are computed when first asked for (boxNormal()), with the same result.
-void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals, bool deferNormals) {
+void BoxGrid::Builder::filterAndNormals(const std::vector<Vec3d>& normals, bool deferNormals) {
   const size_t boxes = boxes_;
   Progress* progress = progress_;
   std::vector<std::uint32_t>& start = g_.start_;
   HugeVector<std::uint32_t>& points = g_.points_;
-  assignHuge(g_.boxNormal_, boxes, vcg::Point3d(0, 0, 0));
+  assignHuge(g_.boxNormal_, boxes, Vec3d(0, 0, 0));
   assignHuge(g_.boxMinDot_, boxes, std::numeric_limits<double>::quiet_NaN());
   g_.state_.reset(new std::atomic<std::uint8_t>[boxes]);
   prefault(g_.state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
@@ -706,7 +706,7 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
   std::vector<Worker> samplings(size_t(workers), Worker{g_.sampling_, {}}); // own scratch each
   struct Split { // a two-sided box, the end of its first layer, its splitting direction
     std::uint32_t box, firstEnd;
-    vcg::Point3d dir;
+    Vec3d dir;
   };
   std::vector<std::vector<Split>> splits(static_cast<size_t>(workers));
   parallelChunks(boxes, workers, 32, [&](size_t b0, size_t b1, int worker) {
@@ -790,7 +790,7 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<vcg::Point3d>& normals
     g_.twin_[boxes + t] = static_cast<std::int32_t>(twinOf[t]);
     g_.split_[t] = split[t].dir;
   }
-  g_.boxNormal_.resize(all, vcg::Point3d(0, 0, 0));
+  g_.boxNormal_.resize(all, Vec3d(0, 0, 0));
   g_.boxMinDot_.resize(all, std::numeric_limits<double>::quiet_NaN());
   std::unique_ptr<std::atomic<std::uint8_t>[]> state(new std::atomic<std::uint8_t>[all]);
   for (size_t b = 0; b < all; ++b)
@@ -813,7 +813,7 @@ void BoxGrid::Builder::deferOwnBoxes() {
     }
 }
 
-void BoxGrid::build(const std::vector<vcg::Point3d>& pts, const std::vector<vcg::Point3d>& normals, double side,
+void BoxGrid::build(const std::vector<Vec3d>& pts, const std::vector<Vec3d>& normals, double side,
                     Progress* progress, int threads, bool deferNormals,
                     const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach) {
   stopNormals();

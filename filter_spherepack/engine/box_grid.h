@@ -19,7 +19,7 @@
 //     Such boxes are counted so that the caller can warn.
 #include <growth/huge_pages.h>
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cmath>
 #include <cstddef>
@@ -120,10 +120,10 @@ public:
   static constexpr std::int64_t kMax = (std::int64_t(1) << kBits) - 1;
 
   BoxIndexer() = default;
-  BoxIndexer(const vcg::Point3d& origin, double side) : origin_(origin), side_(side), inv_(1.0 / side) {}
+  BoxIndexer(const Vec3d& origin, double side) : origin_(origin), side_(side), inv_(1.0 / side) {}
 
   double side() const { return side_; }
-  const vcg::Point3d& origin() const { return origin_; }
+  const Vec3d& origin() const { return origin_; }
   // Far outside the indexable range (and for NaN) the coordinate saturates at ±kFar, which
   // valid() refuses and which a range of boxes spans once: converting a double beyond the range of
   // int64 is undefined behaviour (a start point given at 1e235, fuzz/regressions/cloud/).
@@ -141,20 +141,20 @@ public:
     return (KeyHash::Key(x) << (2 * kBits)) | (KeyHash::Key(y) << kBits) | KeyHash::Key(z);
   }
   // Key of the box containing p; false when p is outside the indexable range.
-  bool keyOf(const vcg::Point3d& p, KeyHash::Key& key) const {
+  bool keyOf(const Vec3d& p, KeyHash::Key& key) const {
     const std::int64_t x = coord(p[0], 0), y = coord(p[1], 1), z = coord(p[2], 2);
     if (!valid(x, y, z)) return false;
     key = pack(x, y, z);
     return true;
   }
   // Lower corner of box (x, y, z).
-  vcg::Point3d corner(std::int64_t x, std::int64_t y, std::int64_t z) const {
-    return vcg::Point3d(origin_[0] + double(x) * side_, origin_[1] + double(y) * side_,
+  Vec3d corner(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return Vec3d(origin_[0] + double(x) * side_, origin_[1] + double(y) * side_,
                         origin_[2] + double(z) * side_);
   }
 
 private:
-  vcg::Point3d origin_{0, 0, 0};
+  Vec3d origin_{0, 0, 0};
   double side_ = 1, inv_ = 1;
 };
 
@@ -169,33 +169,33 @@ public:
   int level() const { return level_; }
   size_t size() const { return size_t(6) << (2 * level_); }
   // The i-th direction of S_F (unit length), i in [0, size()).
-  vcg::Point3d direction(size_t i) const;
+  Vec3d direction(size_t i) const;
 
   // argmax over n in S_F of min_k <normals[idx[k]], n>, by branch and bound (exact over S_F).
   // *minDot receives the maximised minimum. count must be > 0.
-  vcg::Point3d maxMinDirection(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+  Vec3d maxMinDirection(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
                                size_t count, double* minDot = nullptr) const;
   // The same by testing every direction of S_F (reference for tests).
-  vcg::Point3d maxMinDirectionBruteForce(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx,
+  Vec3d maxMinDirectionBruteForce(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
                                          size_t count, double* minDot = nullptr) const;
 
   // A lower bound of maxMinDirection()'s value, at the cost of one pass over the normals: their
   // minimum at the direction of S_F nearest to their sum (the search's first guess); −∞ when the
   // normals sum to zero.
-  double quickLowerBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count) const;
+  double quickLowerBound(const std::vector<Vec3d>& normals, const std::uint32_t* idx, size_t count) const;
 
 private:
   // The leaf of S_F holding the direction of the summed normals; false when they sum to zero.
-  bool sumLeaf(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
-               vcg::Point3d& dir) const;
+  bool sumLeaf(const std::vector<Vec3d>& normals, const std::uint32_t* idx, size_t count,
+               Vec3d& dir) const;
   // warm: a direction of S_F to start from (its value is a first lower bound), or null.
-  vcg::Point3d branchAndBound(const std::vector<vcg::Point3d>& normals, const std::uint32_t* idx, size_t count,
-                              double* minDot, const vcg::Point3d* warm) const;
-  vcg::Point3d faceDirection(int face, double u, double v) const;
+  Vec3d branchAndBound(const std::vector<Vec3d>& normals, const std::uint32_t* idx, size_t count,
+                              double* minDot, const Vec3d* warm) const;
+  Vec3d faceDirection(int face, double u, double v) const;
   // A direction of S_F: the centre of a leaf cell, computed when needed (a normalisation; the
   // search visits a few leaves per box, each then costing a pass over the box's normals). A table
   // of all 24,576 would hold 590 KB for the whole session, most of the filter's fixed memory.
-  vcg::Point3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const;
+  Vec3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const;
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
     return tables_->offset[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
   }
@@ -204,7 +204,7 @@ private:
   // the centre to the cell's corners (precomputed once: the search then needs no trigonometry).
   // Immutable once built, so copies of an instance share them.
   struct CellInfo {
-    vcg::Point3d centre;
+    Vec3d centre;
     double cosAlpha, sinAlpha;
   };
   struct Tables {
@@ -226,7 +226,7 @@ private:
 
 // Sec. 4.1 normal filter on one box: returns how many of idx[0..count) remain (kept in order at
 // the front of idx). Threshold on |Σ n_p|: below it all points are kept.
-size_t filterBoxNormals(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+size_t filterBoxNormals(const std::vector<Vec3d>& normals, std::uint32_t* idx, size_t count,
                         double threshold = 0.1);
 
 // Sec. 4.1's normal filter, and two-sided boxes (beyond the paper). The box's normals split into
@@ -243,9 +243,9 @@ constexpr size_t kTwoSidedMinPoints = 4;
 struct BoxLayers {
   size_t firstEnd = 0;        // points kept (not two-sided), or the first layer's end (two-sided)
   bool twoSided = false;
-  vcg::Point3d split{0, 0, 0}; // two-sided: <n, split> >= 0 for the first layer's normals
+  Vec3d split{0, 0, 0}; // two-sided: <n, split> >= 0 for the first layer's normals
 };
-BoxLayers filterOrSplitBox(const std::vector<vcg::Point3d>& normals, std::uint32_t* idx, size_t count,
+BoxLayers filterOrSplitBox(const std::vector<Vec3d>& normals, std::uint32_t* idx, size_t count,
                            std::vector<std::uint32_t>& scratch, double threshold = 0.1);
 
 class Progress;
@@ -269,7 +269,7 @@ public:
   // The largest extent of the points (per axis) that build() can index with boxes of this side:
   // 2^21 − 1 boxes per axis (BoxIndexer), less the margins of the farthest reach on both sides.
   static double maxExtent(double side) { return (double(BoxIndexer::kMax) - 2 * (kMaxExtraReach + 4) - 1) * side; }
-  void build(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals, double side,
+  void build(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals, double side,
              Progress* progress = nullptr, int threads = 0, bool deferNormals = false,
              const std::vector<std::uint32_t>* listOrder = nullptr, const std::vector<float>* extraReach = nullptr);
 
@@ -285,7 +285,7 @@ public:
   // Meanwhile boxNormal() is safe to call from one thread: a box not done yet is computed there
   // (or awaited when the other thread is at it). The values are the same whoever computes them;
   // dTooLargeCount() is final after finishNormals().
-  void startNormals(int threads, const vcg::Point3d& from);
+  void startNormals(int threads, const Vec3d& from);
   void finishNormals();
 
   double side() const { return index_.side(); }
@@ -297,7 +297,7 @@ public:
   size_t twoSidedBoxes() const { return layerCount() - boxCount(); }
   // Id of the box containing p, or -1 when that box refers to no point. In a two-sided box, the
   // layer of the points whose normals the paper's filter keeps.
-  int boxOf(const vcg::Point3d& p) const {
+  int boxOf(const Vec3d& p) const {
     KeyHash::Key k;
     return index_.keyOf(p, k) ? hash_.find(k) : -1;
   }
@@ -305,7 +305,7 @@ public:
   // splat or vertex that asks; a zero normal gets the first layer). Its points, box normal and
   // checks are that side's alone, so both sides of a plate thinner than the box's reach are
   // meshed (the paper's filter drops one of them).
-  int boxOf(const vcg::Point3d& p, const vcg::Point3d& normal) const {
+  int boxOf(const Vec3d& p, const Vec3d& normal) const {
     const int b = boxOf(p);
     if (b < 0 || twin_.empty() || twin_[size_t(b)] < 0) return b;
     const int second = twin_[size_t(b)];
@@ -318,7 +318,7 @@ public:
   // The box normal (sec. 4.1). Computed by build() (or startNormals()) for most boxes, on first
   // use for the others: the same value either way, but a first use writes to the grid, so these
   // accessors must not be called from several threads at once.
-  const vcg::Point3d& boxNormal(int box) const {
+  const Vec3d& boxNormal(int box) const {
     if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
     return boxNormal_[size_t(box)];
   }
@@ -359,10 +359,10 @@ private:
 
   std::vector<std::int32_t> twin_;     // per layer: the other layer of a two-sided box, or -1
                                        // (empty when no box is two-sided)
-  std::vector<vcg::Point3d> split_;    // per second layer (id − boxCount()): the direction that
+  std::vector<Vec3d> split_;    // per second layer (id − boxCount()): the direction that
                                        // splits its box (its side: <n, split> < 0)
   size_t layerBoxes_ = 0;              // boxCount() when some box is two-sided, else 0
-  mutable std::vector<vcg::Point3d> boxNormal_;
+  mutable std::vector<Vec3d> boxNormal_;
   mutable std::vector<double> boxMinDot_;
   std::unique_ptr<std::atomic<std::uint8_t>[]> state_; // per box: kNone, kBusy, kDone
   std::vector<std::uint8_t> counted_;  // boxes that count for dTooLargeCount (all but those the
@@ -370,9 +370,9 @@ private:
   std::vector<std::uint8_t> opposed_;  // boxes where the normal filter dropped a point (counted
                                        // as "d too large" by build())
   std::vector<std::uint32_t> pending_; // deferred boxes, for startNormals()/finishNormals()
-  std::vector<vcg::Point3d> pendingCorner_; // their lower corners, until startNormals() orders them
+  std::vector<Vec3d> pendingCorner_; // their lower corners, until startNormals() orders them
   mutable SphereSampling sampling_{0}; // for the box normals computed on first use
-  const std::vector<vcg::Point3d>* normals_ = nullptr;
+  const std::vector<Vec3d>* normals_ = nullptr;
   mutable std::atomic<size_t> dTooLargeCount_{0};
   size_t dropped_ = 0, facePoints_ = 0;
   std::thread background_;
@@ -380,7 +380,7 @@ private:
 };
 
 // Squared distance from p to the axis-aligned cube [lo, lo + side]^3.
-inline double squaredDistanceToBox(const vcg::Point3d& p, const vcg::Point3d& lo, double side) {
+inline double squaredDistanceToBox(const Vec3d& p, const Vec3d& lo, double side) {
   double s = 0;
   for (int a = 0; a < 3; ++a) {
     const double v = p[a] < lo[a] ? lo[a] - p[a] : (p[a] > lo[a] + side ? p[a] - lo[a] - side : 0.0);

@@ -17,7 +17,7 @@
 #include "box_grid.h"
 #include "splats.h"
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cmath>
 #include <algorithm>
@@ -29,15 +29,15 @@ namespace growth {
 
 // Circle of the points at distance d from both a and b.
 struct ParentCircle {
-  vcg::Point3d centre{0, 0, 0};
-  vcg::Point3d axis{0, 0, 1};   // (b − a)/|b − a|
+  Vec3d centre{0, 0, 0};
+  Vec3d axis{0, 0, 1};   // (b − a)/|b − a|
   double radius = 0;
   bool valid = false;
 };
 
-inline ParentCircle parentCircle(const vcg::Point3d& a, const vcg::Point3d& b, double d) {
+inline ParentCircle parentCircle(const Vec3d& a, const Vec3d& b, double d) {
   ParentCircle c;
-  const vcg::Point3d ab = b - a;
+  const Vec3d ab = b - a;
   const double len2 = ab.SquaredNorm();
   const double r2 = d * d - 0.25 * len2;
   if (!(len2 > 0) || r2 < 0) return c;
@@ -54,16 +54,16 @@ inline ParentCircle parentCircle(const vcg::Point3d& a, const vcg::Point3d& b, d
 // y = α ŵ ± t (u × ŵ), α = −<centre − p, n>/|w|, t = sqrt(r² − α²): base ± t·v. False when the
 // circle misses the plane (or lies in it, or is parallel to it).
 struct CirclePlaneMeet {
-  vcg::Point3d base, v;
+  Vec3d base, v;
   double t = 0;
-  vcg::Point3d root(int r) const { return base + v * (r == 0 ? -t : t); } // root 0 takes −t
+  Vec3d root(int r) const { return base + v * (r == 0 ? -t : t); } // root 0 takes −t
 };
-inline bool circleMeetsPlane(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, CirclePlaneMeet& m) {
+inline bool circleMeetsPlane(const ParentCircle& c, const Vec3d& p, const Vec3d& n, CirclePlaneMeet& m) {
   if (!c.valid) return false;
-  const vcg::Point3d w = n - c.axis * (n * c.axis);
+  const Vec3d w = n - c.axis * (n * c.axis);
   const double wlen = w.Norm();
   if (!(wlen > 1e-12)) return false;
-  const vcg::Point3d wh = w / wlen;
+  const Vec3d wh = w / wlen;
   const double alpha = -((c.centre - p) * n) / wlen;
   const double t2 = c.radius * c.radius - alpha * alpha;
   if (t2 < 0) return false;
@@ -76,8 +76,8 @@ inline bool circleMeetsPlane(const ParentCircle& c, const vcg::Point3d& p, const
 // One of the (at most two) points where the circle meets the plane through p with unit normal n:
 // root 0 or 1. False when there is none, or when the point is farther than s from p (outside the
 // splat's disk).
-inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s, int root,
-                             vcg::Point3d& out) {
+inline bool circleSplatPoint(const ParentCircle& c, const Vec3d& p, const Vec3d& n, double s, int root,
+                             Vec3d& out) {
   CirclePlaneMeet m;
   if (!circleMeetsPlane(c, p, n, m)) return false;
   out = m.root(root);
@@ -86,14 +86,14 @@ inline bool circleSplatPoint(const ParentCircle& c, const vcg::Point3d& p, const
 
 // Both roots; returns how many lie in the disk (written to out/rootOut in root order). A tangent
 // circle (t = 0) gives one point. The same values as circleSplatPoint() for root 0 and 1.
-inline int circleSplatIntersections(const ParentCircle& c, const vcg::Point3d& p, const vcg::Point3d& n, double s,
-                                    vcg::Point3d out[2], int rootOut[2]) {
+inline int circleSplatIntersections(const ParentCircle& c, const Vec3d& p, const Vec3d& n, double s,
+                                    Vec3d out[2], int rootOut[2]) {
   CirclePlaneMeet m;
   if (!circleMeetsPlane(c, p, n, m)) return 0;
   const double s2 = s * s;
   int k = 0;
   for (int root = 0; root < 2; ++root) {
-    const vcg::Point3d x = m.root(root);
+    const Vec3d x = m.root(root);
     if (!((x - p).SquaredNorm() <= s2)) continue;
     if (k == 1 && root == 1 && (x - out[0]).SquaredNorm() == 0) break; // tangent: one point
     out[k] = x;
@@ -157,8 +157,8 @@ private:
 
 // The splats: centres, unit normals, radii.
 struct SplatSet {
-  const std::vector<vcg::Point3d>* centre = nullptr;
-  const std::vector<vcg::Point3d>* normal = nullptr;
+  const std::vector<Vec3d>* centre = nullptr;
+  const std::vector<Vec3d>* normal = nullptr;
   const std::vector<float>* radius = nullptr;
 };
 
@@ -170,10 +170,10 @@ struct SplatSet {
 // within d of the splat, added before v), then adds v to the list. Returns the number of splats
 // within d of x.
 template <class Emit>
-size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& vertexPos, const vcg::Point3d& nv,
+size_t enumerateCandidates(std::uint32_t v, const std::vector<Vec3d>& vertexPos, const Vec3d& nv,
                            double d, const BoxGrid& grid, const SplatSet& splats, SplatVertexLists& lists,
                            Emit&& emit) {
-  const vcg::Point3d& x = vertexPos[v];
+  const Vec3d& x = vertexPos[v];
   const int box = grid.boxOf(x, nv);
   if (box < 0) return 0;
   size_t near = 0;
@@ -194,8 +194,8 @@ size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& ver
   };
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box); ++it) {
     const std::uint32_t s = *it;
-    const vcg::Point3d& p = (*splats.centre)[s];
-    const vcg::Point3d& n = (*splats.normal)[s];
+    const Vec3d& p = (*splats.centre)[s];
+    const Vec3d& n = (*splats.normal)[s];
     const double r = (*splats.radius)[s];
     if (squaredDistanceToDisk(x, p, n, r) > d2) continue;
     ++near;
@@ -204,12 +204,12 @@ size_t enumerateCandidates(std::uint32_t v, const std::vector<vcg::Point3d>& ver
       if (!c.valid) return;
       // Quick rejections: a point of the disk on the circle is within r of p, so the disk must
       // reach the circle's plane and come within r of the circle's centre ring.
-      const vcg::Point3d pm = p - c.centre;
+      const Vec3d pm = p - c.centre;
       const double along = pm * c.axis;
       if (along > r || along < -r) return;
       const double reach = c.radius + r;
       if (pm.SquaredNorm() > reach * reach) return;
-      vcg::Point3d pos[2];
+      Vec3d pos[2];
       int root[2];
       const int k = circleSplatIntersections(c, p, n, r, pos, root);
       for (int j = 0; j < k; ++j) emit(u, s, root[j], pos[j]);

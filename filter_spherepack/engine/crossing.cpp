@@ -3,15 +3,15 @@
 
 namespace growth {
 
-bool newEdgesCross(const BorderGraph& g, const vcg::Point3d& c, std::uint32_t a, std::uint32_t b, const vcg::Point3d& n,
+bool newEdgesCross(const BorderGraph& g, const Vec3d& c, std::uint32_t a, std::uint32_t b, const Vec3d& n,
                    double d, const std::vector<std::uint32_t>& nearby) {
-  vcg::Point3d e1, e2;
+  Vec3d e1, e2;
   tangentFrame(n, e1, e2);
   struct P {
     double x, y, h;
   };
-  auto project = [&](const vcg::Point3d& p) {
-    const vcg::Point3d v = p - c;
+  auto project = [&](const Vec3d& p) {
+    const Vec3d v = p - c;
     return P{v * e1, v * e2, v * n};
   };
   const P pa = project(g.position(a)), pb = project(g.position(b));

@@ -16,7 +16,7 @@
 // caller gathers the vertices within crossingSearchRadius(d) of c.
 #include "borders.h"
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstdint>
 #include <vector>
@@ -41,7 +41,7 @@ inline bool segmentsCross2D(double p1x, double p1y, double p2x, double p2y, doub
 // True when, projected along the unit normal n at the candidate position c, one of the new edges
 // c–a or c–b (a, b vertices of g) crosses an edge of g with an endpoint in `nearby` (vertices
 // within crossingSearchRadius(d) of c) that lies within d of c in the direction of n.
-bool newEdgesCross(const BorderGraph& g, const vcg::Point3d& c, std::uint32_t a, std::uint32_t b, const vcg::Point3d& n,
+bool newEdgesCross(const BorderGraph& g, const Vec3d& c, std::uint32_t a, std::uint32_t b, const Vec3d& n,
                    double d, const std::vector<std::uint32_t>& nearby);
 
 } // namespace growth

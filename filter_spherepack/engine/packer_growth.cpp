@@ -18,7 +18,7 @@ void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in,
   growth.run();
   st.componentsStarted = 1;
   bool nearMesh = false;
-  auto farFromVertices = [&](const vcg::Point3d& x) {
+  auto farFromVertices = [&](const Vec3d& x) {
     if (growth.anyVertexCloserThan(x, d)) return false;
     if (!growth.anyVertexCloserThan(x, kStartClearancePerD * d)) return true;
     nearMesh = true;

@@ -47,13 +47,13 @@ public:
   }
 
   const BorderGraph& graph() const { return graph_; }
-  bool anyVertexCloserThan(const vcg::Point3d& x, double r) const {
+  bool anyVertexCloserThan(const Vec3d& x, double r) const {
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNoVertex, kNoVertex);
   }
   const SplatVertexLists& lists() const { return lists_; }
 
   // Sec. 3.3: the two starting vertices (already projected onto their splats).
-  void start(const vcg::Point3d& s1, std::uint32_t splat1, const vcg::Point3d& s2, std::uint32_t splat2) {
+  void start(const Vec3d& s1, std::uint32_t splat1, const Vec3d& s2, std::uint32_t splat2) {
     insertVertex(s1, splat1);
     insertVertex(s2, splat2);
   }
@@ -69,7 +69,7 @@ public:
       if ((++pops & 31) == 0)
         progress_.update(std::min(0.99, double(graph_.vertexCount()) / double(expected_)));
 
-      vcg::Point3d x;
+      Vec3d x;
       const auto& pos = graph_.positions();
       const ParentCircle circle = parentCircle(pos[cd.a], pos[cd.b], d_);
       if (!circleSplatPoint(circle, in_.points[cd.splat], in_.normals[cd.splat], radius_[cd.splat], cd.root, x))
@@ -94,7 +94,7 @@ public:
       if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
       // Sec. 3.6, fig. 4b: projected along the approximated surface normal, the new edges must not
       // cross existing edges within d in normal direction.
-      const vcg::Point3d n = normalAt(x, cd.splat);
+      const Vec3d n = normalAt(x, cd.splat);
       // One look-up for the crossing check and, when x is inserted, its candidates (enumerate()
       // needs the vertices within 2d, inside the crossing radius).
       nearby.clear();
@@ -130,12 +130,12 @@ private:
   // Vertex normal: the box normal of the box containing x (sec. 4.1: "used as vertex normal for
   // all vertices lying in b_j"; in a two-sided box, of the layer the splat's side is in), or the
   // splat normal when that box refers to no point.
-  vcg::Point3d normalAt(const vcg::Point3d& x, std::uint32_t splat) const {
+  Vec3d normalAt(const Vec3d& x, std::uint32_t splat) const {
     const int box = grid_.boxOf(x, in_.normals[splat]);
     return box >= 0 ? grid_.boxNormal(box) : in_.normals[splat];
   }
 
-  std::uint32_t insertVertex(const vcg::Point3d& x, std::uint32_t splat, const vcg::Point3d* normal = nullptr,
+  std::uint32_t insertVertex(const Vec3d& x, std::uint32_t splat, const Vec3d* normal = nullptr,
                              bool enumerateLater = false) {
     // The limit checked before the growth bounds the surface area estimated from the points; the
     // splats can cover more (large splats on a noisy or thick cloud: a fuzz input estimated at
@@ -152,7 +152,7 @@ private:
   }
 
   // Sec. 3.5 priority of a candidate at x with parents a and b, from the current graph.
-  int levelOf(std::uint32_t a, std::uint32_t b, const vcg::Point3d& x) const {
+  int levelOf(std::uint32_t a, std::uint32_t b, const Vec3d& x) const {
     const int da = graph_.degree(a), db = graph_.degree(b);
     if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
     return levelOf(a, b, graph_.gapOf(a, x), graph_.gapOf(b, x));
@@ -169,7 +169,7 @@ private:
   // near_: the vertices within 2d of v when nearKnown (a superset does as well), else looked up.
   void enumerate(std::uint32_t v, bool nearKnown = false) {
     const auto& pos = graph_.positions();
-    const vcg::Point3d x = pos[v];
+    const Vec3d x = pos[v];
     if (!nearKnown) {
       near_.clear();
       vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
@@ -180,9 +180,9 @@ private:
     // splat's point is queued: the splat is the best approximation of the surface there, and the
     // queue does not carry the others only to drop them as too close when popped.
     found_.clear();
-    const vcg::Point3d& nv = graph_.normal(v);
+    const Vec3d& nv = graph_.normal(v);
     enumerateCandidates(v, pos, nv, d_, grid_, splats_, lists_,
-                        [&](std::uint32_t u, std::uint32_t s, int root, const vcg::Point3d& y) {
+                        [&](std::uint32_t u, std::uint32_t s, int root, const Vec3d& y) {
                           // A candidate already closer than d to a vertex can never be inserted
                           // (vertices are never removed): drop it now instead of when popped.
                           for (std::uint32_t w : near_)
@@ -202,7 +202,7 @@ private:
     }
   }
   struct Found {
-    vcg::Point3d y;
+    Vec3d y;
     double score;
     std::uint32_t u, splat;
     std::uint8_t root;

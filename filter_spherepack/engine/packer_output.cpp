@@ -4,12 +4,9 @@
 #include <growth/error.h>
 #include <growth/huge_pages.h>
 #include <growth/mesh_measures.h>
-#include <growth/mesh_normals.h>
-#include <growth/parallel.h>
 #include <growth/point_grid.h>
 
-#include <common/ml_mesh_type.h>
-#include <vcg/complex/allocate.h>
+#include "stored_positions.h"
 
 #include <algorithm>
 #include <cmath>
@@ -35,7 +32,7 @@ constexpr size_t kOrientationSamples = 4096;
 
 // Share of the sampled points (a fixed stride) whose nearest other point has a normal with a
 // negative product with theirs. `cell`: the grid's cell size (about the spacing).
-double oppositeNeighbourShare(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+double oppositeNeighbourShare(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                               double cell) {
   if (points.size() < 2 || !(cell > 0)) return 0;
   PointGrid grid;
@@ -53,9 +50,9 @@ double oppositeNeighbourShare(const std::vector<vcg::Point3d>& points, const std
 
 } // namespace
 
-// Output: referenced vertices only (in the order of creation), the mesh's own normals, the
-// triangle quality Q_t of sec. 5 per face; its topology measured.
-void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+// Output: referenced vertices only (in the order of creation), the triangle quality Q_t of sec. 5
+// per face; its topology measured. (The glue gives the layer its normals.)
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, MeshArrays& out,
                Stat& st) {
   std::vector<std::int32_t> remap;
   assignHuge(remap, g.vertexCount(), std::int32_t(-1));
@@ -73,50 +70,37 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const P
 
   if (!faces.empty()) {
     // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
-    reserveHuge(out.vert, used.size(), /*populate=*/true);
-    auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, used.size());
-    for (size_t i = 0; i < used.size(); ++i, ++vi) vi->P() = CMeshO::CoordType::Construct(g.position(used[i]));
-    out.face.EnableQuality();
-    reserveHuge(out.face, faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
-    prefault(out.face.QV.data(), faces.size() * sizeof(out.face.QV[0]));
-    auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, faces.size());
+    reserveHuge(out.vertices, used.size(), /*populate=*/true);
+    for (size_t i = 0; i < used.size(); ++i) out.vertices.push_back(g.position(used[i]));
+    reserveHuge(out.faces, faces.size(), /*populate=*/true);
+    reserveHuge(out.faceQuality, faces.size(), /*populate=*/true);
     double qsum = 0, minEdge = std::numeric_limits<double>::infinity();
-    for (size_t k = 0; k < faces.size(); ++k, ++fi) {
+    for (size_t k = 0; k < faces.size(); ++k) {
       const auto& f = faces[k];
-      for (int j = 0; j < 3; ++j) fi->V(j) = &out.vert[size_t(remap[f[j]])];
-      const vcg::Point3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
+      out.faces.push_back({std::uint32_t(remap[f[0]]), std::uint32_t(remap[f[1]]), std::uint32_t(remap[f[2]])});
+      const Vec3d a = g.position(f[0]), b = g.position(f[1]), c = g.position(f[2]);
       const double l1 = (b - a).SquaredNorm(), l2 = (c - b).SquaredNorm(), l3 = (a - c).SquaredNorm();
       const double area2 = ((b - a) ^ (c - a)).Norm();
       const double q = (l1 + l2 + l3) > 0 ? 2 * std::sqrt(3.0) * area2 / (l1 + l2 + l3) : 0;
-      fi->Q() = static_cast<CMeshO::ScalarType>(q);
+      out.faceQuality.push_back(q);
       qsum += q;
-      // The smallest edge as the layer stores it (rounded to CMeshO's scalar), not as computed.
-      const vcg::Point3d sa = vcg::Point3d::Construct(fi->V(0)->cP()), sb = vcg::Point3d::Construct(fi->V(1)->cP()),
-                         sc = vcg::Point3d::Construct(fi->V(2)->cP());
+      // The smallest edge as the layer stores it (rounded to its scalar), not as computed.
+      const Vec3d sa = asStored(a, floatStorage), sb = asStored(b, floatStorage), sc = asStored(c, floatStorage);
       minEdge = std::min(minEdge, std::sqrt(std::min((sb - sa).SquaredNorm(),
                                                      std::min((sc - sb).SquaredNorm(), (sa - sc).SquaredNorm()))));
     }
-    // Face and vertex normals of the mesh itself (angle-weighted), so that it shades as it comes
-    // out; the box normals stay the growth's.
-    // (With the topology check, which only reads the faces' vertices, on a second thread.)
-    MeshTopology topo;
-    parallelFor(2, parallelParts(2, params.threads, 1), [&](size_t t0, size_t t1, int) {
-      for (size_t t = t0; t < t1; ++t) {
-        if (t == 0) updateNormals(out);
-        else topo = measureTopology(out);
-      }
-    });
+    const MeshTopology topo = measureTopology(out);
     st.qualityAvg = qsum / double(faces.size());
     st.smallestEdge = minEdge;
     const double d = st.sphereDiameter;
     if (minEdge < d * (1 - kSmallestEdgeTolerance)) {
       double magnitude = 0;
-      for (const auto& v : out.vert)
-        for (int a = 0; a < 3; ++a) magnitude = std::max(magnitude, std::abs(double(v.cP()[a])));
-      using Scalar = CMeshO::ScalarType;
-      const Scalar big = static_cast<Scalar>(magnitude);
-      const double step = double(std::nextafter(big, std::numeric_limits<Scalar>::max()) - big);
-      const int digits = std::numeric_limits<Scalar>::digits;
+      for (const Vec3d& v : out.vertices)
+        for (int a = 0; a < 3; ++a) magnitude = std::max(magnitude, std::abs(asStored(v, floatStorage)[a]));
+      // The storage's step at that magnitude.
+      auto stepAt = [](auto big) { return double(std::nextafter(big, std::numeric_limits<decltype(big)>::max()) - big); };
+      const double step = floatStorage ? stepAt(static_cast<float>(magnitude)) : stepAt(magnitude);
+      const int digits = floatStorage ? std::numeric_limits<float>::digits : std::numeric_limits<double>::digits;
       st.warnings.push_back(
           "The smallest edge of the mesh as stored is " + fmt(minEdge) + ", below d = " + fmt(d) + " (by " +
           fmt(100 * (1 - minEdge / d)) + " %): every edge is at least d in the engine's double precision, but "

@@ -6,7 +6,6 @@
 #include <growth/self_intersections.h>
 #include "stored_positions.h"
 
-#include <common/ml_mesh_type.h>
 
 #include <algorithm>
 
@@ -16,7 +15,7 @@ namespace detail {
 
 // Sec. 3.7: the regions the borders enclose, triangulated (up to Params::maxBorderLength edges;
 // longer borders are left as holes).
-std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st) {
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, bool floatStorage, Stat& st) {
   EdgeSet edges(g.edgeCount() * 2 + 16);
   for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
     for (int k = 0; k < g.degree(v); ++k)
@@ -32,9 +31,9 @@ std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, St
   // makeManifold() then takes care of a vertex whose fan this splits.
   size_t w = 0;
   for (const Triangle& f : faces) {
-    const vcg::Point3d a = asStored<CMeshO::ScalarType>(g.position(f[0])),
-                       b = asStored<CMeshO::ScalarType>(g.position(f[1])),
-                       c = asStored<CMeshO::ScalarType>(g.position(f[2]));
+    const Vec3d a = asStored(g.position(f[0]), floatStorage),
+                       b = asStored(g.position(f[1]), floatStorage),
+                       c = asStored(g.position(f[2]), floatStorage);
     if (nearlyCollinear(a, b, c)) ++st.flatFacesRemoved;
     else faces[w++] = f;
   }
@@ -51,7 +50,8 @@ std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, St
 // sheets of a thin part or of misregistered scans meshed through each other, a fold of the ear
 // cut): of each intersecting pair, faces are removed greedily (the one in most pairs first,
 // growth/self_intersections.h), and the fans that this leaves at a vertex are cleaned up again.
-void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, bool floatStorage,
+                  Stat& st) {
   std::vector<char> alive(faces.size(), 1);
   ManifoldCleanupStat mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
   st.nonManifoldVerticesRemoved = mc.nonManifoldVertices;
@@ -59,7 +59,7 @@ void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Para
   // On the positions as the output stores them (float in MeshLab 2020.09): rounding must not make
   // faces that nearly touch intersect.
   st.selfIntersectionFacesRemoved =
-      removeSelfIntersections(asStored<CMeshO::ScalarType>(g.positions()), faces, alive, params.threads);
+      removeSelfIntersections(asStored(g.positions(), floatStorage), faces, alive, params.threads);
   if (st.selfIntersectionFacesRemoved > 0) {
     mc = removeNonManifoldVertices(faces, g.vertexCount(), alive);
     st.nonManifoldVerticesRemoved += mc.nonManifoldVertices;

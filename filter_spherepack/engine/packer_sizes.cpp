@@ -7,8 +7,6 @@
 #include <growth/morton.h>
 #include <growth/radix_order.h>
 
-#include <common/ml_mesh_type.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,13 +16,13 @@ namespace spherepack {
 namespace detail {
 
 // Input: the cloud's points and normals, checked (what sec. 3.1 assumes of the input).
-InputCloud readInput(const CMeshO& cloud, Stat& st) {
+InputCloud readInput(CloudArrays cloud, Stat& st) {
   CloudCheck check;
   check.needNormals = true;
   check.allowFaces = false;
   check.minPoints = 3;
-  InputCloud in = readCloud(cloud, check);
-  st.inputPoints = static_cast<size_t>(cloud.vn);
+  st.inputPoints = cloud.points.size();
+  InputCloud in = readCloud(std::move(cloud), check);
   st.duplicatesDropped = in.duplicatesDropped;
   return in;
 }
@@ -88,7 +86,7 @@ Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st) {
 
 void leaveOutFarPoints(InputCloud& in, double d, Stat& st) {
   const double span = BoxGrid::maxExtent(d);
-  const vcg::Point3d dim = in.box.Dim();
+  const Vec3d dim = in.box.Dim();
   if (std::max(dim[0], std::max(dim[1], dim[2])) <= span) return;
   const size_t n = in.points.size();
   const double gap = kFarGapPerD * d;
@@ -142,9 +140,9 @@ void leaveOutFarPoints(InputCloud& in, double d, Stat& st) {
   std::vector<double>().swap(c);
   size_t kept = 0;
   const bool withIndex = in.vertexIndex.size() == n;
-  vcg::Box3d box;
+  Box3d box;
   for (size_t i = 0; i < n; ++i) {
-    const vcg::Point3d& p = in.points[i];
+    const Vec3d& p = in.points[i];
     bool inside = true;
     for (int a = 0; a < 3; ++a) inside = inside && p[a] >= keepLo[a] && p[a] <= keepHi[a];
     if (!inside) continue;
@@ -196,7 +194,7 @@ Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints) {
   std::vector<bool> done(n, false);
   for (size_t start = 0; start < n; ++start) {
     if (done[start]) continue;
-    const vcg::Point3d p0 = in.points[start], n0 = in.normals[start];
+    const Vec3d p0 = in.points[start], n0 = in.normals[start];
     size_t i = start;
     for (;;) {
       done[i] = true;

@@ -12,9 +12,9 @@ namespace detail {
 // Closest splat to x (smallest distance to its disk) and the projection of x onto it (sec. 3.3).
 // The splats of the box containing x (all points within d of it) are searched; when x is farther
 // than d from every point, all splats are when `searchAll` (user-given points), none otherwise.
-bool projectOntoClosestSplat(const vcg::Point3d& x, const vcg::Point3d& side, const InputCloud& in,
+bool projectOntoClosestSplat(const Vec3d& x, const Vec3d& side, const InputCloud& in,
                              const std::vector<float>& radius, const BoxGrid& grid, const Renumbering& order,
-                             bool searchAll, vcg::Point3d& proj, std::uint32_t& splat) {
+                             bool searchAll, Vec3d& proj, std::uint32_t& splat) {
   double best = std::numeric_limits<double>::infinity();
   std::int64_t bestIdx = -1;
   auto consider = [&](std::uint32_t i) {
@@ -43,12 +43,12 @@ StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius,
                          const Renumbering& order, double d, double s, const Params& params) {
   StartPair first;
   bool haveFirst = false;
-  auto noVertexYet = [](const vcg::Point3d&) { return true; };
+  auto noVertexYet = [](const Vec3d&) { return true; };
   if (params.useStartPoints) {
     for (const auto& q : params.startPoint)
       if (!std::isfinite(q[0]) || !std::isfinite(q[1]) || !std::isfinite(q[2]))
         throw Error("The starting points must have finite coordinates.");
-    const vcg::Point3d anySide(0, 0, 0);
+    const Vec3d anySide(0, 0, 0);
     projectOntoClosestSplat(params.startPoint[0], anySide, in, radius, grid, order, true, first.s1, first.splat1);
     projectOntoClosestSplat(params.startPoint[1], anySide, in, radius, grid, order, true, first.s2, first.splat2);
     const double dist = (first.s1 - first.s2).Norm();

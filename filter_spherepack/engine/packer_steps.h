@@ -8,6 +8,7 @@
 #include "borders.h"
 #include "box_grid.h"
 #include <growth/input_cloud.h>
+#include <growth/mesh_arrays.h>
 #include <growth/progress.h>
 #include "region_triangulation.h"
 #include "splats.h"
@@ -53,7 +54,7 @@ struct Renumbering {
 
 // A starting pair (sec. 3.3): two positions on splats, between d and 2d apart.
 struct StartPair {
-  vcg::Point3d s1, s2;
+  Vec3d s1, s2;
   std::uint32_t splat1 = 0, splat2 = 0;
 };
 
@@ -66,7 +67,7 @@ struct Sizes {
 };
 
 // packer_sizes.cpp, sec. 3.1, 4.3 and 5.3: the input checked, the sizes d and s, the spatial order.
-InputCloud readInput(const CMeshO& cloud, Stat& st);
+InputCloud readInput(CloudArrays cloud, Stat& st);
 Sizes chooseSizes(const InputCloud& in, const Params& params, Stat& st);
 Renumbering spatialOrder(InputCloud& in, double d, size_t minPoints);
 // Points this many d (along an axis) from the bulk of the cloud or more can be left out when the
@@ -91,9 +92,9 @@ void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>&
 // packer_start.cpp, sec. 3.3: the starting pairs.
 // side: the normal of the side asked for (the box's layer facing it, in a two-sided box; zero:
 // the first layer).
-bool projectOntoClosestSplat(const vcg::Point3d& x, const vcg::Point3d& side, const InputCloud& in,
+bool projectOntoClosestSplat(const Vec3d& x, const Vec3d& side, const InputCloud& in,
                              const std::vector<float>& radius, const BoxGrid& grid, const Renumbering& order,
-                             bool searchAll, vcg::Point3d& proj, std::uint32_t& splat);
+                             bool searchAll, Vec3d& proj, std::uint32_t& splat);
 StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                          const Renumbering& order, double d, double s, const Params& params);
 
@@ -104,19 +105,19 @@ StartPair firstStartPair(const InputCloud& in, const std::vector<float>& radius,
 template <class Free>
 bool startPairAt(std::uint32_t i, const InputCloud& in, const std::vector<float>& radius, const BoxGrid& grid,
                  const Renumbering& order, double d, Free&& free, StartPair& out) {
-  const vcg::Point3d& p = in.points[i];
+  const Vec3d& p = in.points[i];
   const int box = grid.boxOf(p, in.normals[i]);
   if (box < 0) return false;
   int around = 0;
   for (const std::uint32_t* it = grid.pointsBegin(box); it != grid.pointsEnd(box) && around < 4; ++it)
     around += (in.points[*it] - p).SquaredNorm() <= d * d ? 1 : 0;
   if (around < 4 || !free(p)) return false;
-  vcg::Point3d e1, e2;
+  Vec3d e1, e2;
   tangentFrame(in.normals[i], e1, e2);
   for (int k = 0; k < 12; ++k) {
     const double phi = 2 * 3.14159265358979323846 * k / 12;
-    const vcg::Point3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
-    vcg::Point3d q;
+    const Vec3d target = p + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+    Vec3d q;
     std::uint32_t sq = 0;
     if (!projectOntoClosestSplat(target, in.normals[i], in, radius, grid, order, false, q, sq)) continue;
     const double dist = (q - p).Norm();
@@ -136,12 +137,15 @@ size_t unreachedPoints(const Growth& growth, size_t points);
 
 // packer_regions.cpp, sec. 3.7: the regions triangulated; the clean-up (manifold, no intersecting
 // faces, no small pieces).
-std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, Stat& st);
-void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
+// `floatStorage`: the output layer stores float coordinates (CloudArrays::floatStorage); the
+// checks that must hold on the saved mesh are made on the positions rounded so.
+std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, bool floatStorage, Stat& st);
+void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, bool floatStorage,
+                  Stat& st);
 void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
 
 // packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, and the report.
-void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, CMeshO& out,
+void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, MeshArrays& out,
                Stat& st);
 void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
             bool noFaces, Stat& st);

@@ -11,10 +11,10 @@ constexpr double kPi = 3.14159265358979323846;
 
 // 2D coordinates of x in the plane through v orthogonal to n.
 struct Frame {
-  vcg::Point3d o, e1, e2;
-  Frame(const vcg::Point3d& origin, const vcg::Point3d& n) : o(origin) { tangentFrame(n, e1, e2); }
-  void project(const vcg::Point3d& x, double& px, double& py) const {
-    const vcg::Point3d t = x - o;
+  Vec3d o, e1, e2;
+  Frame(const Vec3d& origin, const Vec3d& n) : o(origin) { tangentFrame(n, e1, e2); }
+  void project(const Vec3d& x, double& px, double& py) const {
+    const Vec3d t = x - o;
     px = t * e1;
     py = t * e2;
   }
@@ -25,7 +25,7 @@ inline double orient2(double ax, double ay, double bx, double by, double cx, dou
 }
 } // namespace
 
-double innerAngle(const vcg::Point3d& u, const vcg::Point3d& v, const vcg::Point3d& w, const vcg::Point3d& n) {
+double innerAngle(const Vec3d& u, const Vec3d& v, const Vec3d& w, const Vec3d& n) {
   const Frame f(v, n);
   double ux, uy, wx, wy;
   f.project(u, ux, uy);
@@ -36,11 +36,11 @@ double innerAngle(const vcg::Point3d& u, const vcg::Point3d& v, const vcg::Point
   return t;
 }
 
-bool nearlyCollinear(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c) {
+bool nearlyCollinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   static const double cosMax = std::cos(kMaxFaceAngleDeg * kPi / 180.0);
-  const vcg::Point3d p[3] = {a, b, c};
+  const Vec3d p[3] = {a, b, c};
   for (int k = 0; k < 3; ++k) {
-    const vcg::Point3d e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
+    const Vec3d e1 = p[(k + 1) % 3] - p[k], e2 = p[(k + 2) % 3] - p[k];
     const double l1 = e1.Norm(), l2 = e2.Norm();
     if (!(l1 > 0) || !(l2 > 0)) return true;
     if ((e1 * e2) / (l1 * l2) < cosMax) return true;
@@ -69,7 +69,7 @@ namespace {
 using Loop = std::vector<std::uint32_t>;
 
 // The inner angle of the loop at its index i, in the tangent plane of the vertex.
-double angleAt(const Loop& loop, size_t i, const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm) {
+double angleAt(const Loop& loop, size_t i, const std::vector<Vec3d>& pos, const std::vector<Vec3d>& nrm) {
   const size_t n = loop.size();
   return innerAngle(pos[loop[(i + n - 1) % n]], pos[loop[i]], pos[loop[(i + 1) % n]], nrm[loop[i]]);
 }
@@ -94,8 +94,8 @@ void removeSpikes(Loop& loop) {
 
 // Is a vertex of the loop (other than u, v, w themselves, wherever they repeat) inside or on
 // the ear (u, v, w) at index i, projected on v's plane?
-bool earContainsVertex(const Loop& loop, size_t i, const std::vector<vcg::Point3d>& pos,
-                       const std::vector<vcg::Point3d>& nrm) {
+bool earContainsVertex(const Loop& loop, size_t i, const std::vector<Vec3d>& pos,
+                       const std::vector<Vec3d>& nrm) {
   const size_t n = loop.size();
   const std::uint32_t u = loop[(i + n - 1) % n], v = loop[i], w = loop[(i + 1) % n];
   const Frame f(pos[v], nrm[v]);
@@ -118,7 +118,7 @@ bool earContainsVertex(const Loop& loop, size_t i, const std::vector<vcg::Point3
 // The ear to cut: smallest angle first (below π); the strict ear rules first (no loop vertex
 // inside), then the relaxed ones. The new edge u–w must be new. loop.size() when there is none.
 size_t pickEar(const Loop& loop, const std::vector<double>& angle, std::vector<size_t>& order, const EdgeSet& edges,
-               const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm) {
+               const std::vector<Vec3d>& pos, const std::vector<Vec3d>& nrm) {
   const size_t n = loop.size();
   order.resize(n);
   for (size_t i = 0; i < n; ++i) order[i] = i;
@@ -139,8 +139,8 @@ size_t pickEar(const Loop& loop, const std::vector<double>& angle, std::vector<s
 
 // The ear at `pick` cut off into faces and edges, then the spikes it leaves removed and the
 // angles updated (all of them after a spike, else the two at the new edge).
-void cutEar(Loop& loop, std::vector<double>& angle, size_t pick, const std::vector<vcg::Point3d>& pos,
-            const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
+void cutEar(Loop& loop, std::vector<double>& angle, size_t pick, const std::vector<Vec3d>& pos,
+            const std::vector<Vec3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
   const size_t n = loop.size();
   const std::uint32_t u = loop[(pick + n - 1) % n], v = loop[pick], w = loop[(pick + 1) % n];
   faces.push_back(Triangle{u, v, w});
@@ -161,8 +161,8 @@ void cutEar(Loop& loop, std::vector<double>& angle, size_t pick, const std::vect
 }
 } // namespace
 
-bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector<vcg::Point3d>& pos,
-                     const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
+bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector<Vec3d>& pos,
+                     const std::vector<Vec3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces) {
   Loop loop = loopIn;
   // The loop without its spikes, with its inner angles.
   removeSpikes(loop);
@@ -181,7 +181,7 @@ bool triangulateLoop(const std::vector<std::uint32_t>& loopIn, const std::vector
 }
 
 RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& borders,
-                               const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm,
+                               const std::vector<Vec3d>& pos, const std::vector<Vec3d>& nrm,
                                int maxBorderLength, EdgeSet& edges, std::vector<Triangle>& faces) {
   RegionStats st;
   for (const auto& b : borders) {

@@ -23,7 +23,7 @@
 //    when none is left, the rest of the loop stays open and counts as a hole.
 #include "box_grid.h"
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <array>
 #include <cstdint>
@@ -51,7 +51,7 @@ using Triangle = std::array<std::uint32_t, 3>;
 // Inner angle of the region at v between the incoming edge from u and the outgoing edge to w
 // (region on the left), measured counter-clockwise in the plane orthogonal to the unit normal n
 // of v; in [0, 2π).
-double innerAngle(const vcg::Point3d& u, const vcg::Point3d& v, const vcg::Point3d& w, const vcg::Point3d& n);
+double innerAngle(const Vec3d& u, const Vec3d& v, const Vec3d& w, const Vec3d& n);
 
 // Splits a closed border at the vertices it visits more than once into simple loops (each in
 // border order). Loops of fewer than 3 vertices are kept (the caller skips them).
@@ -60,8 +60,8 @@ std::vector<std::vector<std::uint32_t>> splitAtRepeatedVertices(const std::vecto
 // Triangulates one simple loop (region on the left) by cutting the smallest inner angle first.
 // Adds the triangles to `faces` and the new diagonals to `edges` (which must hold the edges of
 // G). Returns false when part of the loop had to be left open.
-bool triangulateLoop(const std::vector<std::uint32_t>& loop, const std::vector<vcg::Point3d>& pos,
-                     const std::vector<vcg::Point3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces);
+bool triangulateLoop(const std::vector<std::uint32_t>& loop, const std::vector<Vec3d>& pos,
+                     const std::vector<Vec3d>& nrm, EdgeSet& edges, std::vector<Triangle>& faces);
 
 // A face whose vertices (nearly) lie on a line: its largest angle exceeds kMaxFaceAngleDeg, or two
 // of its vertices coincide. Such a face has (about) zero area and no usable normal; the packer
@@ -69,7 +69,7 @@ bool triangulateLoop(const std::vector<std::uint32_t>& loop, const std::vector<v
 // growth placed a vertex at the midpoint of an edge of length 2d (both spheres of radius d around
 // its ends meet only there), and the three edges then bound a region of their own.
 constexpr double kMaxFaceAngleDeg = 179.0;
-bool nearlyCollinear(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c);
+bool nearlyCollinear(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 
 struct RegionStats {
   size_t borders = 0;        // borders with at least one half-edge
@@ -82,7 +82,7 @@ struct RegionStats {
 
 // Sec. 3.7 on all borders.
 RegionStats triangulateRegions(const std::vector<std::vector<std::uint32_t>>& borders,
-                               const std::vector<vcg::Point3d>& pos, const std::vector<vcg::Point3d>& nrm,
+                               const std::vector<Vec3d>& pos, const std::vector<Vec3d>& nrm,
                                int maxBorderLength, EdgeSet& edges, std::vector<Triangle>& faces);
 
 } // namespace growth

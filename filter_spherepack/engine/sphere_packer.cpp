@@ -8,7 +8,6 @@
 #include <growth/cloud_scale.h>
 #include <growth/stopwatch.h>
 
-#include <common/ml_mesh_type.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +29,7 @@ std::string fmt(double v) {
 
 using namespace detail;
 
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads, const std::vector<vcg::Point3d>* normals) {
+CloudScale cloudScale(const std::vector<Vec3d>& points, int threads, const std::vector<Vec3d>* normals) {
   CloudScale sc;
   // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
   // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
@@ -102,7 +101,7 @@ double defaultSplatSize(const CloudScale& scale, double d) {
   return s > 0 ? s : d;
 }
 
-Params suggestParams(const CMeshO& cloud) {
+Params suggestParams(const CloudArrays& cloud) {
   Params p;
   try {
     CloudCheck check;
@@ -122,15 +121,16 @@ Params suggestParams(const CMeshO& cloud) {
 }
 
 // The method's phases in the paper's order; each phase's time goes to its Stat::seconds* field.
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg::CallBackPos* cb) {
+void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, CallBackPos* cb) {
   Stopwatch watch;
-  out.Clear();
+  out = MeshArrays();
   st = Stat();
   Progress progress(cb);
 
   // Input and sizes; the points renumbered in a spatial order (the same mesh, faster).
   progress.phase("Sphere packing: reading the cloud", 0, 2);
-  InputCloud in = readInput(cloud, st);
+  const bool floatStorage = cloud.floatStorage;
+  InputCloud in = readInput(std::move(cloud), st);
   const Sizes sizes = chooseSizes(in, params, st);
   leaveOutFarPoints(in, sizes.d, st);
   const CloudScale& scale = sizes.scale;
@@ -170,18 +170,18 @@ void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& st, vcg
 
   // Sec. 3.7: region triangulation.
   progress.phase("Sphere packing: triangulating the regions", 92, 97);
-  std::vector<Triangle> faces = triangulate(g, params, st);
+  std::vector<Triangle> faces = triangulate(g, params, floatStorage, st);
   st.secondsTriangulation = watch.lap();
 
   // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
-  makeManifold(faces, g, params, st);
+  makeManifold(faces, g, params, floatStorage, st);
   dropSmallPieces(faces, g, params, st);
   st.secondsCleanup = watch.lap();
 
   // Output and report.
   progress.phase("Sphere packing: writing the mesh", 97, 100);
   st.unreachedPoints = unreachedPoints(growth, in.points.size());
-  writeMesh(faces, g, params, out, st);
+  writeMesh(faces, g, floatStorage, out, st);
   report(in, scale, d, s, g, faces.empty(), st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();

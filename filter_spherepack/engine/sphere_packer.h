@@ -12,14 +12,12 @@
 // shared with Robust G2S. The method's steps that tie them together, one file per paper section
 // (the initialization of sec. 3.3, the growth loop of sec. 3.4–3.6, ...), are the packer_*.cpp
 // files beside it (packer_steps.h lists them); build() in sphere_packer.cpp runs them in order.
-#include <vcg/space/point3.h>
-#include <cstring> // wrap/callback.h uses strcpy without including <cstring>
-#include <wrap/callback.h>
+#include <growth/vec3.h>
+#include <growth/mesh_arrays.h>
+#include <growth/progress.h>
 
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 namespace spherepack {
@@ -31,7 +29,7 @@ struct Params {
   int windowSize = 8;            // w, sec. 4.2
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   bool useStartPoints = false;   // sec. 3.3: user-given starting vertices instead of automatic ones
-  vcg::Point3d startPoint[2] = {vcg::Point3d(0, 0, 0), vcg::Point3d(0, 0, 0)};
+  Vec3d startPoint[2] = {Vec3d(0, 0, 0), Vec3d(0, 0, 0)};
   int minComponentFaces = 50;    // connected pieces of the output with fewer faces are dropped (the
                                  // largest always stays): flaps of misregistered scan layers, bits
                                  // of stray points; 0 keeps all
@@ -65,8 +63,8 @@ struct CloudScale {
 };
 // `threads`: for the estimates (0 = automatic); the scale is the same for any number. With the
 // normals, neighbours on another sheet of a thin part are left out (SamplingOptions::normals).
-CloudScale cloudScale(const std::vector<vcg::Point3d>& points, int threads = 0,
-                      const std::vector<vcg::Point3d>* normals = nullptr);
+CloudScale cloudScale(const std::vector<Vec3d>& points, int threads = 0,
+                      const std::vector<Vec3d>* normals = nullptr);
 
 // Defaults.
 // d = max(1.8 × sqrt(area per point), 3ν): at the sampling's resolution (a packing of spheres of
@@ -163,19 +161,19 @@ struct Stat {
                                  //           the other box normals, on another thread meanwhile
   double secondsTriangulation = 0; //         regions (sec. 3.7)
   double secondsCleanup = 0;     //           manifold and intersection clean-up
-  double secondsOutput = 0;      //           writing the mesh, its normals, the topology check
+  double secondsOutput = 0;      //           writing the mesh (with the glue's: its layer and normals), the topology check
   std::vector<std::string> warnings;
 };
 
 // Defaults derived from the cloud (d and s from its sampling and noise), so that the filter works
 // without tuning. Never throws: an unusable cloud gives the static defaults.
-Params suggestParams(const CMeshO& cloud);
+Params suggestParams(const CloudArrays& cloud);
 
-// Builds the mesh of the live vertices (with normals) of `cloud` into `out` (cleared first), with
-// per-vertex normals and per-face quality Q_t. Throws growth::Error on bad input or parameters
-// and growth::Cancelled when cb returns false; `out` is then left empty.
-void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
-           vcg::CallBackPos* cb = nullptr);
+// Builds the mesh of the points (with normals) of `cloud` (a layer's live vertices,
+// growth/mesh_arrays.h) into `out` (cleared first), with per-face quality Q_t. Throws growth::Error
+// on bad input or parameters and growth::Cancelled when cb returns false; `out` is then left empty.
+// The glue writes `out` into a layer, with its normals (growth/meshlab/layer.h).
+void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& stat, CallBackPos* cb = nullptr);
 
 } // namespace spherepack
 } // namespace growth

@@ -66,13 +66,13 @@ void sortFan(Q* fan, int m, bool nanAngle) {
 // Step 1: the neighbours rotated about p onto T_p, each inside the plane spanned by n and p_i - p:
 // the tangential part of p_i - p, rescaled to the full distance |p_i - p|. Gives their number.
 // (e1, e2 are orthogonal to n, so <t, e> = <p_i − p, e>, and |t|² = |p_i − p|² − h².)
-inline int projectOntoTangentPlane(const vcg::Point3d& p, const vcg::Point3d& n,
-                                   const std::vector<vcg::Point3d>& neighbours, Q* fan) {
-  vcg::Point3d e1, e2;
+inline int projectOntoTangentPlane(const Vec3d& p, const Vec3d& n,
+                                   const std::vector<Vec3d>& neighbours, Q* fan) {
+  Vec3d e1, e2;
   tangentFrame(n, e1, e2);
   int size = 0;
   for (size_t i = 0; i < neighbours.size(); ++i) {
-    const vcg::Point3d v = neighbours[i] - p;
+    const Vec3d v = neighbours[i] - p;
     const double len2 = v.SquaredNorm();
     const double h = v * n;
     const double tlen2 = len2 - h * h;
@@ -174,7 +174,7 @@ inline double voronoiRadius(const Q* fan, const int* next, const char* alive, st
   return radius;
 }
 
-double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+double fanRadius(const Vec3d& p, const Vec3d& n, const std::vector<Vec3d>& neighbours,
                  std::vector<int>* keptOut, FanScratch& scratch) {
   if (keptOut != nullptr) keptOut->clear();
   if (scratch.fan.size() < neighbours.size()) scratch.fan.resize(neighbours.size() + 16);
@@ -197,13 +197,13 @@ double fanRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector
 
 } // namespace
 
-double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+double localSplatRadius(const Vec3d& p, const Vec3d& n, const std::vector<Vec3d>& neighbours,
                         std::vector<int>* keptOut) {
   FanScratch scratch;
   return fanRadius(p, n, neighbours, keptOut, scratch);
 }
 
-std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+std::vector<float> computeSplatRadii(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                                      double capRadius, double firstReach, bool local, SplatSizeStats* stats,
                                      Progress* progress, int threads, const std::vector<std::uint32_t>* rankIndex) {
   std::vector<float> radius(points.size(), static_cast<float>(capRadius));
@@ -226,7 +226,7 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     struct Worker {
       FanScratch scratch;
       std::vector<Near> near;
-      std::vector<vcg::Point3d> nb;
+      std::vector<Vec3d> nb;
       SplatSizeStats stats;
       char pad[64]; // no cache line shared with the next thread's state
     };
@@ -236,8 +236,8 @@ std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, co
     parallelChunks(n, workers, 1024, [&](size_t k0, size_t k1, int worker) {
       Worker& w = state[size_t(worker)];
       for (size_t i = k0; i < k1; ++i) {
-        const vcg::Point3d& p = points[i];
-        const vcg::Point3d& np = normals[i];
+        const Vec3d& p = points[i];
+        const Vec3d& np = normals[i];
         // The neighbours within `reach` on p's side of the surface (normals not opposed to n_p:
         // the paper's normal filter, sec. 4.1), in a fixed order (by rank): the same fan for any
         // numbering of the points.

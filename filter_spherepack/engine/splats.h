@@ -16,7 +16,7 @@
 // a box holds too few of them to close a fan); a fan with an angular gap of at least π (a boundary
 // point, or a point with too few neighbours) has an unbounded Voronoi cell and keeps the global s;
 // and local sizes never exceed s (sec. 4.3 introduces them as "individual, smaller splat sizes").
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -30,20 +30,20 @@ class Progress;
 
 // An orthonormal tangent frame (e1, e2) of a unit normal n, a fixed function of n (so the same
 // normal always gives the same frame: angles measured in it are reproducible).
-inline void tangentFrame(const vcg::Point3d& n, vcg::Point3d& e1, vcg::Point3d& e2) {
+inline void tangentFrame(const Vec3d& n, Vec3d& e1, Vec3d& e2) {
   // Start from the coordinate axis least aligned with n.
   const double ax = std::abs(n[0]), ay = std::abs(n[1]), az = std::abs(n[2]);
-  const vcg::Point3d axis = (ax <= ay && ax <= az) ? vcg::Point3d(1, 0, 0)
-                            : (ay <= az)           ? vcg::Point3d(0, 1, 0)
-                                                   : vcg::Point3d(0, 0, 1);
+  const Vec3d axis = (ax <= ay && ax <= az) ? Vec3d(1, 0, 0)
+                            : (ay <= az)           ? Vec3d(0, 1, 0)
+                                                   : Vec3d(0, 0, 1);
   e1 = axis - n * (axis * n);
   e1 /= e1.Norm();
   e2 = n ^ e1;
 }
 
 // Squared distance from x to the disk of centre c, unit normal n and radius r.
-inline double squaredDistanceToDisk(const vcg::Point3d& x, const vcg::Point3d& c, const vcg::Point3d& n, double r) {
-  const vcg::Point3d v = x - c;
+inline double squaredDistanceToDisk(const Vec3d& x, const Vec3d& c, const Vec3d& n, double r) {
+  const Vec3d v = x - c;
   const double h = v * n;
   const double radial2 = v.SquaredNorm() - h * h;
   if (radial2 <= r * r) return h * h;
@@ -52,9 +52,9 @@ inline double squaredDistanceToDisk(const vcg::Point3d& x, const vcg::Point3d& c
 }
 
 // Closest point of that disk to x.
-inline vcg::Point3d projectOntoDisk(const vcg::Point3d& x, const vcg::Point3d& c, const vcg::Point3d& n, double r) {
-  const vcg::Point3d v = x - c;
-  vcg::Point3d t = v - n * (v * n);
+inline Vec3d projectOntoDisk(const Vec3d& x, const Vec3d& c, const Vec3d& n, double r) {
+  const Vec3d v = x - c;
+  Vec3d t = v - n * (v * n);
   const double len = t.Norm();
   if (len > r) t *= r / len;
   return c + t;
@@ -65,7 +65,7 @@ inline vcg::Point3d projectOntoDisk(const vcg::Point3d& x, const vcg::Point3d& c
 // Returns a negative value when p's Voronoi cell is unbounded (no closed fan).
 // `keptOut` (optional) receives the indices (into neighbours) of the points left in the fan, in
 // counter-clockwise order around n.
-double localSplatRadius(const vcg::Point3d& p, const vcg::Point3d& n, const std::vector<vcg::Point3d>& neighbours,
+double localSplatRadius(const Vec3d& p, const Vec3d& n, const std::vector<Vec3d>& neighbours,
                         std::vector<int>* keptOut = nullptr);
 
 struct SplatSizeStats {
@@ -86,7 +86,7 @@ struct SplatSizeStats {
 // radii are the same for any number. Neighbours are handed to localSplatRadius by increasing
 // index, or by rankIndex[index] when given (for points renumbered from an original order: the
 // same order, so the same radii, as there).
-std::vector<float> computeSplatRadii(const std::vector<vcg::Point3d>& points, const std::vector<vcg::Point3d>& normals,
+std::vector<float> computeSplatRadii(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
                                      double capRadius, double firstReach, bool local,
                                      SplatSizeStats* stats = nullptr, Progress* progress = nullptr,
                                      int threads = 0, const std::vector<std::uint32_t>* rankIndex = nullptr);

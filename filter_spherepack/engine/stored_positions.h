@@ -1,12 +1,12 @@
 #pragma once
-// Positions as a MeshLab layer stores them (CMeshO's scalar: float in MeshLab 2020.09 and the GUI,
+// Positions as a MeshLab layer stores them (its scalar: float in MeshLab 2020.09 and the GUI,
 // double in PyMeshLab), for checks that must hold on the output as it is saved, not only on the
 // engine's doubles: two faces that nearly touch in double can intersect once rounded to float.
 //
 // The rounding is kept through an empty asm statement: GCC 12.2 at -O2 and -O3 folds
 // double(float(x)) back to x in vectorised loops (measured on these machines: a loop over 200k
 // points left every coordinate unrounded; -O1 and -fno-tree-vectorize rounded them).
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <vector>
 
@@ -25,15 +25,21 @@ inline double asStored(double x) {
 }
 
 template <class Scalar>
-inline vcg::Point3d asStored(const vcg::Point3d& p) {
-  return vcg::Point3d(asStored<Scalar>(p[0]), asStored<Scalar>(p[1]), asStored<Scalar>(p[2]));
+inline Vec3d asStored(const Vec3d& p) {
+  return Vec3d(asStored<Scalar>(p[0]), asStored<Scalar>(p[1]), asStored<Scalar>(p[2]));
 }
 
 template <class Scalar>
-std::vector<vcg::Point3d> asStored(const std::vector<vcg::Point3d>& pos) {
-  std::vector<vcg::Point3d> out(pos.size());
+std::vector<Vec3d> asStored(const std::vector<Vec3d>& pos) {
+  std::vector<Vec3d> out(pos.size());
   for (size_t i = 0; i < pos.size(); ++i) out[i] = asStored<Scalar>(pos[i]);
   return out;
+}
+
+// As stored by a layer of float (CloudArrays::floatStorage) or double coordinates.
+inline Vec3d asStored(const Vec3d& p, bool floatStorage) { return floatStorage ? asStored<float>(p) : p; }
+inline std::vector<Vec3d> asStored(const std::vector<Vec3d>& pos, bool floatStorage) {
+  return floatStorage ? asStored<float>(pos) : pos;
 }
 
 } // namespace growth

@@ -7,7 +7,7 @@
 // paper keeps the vertices in its boxes, sec. 4.4; a separate grid keeps the box lists compact.)
 #include "box_grid.h"
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstdint>
 #include <vector>
@@ -17,7 +17,7 @@ namespace growth {
 class VertexGrid {
 public:
   // Cells of side `cell`, anchored at `origin` (coordinates up to 2^20 cells away either side).
-  void reset(const vcg::Point3d& origin, double cell, size_t expectedVertices = 16) {
+  void reset(const Vec3d& origin, double cell, size_t expectedVertices = 16) {
     index_ = BoxIndexer(origin, cell);
     hash_.reset(expectedVertices);
     next_.clear();
@@ -26,7 +26,7 @@ public:
 
   // Adds vertex `id` (ids must be inserted as 0, 1, 2, ...) at p. False when p is outside the
   // indexable range (the vertex is then not found by queries).
-  bool insert(std::uint32_t id, const vcg::Point3d& p) {
+  bool insert(std::uint32_t id, const Vec3d& p) {
     if (next_.size() <= id) next_.resize(size_t(id) + 1, -1);
     std::int64_t c[3];
     if (!cellOf(p, c)) return false;
@@ -40,7 +40,7 @@ public:
 
   // Calls f(id, squaredDistance) for every vertex with |pos[id] − c| <= radius.
   template <class F>
-  void forEachInBall(const vcg::Point3d& c, double radius, const std::vector<vcg::Point3d>& pos, F&& f) const {
+  void forEachInBall(const Vec3d& c, double radius, const std::vector<Vec3d>& pos, F&& f) const {
     const double r2 = radius * radius;
     std::int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -60,7 +60,7 @@ public:
   }
 
   // True when some vertex other than skipA and skipB is strictly closer than `radius` to c.
-  bool anyCloserThan(const vcg::Point3d& c, double radius, const std::vector<vcg::Point3d>& pos,
+  bool anyCloserThan(const Vec3d& c, double radius, const std::vector<Vec3d>& pos,
                      std::uint32_t skipA, std::uint32_t skipB) const {
     const double r2 = radius * radius;
     std::int64_t lo[3], hi[3];
@@ -85,7 +85,7 @@ public:
 
 private:
   static constexpr std::int64_t kBias = std::int64_t(1) << (BoxIndexer::kBits - 1);
-  bool cellOf(const vcg::Point3d& p, std::int64_t c[3]) const {
+  bool cellOf(const Vec3d& p, std::int64_t c[3]) const {
     for (int a = 0; a < 3; ++a) c[a] = index_.coord(p[a], a) + kBias;
     return BoxIndexer::valid(c[0], c[1], c[2]);
   }

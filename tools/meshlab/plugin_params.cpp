@@ -8,6 +8,7 @@
 // and that meshlabserver shows them.
 #include <common/interfaces.h>
 
+#include <growth/meshlab/layer.h>
 #include <growth/cloud_generator.h>
 
 #include <QCoreApplication>

@@ -14,13 +14,12 @@
 // outliers. Normals are always those of the exact surface at the unperturbed sample.
 // The same spec gives the same cloud on every machine (own random number transforms, not the
 // implementation-defined std:: distributions).
-#include <vcg/space/point3.h>
+#include <growth/mesh_arrays.h>
+#include <growth/vec3.h>
 
 #include <cstdint>
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 
@@ -53,8 +52,8 @@ struct CloudSpec {
 };
 
 struct Cloud {
-  std::vector<vcg::Point3d> points;
-  std::vector<vcg::Point3d> normals;   // unit length
+  std::vector<Vec3d> points;
+  std::vector<Vec3d> normals;   // unit length
 };
 
 Cloud generateCloud(const CloudSpec& spec);
@@ -63,7 +62,7 @@ Cloud generateCloud(const CloudSpec& spec);
 // distance to the height field (a bound of the true distance, tight for its gentle slopes); for
 // genus 2, the distance to the foot point found by Newton steps from p (the closest point for
 // points nearer to the surface than its smallest radius of curvature, about 0.3).
-double distanceToShape(const CloudSpec& spec, const vcg::Point3d& p);
+double distanceToShape(const CloudSpec& spec, const Vec3d& p);
 
 // Area of the spec's exact surface: closed forms for the sphere and the torus, a quadrature for the
 // patch, for genus 2 the integral of the area scale of the map from the triangulation its samples
@@ -83,7 +82,7 @@ double shapeArea(const CloudSpec& spec);
 // flaws do not show. Normals are grad F / |grad F| (outward).
 constexpr double kGenus2Major = 1.2, kGenus2Minor = 0.6, kGenus2Offset = 1.5, kGenus2Blend = 0.6;
 // F at p; its gradient in *gradient when not null.
-double genus2Function(const vcg::Point3d& p, vcg::Point3d* gradient = nullptr);
+double genus2Function(const Vec3d& p, Vec3d* gradient = nullptr);
 
 // Parses "sphere", "torus", "patch", "genus2", "latlong", "hollowball", "slab"; throws growth::Error
 // otherwise.
@@ -93,8 +92,8 @@ const char* shapeName(Shape s);
 // Binary little-endian PLY with float x y z nx ny nz, which MeshLab reads.
 void writePly(const std::string& path, const Cloud& cloud);
 
-// Fills a MeshLab mesh (vertices and normals only) with the cloud.
-void toMesh(const Cloud& cloud, CMeshO& mesh);
+// The cloud as the engines' input (the points and normals of a layer stored in float).
+CloudArrays toArrays(const Cloud& cloud);
 
 // A small seeded generator with portable transforms (splitmix64-seeded xoshiro256**).
 class Random {
@@ -104,8 +103,8 @@ public:
   double uniform();                       // [0, 1)
   double uniform(double a, double b) { return a + (b - a) * uniform(); }
   double gaussian();                      // standard normal, Box-Muller
-  vcg::Point3d unitVector();              // uniform on the unit sphere
-  vcg::Point3d inBall(double radius);     // uniform in the ball
+  Vec3d unitVector();              // uniform on the unit sphere
+  Vec3d inBall(double radius);     // uniform in the ball
 private:
   std::uint64_t s_[4];
 };

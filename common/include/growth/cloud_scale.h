@@ -35,8 +35,7 @@
 // with fewer than k neighbours within the cap is isolated (counted, not used), and a search stops
 // after kSamplingVisitLimit points (in a dense cluster the radius then shrinks to the k-th distance
 // among those visited; for duplicates, the nearest of those visited are taken).
-#include <vcg/space/box3.h>
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstddef>
 #include <vector>
@@ -51,9 +50,9 @@ namespace growth {
 // robustBox(), so one far point changes neither the value nor the cost.
 constexpr size_t kMeanSpacingSamples = 20000;
 constexpr double kSpacingOutlierFactor = 5.0;
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
+double meanSpacing(const std::vector<Vec3d>& points, size_t maxSamples = kMeanSpacingSamples);
 // The same value, computed on `threads` threads (0 = automatic, growth/parallel.h).
-double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, int threads);
+double meanSpacing(const std::vector<Vec3d>& points, size_t maxSamples, int threads);
 
 // The trimmed mean of meanSpacing() from the samples' squared nearest distances (entries below 0:
 // no nearest point, ignored), summed in the given order: for callers that measure the distances on
@@ -61,12 +60,12 @@ double meanSpacing(const std::vector<vcg::Point3d>& points, size_t maxSamples, i
 double trimmedMeanSpacing(const std::vector<double>& squaredNearest);
 
 // Box diagonal / sqrt(n): a cheap first guess of the spacing, used to size grids.
-double roughSpacing(const vcg::Box3d& box, size_t n);
+double roughSpacing(const Box3d& box, size_t n);
 
 // The box of the bulk of a cloud: per axis the 1 % and 99 % quantiles of the finite points among
 // up to maxSamples taken at a fixed stride, widened on every side by the largest of those extents.
 // A few far points do not move it (they move the bounding box). Null when no point is finite.
-vcg::Box3d robustBox(const std::vector<vcg::Point3d>& points, size_t maxSamples = kMeanSpacingSamples);
+Box3d robustBox(const std::vector<Vec3d>& points, size_t maxSamples = kMeanSpacingSamples);
 
 
 struct SamplingOptions {
@@ -82,7 +81,7 @@ struct SamplingOptions {
   // (|(q − p)·n_p| > kOtherSheetSine |q − p|). Without this, the two sheets of a closed plate a few
   // spacings thick read as one noisy surface sampled twice as densely. A neighbour on p's own sheet
   // whose normal is flipped (inconsistent orientation) lies along the plane and is kept.
-  const std::vector<vcg::Point3d>* normals = nullptr;
+  const std::vector<Vec3d>* normals = nullptr;
 };
 
 constexpr double kOtherSheetSine = 0.5; // 30 degrees out of the tangent plane
@@ -111,8 +110,8 @@ constexpr size_t kSamplingVisitLimit = 1024;
 // ignored. All zero for fewer than 2 usable points or when (almost) all points coincide; the noise
 // is zero when fewer than 7 points are available. Runs on `threads` threads (0 = automatic,
 // growth/parallel.h); the result is the same for any number.
-SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, int threads = 0);
-SamplingEstimate estimateSampling(const std::vector<vcg::Point3d>& points, const SamplingOptions& options,
+SamplingEstimate estimateSampling(const std::vector<Vec3d>& points, int threads = 0);
+SamplingEstimate estimateSampling(const std::vector<Vec3d>& points, const SamplingOptions& options,
                                   int threads = 0);
 
 } // namespace growth

@@ -21,7 +21,7 @@
 // Exactness of the fallback needs every product of two or three coordinates to be representable
 // without underflow or overflow: it holds for finite coordinates with every nonzero magnitude in
 // [2^-300, 2^300] (every float qualifies). Non-finite coordinates give meaningless signs.
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cfloat>
 #include <cmath>
@@ -30,7 +30,7 @@ namespace growth {
 
 // The exact evaluations alone (no filter): what the predicates fall back on. Exposed for tests.
 int orient2dExact(double ax, double ay, double bx, double by, double cx, double cy);
-int orient3dExact(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c, const vcg::Point3d& d);
+int orient3dExact(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 
 // Sign (+1, 0, −1) of det[a−c; b−c] = (ax−cx)(by−cy) − (ay−cy)(bx−cx): +1 when a, b, c turn
 // counterclockwise, 0 when they are collinear.
@@ -52,7 +52,7 @@ inline int orient2d(double ax, double ay, double bx, double by, double cx, doubl
 // Sign of det[a−d; b−d; c−d]: +1 when d lies below the plane through a, b, c, these seen
 // counterclockwise from above (on the side opposite to the normal (b−a)×(c−a)); 0 when the four
 // points are coplanar.
-inline int orient3d(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c, const vcg::Point3d& d) {
+inline int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
   constexpr double kBound = 10.0 * (DBL_EPSILON / 2);
   constexpr double kMinPermanent = 1e-270; // > 2^-900
   const double adx = a[0] - d[0], ady = a[1] - d[1], adz = a[2] - d[2];

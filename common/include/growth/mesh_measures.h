@@ -1,8 +1,8 @@
 #pragma once
 // Mesh quality measures: the instrument the tests, the filters' logs and the benchmark share.
 //
-// Everything is computed in double on a CMeshO (MeshLab stores float), ignoring deleted faces and
-// vertices. Definitions:
+// Everything is computed in double on a mesh's arrays (MeshArrays; the glue's overloads for a
+// MeshLab layer, growth/meshlab/layer.h, ignore its deleted faces and vertices). Definitions:
 // - Q_t = 4·√3·A / (l1² + l2² + l3²), Q_avg its mean, Q_RMS the RMS deviation in % of Q_avg
 //   (sphere-packing paper, sec. 5; equals vcglib's QualityMeanRatio). 1 for the equilateral
 //   triangle, √3/2 for the right isosceles one.
@@ -35,15 +35,14 @@
 //   (Robust G2S, sec. 5). The mean is over all input points; the points used as vertices by an
 //   interpolating mesher contribute 0, so it is the paper's "distance of the unmeshed points"
 //   spread over the whole cloud.
-#include <vcg/space/point3.h>
+#include <growth/mesh_arrays.h>
+#include <growth/vec3.h>
 
 #include <array>
 #include <cstddef>
 #include <limits>
 #include <string>
 #include <vector>
-
-class CMeshO;
 
 namespace growth {
 
@@ -126,12 +125,12 @@ struct MeshMeasures {
 };
 
 // All measures at once. `cloud`: the input points (e.g. growth::readCloud(...).points), or null.
-MeshMeasures measure(const CMeshO& mesh, const std::vector<vcg::Point3d>* cloud = nullptr,
+MeshMeasures measure(const MeshArrays& mesh, const std::vector<Vec3d>* cloud = nullptr,
                      const MeasureOptions& options = MeasureOptions());
 
 // --- Single triangles (lengths in any unit) ---
-double triangleQuality(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c); // Q_t
-double triangleQF(const vcg::Point3d& a, const vcg::Point3d& b, const vcg::Point3d& c);      // QF
+double triangleQuality(const Vec3d& a, const Vec3d& b, const Vec3d& c); // Q_t
+double triangleQF(const Vec3d& a, const Vec3d& b, const Vec3d& c);      // QF
 
 // --- Topology only, for tests (each call analyses the whole mesh once) ---
 struct MeshTopology {
@@ -139,30 +138,30 @@ struct MeshTopology {
          components = 0, inconsistentEdges = 0, degenerateFaces = 0, duplicateFaces = 0,
          unreferencedVertices = 0, edges = 0;
 };
-MeshTopology measureTopology(const CMeshO& mesh);
+MeshTopology measureTopology(const MeshArrays& mesh);
 
-size_t countBoundaryEdges(const CMeshO& mesh);
-size_t countNonManifoldEdges(const CMeshO& mesh);
-size_t countNonManifoldVertices(const CMeshO& mesh);
-size_t countBoundaryLoops(const CMeshO& mesh);
-size_t countComponents(const CMeshO& mesh);
-size_t countInconsistentEdges(const CMeshO& mesh);
-bool isConsistentlyOriented(const CMeshO& mesh);
-size_t countDegenerateFaces(const CMeshO& mesh);
-size_t countDuplicateFaces(const CMeshO& mesh);
-size_t countSelfIntersections(const CMeshO& mesh); // self-intersecting face pairs
+size_t countBoundaryEdges(const MeshArrays& mesh);
+size_t countNonManifoldEdges(const MeshArrays& mesh);
+size_t countNonManifoldVertices(const MeshArrays& mesh);
+size_t countBoundaryLoops(const MeshArrays& mesh);
+size_t countComponents(const MeshArrays& mesh);
+size_t countInconsistentEdges(const MeshArrays& mesh);
+bool isConsistentlyOriented(const MeshArrays& mesh);
+size_t countDegenerateFaces(const MeshArrays& mesh);
+size_t countDuplicateFaces(const MeshArrays& mesh);
+size_t countSelfIntersections(const MeshArrays& mesh); // self-intersecting face pairs
 
 // Exact distance from points to the nearest live face of a mesh, in double, through a bounding
 // volume hierarchy over the faces (built once; a query costs about log(faces)). The mesh may be
 // changed or destroyed after construction: the index keeps its own copy.
 class MeshDistance {
 public:
-  explicit MeshDistance(const CMeshO& mesh);
+  explicit MeshDistance(const MeshArrays& mesh);
   bool empty() const { return tri_.empty(); }
   // Distance to the nearest face; +infinity when the mesh has no face. `hint` (optional), on entry
   // a triangle likely near p or -1, on return the nearest triangle: passing the previous answer
   // speeds up queries made in spatial order.
-  double distance(const vcg::Point3d& p, int* hint = nullptr) const;
+  double distance(const Vec3d& p, int* hint = nullptr) const;
 
 private:
   struct Node {
@@ -171,19 +170,19 @@ private:
     int count;   // leaf: number of triangles (> 0); inner: 0
   };
   struct Item {
-    vcg::Point3d centroid;
+    Vec3d centroid;
     int face;
   };
   void build(int node, int begin, int end, std::vector<Item>& items);
-  double squaredDistanceToTriangle(const vcg::Point3d& p, int t) const;
+  double squaredDistanceToTriangle(const Vec3d& p, int t) const;
 
-  std::vector<vcg::Point3d> vert_;
+  std::vector<Vec3d> vert_;
   std::vector<std::array<int, 3>> tri_;
   std::vector<Node> nodes_;
 };
 
 // Distance statistics of `cloud` to `mesh` (fields hasCloud … pointsFartherThanSpacing of
 // MeshMeasures are filled).
-void measureCloudDistance(const CMeshO& mesh, const std::vector<vcg::Point3d>& cloud, MeshMeasures& out);
+void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out);
 
 } // namespace growth

@@ -5,7 +5,7 @@
 // index itself, whose order it adopts.
 #include <growth/point_index.h>
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstdint>
 #include <limits>
@@ -15,7 +15,7 @@ namespace growth {
 
 class PointGrid {
 public:
-  using Point = vcg::Point3d;
+  using Point = Vec3d;
 
   PointGrid() = default;
 

@@ -29,8 +29,7 @@
 #include <growth/huge_pages.h>
 #include <growth/morton.h>
 
-#include <vcg/space/box3.h>
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +45,7 @@ namespace growth {
 
 class PointIndex {
 public:
-  using P3 = vcg::Point3d;
+  using P3 = Vec3d;
 
   // Float coordinate arrays hold this many entries past the last point (whole-vector loads).
   static constexpr std::size_t kPad = 16;
@@ -90,8 +89,8 @@ public:
   size_t farPointCount() const { return pts_.size() - farBegin_; }
   size_t splitCellCount() const { return splitCells_; }
   // The bounding box of the points (far ones included) and the robust box of their bulk.
-  const vcg::Box3d& box() const { return box_; }
-  const vcg::Box3d& bulkBox() const { return bulk_; }
+  const Box3d& box() const { return box_; }
+  const Box3d& bulkBox() const { return bulk_; }
 
   // When set (single-threaded callers only), every query adds the number of points it scans to
   // *counter: a deterministic measure of the index's work.
@@ -559,7 +558,7 @@ private:
   // cell is split.
   HugeVector<std::uint64_t> sub_;
   size_t splitCells_ = 0;
-  vcg::Box3d box_, bulk_;
+  Box3d box_, bulk_;
   P3 origin_{0, 0, 0}; // corner of cell (0, 0, 0)
   double cell_ = 1, inv_ = 1;
   std::int64_t maxCell_[3] = {-1, -1, -1};

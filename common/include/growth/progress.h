@@ -1,21 +1,23 @@
 #pragma once
-// Throttled progress reporting through vcglib's CallBackPos.
+// Throttled progress reporting through a host's callback (CallBackPos).
 //
 // Long loops call `update(fraction)` as often as they like; the callback itself is invoked only
 // when the integer percentage inside the phase's range changes (at most ~100 times per phase), so a
 // host's UI is not flooded. A callback returning false cancels: update() throws growth::Cancelled.
 #include <growth/error.h>
-#include <cstring> // wrap/callback.h uses strcpy without including <cstring>
-#include <wrap/callback.h>
 
 #include <algorithm>
 #include <string>
 
 namespace growth {
 
+// A host's progress callback: the percentage and a label; false asks to stop. The same signature
+// as vcglib's CallBackPos, so MeshLab's callback is passed straight through.
+using CallBackPos = bool(int, const char*);
+
 class Progress {
 public:
-  explicit Progress(vcg::CallBackPos* cb) : cb_(cb) {}
+  explicit Progress(CallBackPos* cb) : cb_(cb) {}
 
   // Starts a phase that covers percentages [from, to] of the whole run.
   void phase(const std::string& label, int from, int to) {
@@ -59,7 +61,7 @@ public:
   }
 
 private:
-  vcg::CallBackPos* cb_;
+  CallBackPos* cb_;
   std::string label_;
   int from_ = 0;
   int to_ = 100;

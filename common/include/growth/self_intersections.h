@@ -30,7 +30,7 @@
 // when their sizes are alike; tools/self_intersections_time measures it on a mesh.
 #include <growth/manifold_cleanup.h>
 
-#include <vcg/space/point3.h>
+#include <growth/vec3.h>
 
 #include <cstddef>
 #include <cstdint>
@@ -42,13 +42,13 @@ namespace growth {
 // The pair test findSelfIntersections applies to faces a and b of a mesh with vertex positions
 // `pos`, as defined above (false when a or b has a repeated vertex index). Vertex indices must be
 // < pos.size() and the coordinates finite.
-bool facesIntersect(const std::vector<vcg::Point3d>& pos, const Triangle& a, const Triangle& b);
+bool facesIntersect(const std::vector<Vec3d>& pos, const Triangle& a, const Triangle& b);
 
 // Every pair (i, j), i < j, of faces that intersect as defined above, once each, sorted. `alive`:
 // when given, one entry per face, and faces with alive[f] == 0 are ignored. `threads`: 0 for
 // automatic (growth/parallel.h); the result does not depend on it. Vertex indices must be
 // < pos.size() (growth::Error otherwise).
-std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const std::vector<vcg::Point3d>& pos,
+std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const std::vector<Vec3d>& pos,
                                                                           const std::vector<Triangle>& faces,
                                                                           const std::vector<char>* alive = nullptr,
                                                                           int threads = 0);
@@ -59,7 +59,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> findSelfIntersections(const
 // the number of faces removed. `alive` must have one entry per face (growth::Error otherwise).
 // Removal can leave non-manifold vertices (two fans meeting at a vertex where a face was taken
 // out) and holes: run removeNonManifoldVertices (growth/manifold_cleanup.h) afterwards.
-size_t removeSelfIntersections(const std::vector<vcg::Point3d>& pos, const std::vector<Triangle>& faces,
+size_t removeSelfIntersections(const std::vector<Vec3d>& pos, const std::vector<Triangle>& faces,
                                std::vector<char>& alive, int threads = 0);
 
 } // namespace growth

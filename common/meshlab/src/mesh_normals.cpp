@@ -1,4 +1,5 @@
 #include <growth/mesh_normals.h>
+#include <growth/vec3.h>
 
 #include <algorithm>
 #include <cmath>
@@ -23,10 +24,13 @@ double cornerAngle(double y, double x) {
   return x < 0 ? kPi - a : a;
 }
 
+// A vertex normal in the layer's scalar, rounded from double per coordinate.
+CVertexO::NormalType toNormal(const Vec3d& n) { return CVertexO::NormalType(n[0], n[1], n[2]); }
+
 } // namespace
 
 void updateNormals(CMeshO& mesh) {
-  using P3 = vcg::Point3d;
+  using P3 = Vec3d;
   for (CVertexO& v : mesh.vert) v.N() = CVertexO::NormalType(0, 0, 0);
   // Accumulated in the vertices' float normals, as vcglib does: a vertex has about six faces, so
   // the float sum loses nothing that shows in a unit normal.
@@ -41,20 +45,20 @@ void updateNormals(CMeshO& mesh) {
       continue;
     }
     const P3 unit = n / len;
-    f.N() = CFaceO::NormalType::Construct(unit);
+    f.N() = CFaceO::NormalType(unit[0], unit[1], unit[2]);
     // Corner angles from |ab × ac| = |ba × bc| = |n| (twice the area) and the dot products.
     const double angleA = cornerAngle(len, ab * ac);
     const double angleB = cornerAngle(len, -(ab * bc));
     const double angleC = std::max(0.0, kPi - angleA - angleB);
-    f.V(0)->N() += CVertexO::NormalType::Construct(unit * angleA);
-    f.V(1)->N() += CVertexO::NormalType::Construct(unit * angleB);
-    f.V(2)->N() += CVertexO::NormalType::Construct(unit * angleC);
+    f.V(0)->N() += toNormal(unit * angleA);
+    f.V(1)->N() += toNormal(unit * angleB);
+    f.V(2)->N() += toNormal(unit * angleC);
   }
   for (CVertexO& v : mesh.vert) {
     if (v.IsD()) continue;
     const P3 n = P3::Construct(v.N());
     const double len = n.Norm();
-    if (len > 0) v.N() = CVertexO::NormalType::Construct(n / len);
+    if (len > 0) v.N() = toNormal(n / len);
   }
 }
 
