@@ -372,6 +372,25 @@ TEST(G2SPass, SmallPiecePassKeepsPiecesOfEnoughFaces) {
   }
 }
 
+// A 2-face piece that touches the disc at one point is part of it (pieces are joined through
+// shared points): nothing is dropped.
+TEST(G2SPass, SmallPiecePassKeepsAPieceJoinedAtAPoint) {
+  HexPatch h(1);
+  Piece p;
+  p.pts = h.pts;
+  for (const P3& q : {P3(2, 0, 0), P3(2, 1, 0), P3(3, 0.5, 0)}) p.pts.push_back(q);
+  p.build();
+  // Point 1 is (1, 0, 0), on the disc's border.
+  const std::vector<Triangle> tail{{1, 7, 8}, {7, 9, 8}};
+  ASSERT_TRUE(p.add(h.faces));
+  ASSERT_TRUE(p.add(tail));
+  const std::vector<Triangle> before = p.live();
+  size_t faces = 99;
+  EXPECT_EQ(p.m->dropSmallComponents(3, faces), 0u);
+  EXPECT_EQ(faces, 0u);
+  EXPECT_EQ(p.live(), before);
+}
+
 // --- Hole closure ---
 
 // A patch of two rings without the six faces at its centre: the hexagonal hole (6 edges) closes
@@ -407,6 +426,27 @@ TEST(G2SPass, HexagonalHoleIsClosedWithFourFacesTurnedAsThePatch) {
     const Mesher::BoundaryCount b = p.m->boundary();
     EXPECT_EQ(b.loops, 1u);
     EXPECT_EQ(b.edges, 12u);
+    expectValid(p);
+  }
+}
+
+// An octahedron without one face: its loop of three closes with exactly that face, facing out.
+TEST(G2SPass, ShellMissingAFaceGetsItBack) {
+  for (size_t missing = 0; missing < 8; ++missing) {
+    SCOPED_TRACE(missing);
+    Piece p;
+    std::vector<Triangle> faces;
+    octahedron(p.pts, faces, 1, P3(0.1, 0.2, 0.3));
+    p.build();
+    std::vector<Triangle> open = faces;
+    open.erase(open.begin() + std::ptrdiff_t(missing));
+    ASSERT_TRUE(p.add(open));
+    const Mesher::HoleStat st = p.m->closeHoles(3);
+    EXPECT_EQ(st.loops, 1u);
+    EXPECT_EQ(st.closed, 1u);
+    EXPECT_EQ(st.facesAdded, 1u);
+    EXPECT_EQ(p.live(), canonical(faces));
+    EXPECT_EQ(p.m->boundary().edges, 0u);
     expectValid(p);
   }
 }
@@ -499,6 +539,28 @@ TEST(G2SPass, WiderClosureTakesTheBlockingFinOut) {
   EXPECT_EQ(hs.spikes, 3u); // the fin's points, left with no face
   EXPECT_EQ(b.p.m->boundary().loops, 1u);
   expectValid(b.p);
+}
+
+// The hexagonal hole of a 4-ring patch with maxHoleEdges 5: longer than the hole pass takes, so
+// widenHoles regrows it (a G2S growth of its own on the points round it, the faces near the loop
+// taken out first): the centre point, left unused, is joined, and the lattice is whole again.
+TEST(G2SPass, WiderClosureRegrowsALongerLoopToThePointInside) {
+  HexPatch h(4);
+  Piece p;
+  p.pts = h.pts;
+  p.build();
+  ASSERT_TRUE(p.add(h.without(0)));
+  Mesher::HoleStat hs = p.m->closeHoles(5);
+  ASSERT_EQ(hs.closed, 0u);
+  EXPECT_EQ(p.m->widenHoles(5, hs), 1u);
+  EXPECT_EQ(hs.closed, 1u);
+  EXPECT_EQ(hs.widened, 1u);
+  EXPECT_EQ(hs.regrown, 1u);
+  EXPECT_EQ(hs.facesReplaced, 48u); // the faces within 1.5 spacings of the loop
+  EXPECT_EQ(hs.facesAdded, 54u);    // grown again, with the six at the centre
+  EXPECT_EQ(hs.spikes, 0u);
+  EXPECT_EQ(p.live(), canonical(h.faces));
+  expectValid(p);
 }
 
 // A patch whose only loop is its border (18 edges, more than twice maxHoleEdges): nothing to widen.
