@@ -585,14 +585,25 @@ namespace {
 // surface of genus 1 (a handle) with the two plates' borders as loops. (The holes lie within two
 // rings of each other: the pass looks for a handle within two rings of a cycle's point.) The bottom plate faces +z, the top
 // one -z, the tubes as fits.
+// With `finned`, a small vertical fin (its own piece) stands through each tube's rim at each plate,
+// where the cap that closes the rim would lie.
 struct Plates {
   Piece p;
-  std::vector<Triangle> faces, tubes;
+  std::vector<Triangle> faces, tubes, fins;
   static std::uint32_t at(int x, int y, int z) { return std::uint32_t(z * 28 + y * 7 + x); }
-  Plates() {
+  explicit Plates(bool finned = false) {
     for (int z = 0; z < 2; ++z)
       for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 7; ++x) p.pts.push_back(P3(x, y, z));
+    if (finned)
+      for (int z = 0; z < 2; ++z)
+        for (int x : {1, 3}) { // about the rim's centroid (x + 2/3, 4/3, z)
+          const std::uint32_t o = std::uint32_t(p.pts.size());
+          p.pts.push_back(P3(x + 0.6, 1.3, z - 0.2));
+          p.pts.push_back(P3(x + 0.75, 1.35, z - 0.2));
+          p.pts.push_back(P3(x + 0.67, 1.33, z + 0.2));
+          fins.push_back({o, o + 1, o + 2});
+        }
     p.build();
     for (int z = 0; z < 2; ++z)
       for (int y = 0; y < 3; ++y)
@@ -656,6 +667,26 @@ TEST(G2SPass, SmallHandleIsCut) {
   EXPECT_EQ(b.loops, 2u);
   EXPECT_EQ(b.edges, 2u * 18u);
   EXPECT_EQ(s.p.m->handleCount(b), 0u);
+  expectValid(s.p);
+}
+
+// The same handle with a fin through each place a cap would go: no cut's loops can be closed
+// without crossing a fin, so each cut tried is undone and the mesh is left as it was.
+TEST(G2SPass, HandleWhoseLoopsCannotCloseIsLeft) {
+  Plates s(true);
+  s.p.seed(s.faces[0]);
+  for (const Triangle& f : s.fins) s.p.seed(f); // (one seed per piece)
+  std::vector<Triangle> rest(s.faces.begin() + 1, s.faces.end());
+  rest.insert(rest.end(), s.tubes.begin(), s.tubes.end());
+  ASSERT_TRUE(s.p.add(rest));
+  expectValid(s.p);
+  const std::vector<Triangle> before = s.p.live();
+  const Mesher::HandleStat st = s.p.m->removeSmallHandles(s.p.m->boundary(), 6);
+  EXPECT_EQ(st.handlesBefore, 1u);
+  EXPECT_EQ(st.handles, 0u);
+  EXPECT_GT(st.undone, 0u);
+  EXPECT_EQ(s.p.live(), before);
+  EXPECT_EQ(s.p.m->handleCount(s.p.m->boundary()), 1u);
   expectValid(s.p);
 }
 
