@@ -111,7 +111,8 @@ void expectValid(const Piece& p) {
 }
 
 // A planar hexagonal patch of `rings` rings round point 0 at the origin (unit edges, z = 0), its
-// faces turning counter-clockwise seen from +z. ring(r, k): the k-th point of ring r (6r points).
+// faces turning counter-clockwise seen from +z. Points: 0, then each ring's 6r in turn (ring 1:
+// points 1-6, ring 2: 7-18, ring 3: 19-36).
 struct HexPatch {
   int rings;
   std::vector<P3> pts{P3(0, 0, 0)};
@@ -156,7 +157,7 @@ void octahedron(std::vector<P3>& pts, std::vector<Triangle>& faces, double r, co
   for (const Triangle& t : f) faces.push_back({o + t[0], o + t[1], o + t[2]});
 }
 
-// Sum over the faces of each face's normal against the direction from c to it: > 0 facing out of c.
+// The faces facing away from c less those facing towards it.
 double facingOut(const Piece& p, const std::vector<Triangle>& faces, const P3& c) {
   double s = 0;
   for (const Triangle& t : faces) s += p.normal(t) * (p.centre(t) - c) > 0 ? 1 : -1;
@@ -583,8 +584,8 @@ namespace {
 // Two square grid plates (7 x 4 points, unit spacing) at z = 0 and z = 1, each without two
 // triangles a spacing apart, joined through those holes by two triangular tubes one spacing long: a
 // surface of genus 1 (a handle) with the two plates' borders as loops. (The holes lie within two
-// rings of each other: the pass looks for a handle within two rings of a cycle's point.) The bottom plate faces +z, the top
-// one -z, the tubes as fits.
+// rings of each other: the pass looks for a handle within two rings of a cycle's point.) The bottom
+// plate faces +z, the top one -z, the tubes as fits.
 // With `finned`, a small vertical fin (its own piece) stands through each tube's rim at each plate,
 // where the cap that closes the rim would lie.
 struct Plates {
@@ -631,7 +632,7 @@ struct Plates {
 } // namespace
 
 // The handle is cut at one of the tubes' rims (a cycle of three edges bounding no face) and the
-// loops the cut leaves are closed: no handle left, still one piece, the plates' borders untouched.
+// loops the cut leaves are closed: no handle left, the plates' borders untouched.
 TEST(G2SPass, SmallHandleIsCut) {
   Plates s;
   s.p.seed(s.faces[0]); // (the mesh's one component grew from one seed)
@@ -692,7 +693,7 @@ TEST(G2SPass, HandleWhoseLoopsCannotCloseIsLeft) {
 
 namespace {
 // A square frame (a torus sampled by four points across its tube: no cycle of three edges around
-// it), four sections at 45 + 90k degrees, inner radius 1, outer 2, height 1; faces facing out.
+// it), four sections at 45 + 90k degrees, inner radius 1, outer 2, height 1; consistently turned.
 void frame(Piece& p, std::vector<Triangle>& faces) {
   const double r[4][2] = {{1, 0}, {2, 0}, {2, 1}, {1, 1}}; // the section's corners (radius, z), in turn
   for (int k = 0; k < 4; ++k) {
