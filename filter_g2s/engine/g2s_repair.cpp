@@ -250,6 +250,10 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
 size_t Mesher::dropSmallComponents(size_t minFaces, size_t& facesDropped) {
   facesDropped = 0;
   if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
+  // One seed grew every face (each new face shares an edge with the mesh) and none was taken out
+  // since: one piece, the largest, which stays.
+  if (seeds_ == 1 && rimFacesRemoved_ == 0 && std::find(alive_.begin(), alive_.end(), char(0)) == alive_.end())
+    return 0;
   const std::vector<char> before(alive_.begin(), alive_.end());
   const size_t dropped = growth::dropSmallComponents(tri_, grid_.size(), alive_, minFaces, facesDropped);
   if (dropped > 0)
