@@ -22,7 +22,7 @@ inline void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& 
   MeshArrays mesh;
   build(std::move(arrays), mesh, params, stat, cb);
   watch.lap();
-  meshlab::writeLayer(mesh, out);
+  meshlab::writeLayer(std::move(mesh), out);
   const double write = watch.lap();
   stat.secondsInput += read;
   stat.secondsOutput += write;

@@ -115,6 +115,25 @@ void expectValidOutput(const Mesh& cloudPtr, const std::unique_ptr<Result>& resu
 
 } // namespace
 
+// The engine on arrays gives what the layer wrapper writes into a layer, vertex for vertex.
+TEST(G2SBuild, ArraysAreTheLayersMesh) {
+  growth::CloudSpec spec;
+  spec.count = 3000;
+  const growth::Cloud cloud = growth::generateCloud(spec);
+  growth::MeshArrays arrays;
+  growth::g2s::Stat st;
+  growth::g2s::build(growth::toArrays(cloud), arrays, growth::g2s::Params(), st);
+  CMeshO layer, out;
+  growth::toMesh(cloud, layer);
+  growth::g2s::build(layer, out, growth::g2s::Params(), st);
+  ASSERT_EQ(size_t(out.vn), arrays.vertices.size());
+  ASSERT_EQ(size_t(out.fn), arrays.faces.size());
+  for (size_t i = 0; i < arrays.vertices.size(); ++i)
+    ASSERT_EQ(growth::Vec3d::Construct(out.vert[i].cP()), arrays.vertices[i]);
+  for (size_t f = 0; f < arrays.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(size_t(vcg::tri::Index(out, out.face[f].cV(k))), size_t(arrays.faces[f][k]));
+}
+
 TEST(G2SBuild, CleanSphereIsClosedWithTwoFacesPerPoint) {
   CloudSpec spec;
   spec.shape = Shape::Sphere;

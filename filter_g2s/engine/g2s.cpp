@@ -84,7 +84,7 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
 std::vector<P3> layerNormals(const InputCloud& input, const Mesher& mesher) {
   std::vector<P3> normals;
   const std::vector<std::uint32_t>& order = mesher.order();
-  if (input.normals.size() != input.points.size()) return normals;
+  if (input.normals.size() != order.size()) return normals;
   normals.resize(order.size());
   size_t usable = 0;
   for (size_t i = 0; i < order.size(); ++i) {
@@ -118,7 +118,7 @@ void runPass(Mesher& mesher, Stat& stat, size_t& live, const char* name, F&& pas
 // Sec. 4.2, then what is not in the paper: faces intersecting others removed, small pieces dropped,
 // small holes closed; then the boundary counts and the orientation of every component (by the
 // layer's normals for the sheets, where it has them).
-void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const InputCloud& input) {
+void cleanUp(Mesher& mesher, const Params& p, Stat& stat, InputCloud& input) {
   size_t live = mesher.liveTriangles();
   if (p.removeNonManifoldVertices) {
     runPass(mesher, stat, live, "non-manifold vertices (sec. 4.2)", [&] {
@@ -186,6 +186,9 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, const InputCloud& inpu
     mesher.orientComponents(normals.empty() ? nullptr : &normals);
   });
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
+  // The points for the output, in the mesher's order (its point i is input point order()[i]),
+  // taken before it frees them.
+  input.points = mesher.points();
   mesher.releaseWorkingState();
   releaseFreeHeap(); // its freed blocks would otherwise stay resident under the output layer
 }
@@ -212,7 +215,7 @@ void writeMesh(InputCloud& input, Mesher& mesher, MeshArrays& out, Stat& stat, P
     reserveHuge(out.vertices, stat.vertices, true);
     out.vertices.resize(stat.vertices);
     for (size_t i = 0; i < points; ++i)
-      if (outIndex[i] != ~0u) out.vertices[outIndex[i]] = input.points[order[i]];
+      if (outIndex[i] != ~0u) out.vertices[outIndex[i]] = input.points[i];
     // Only outIndex is needed from here on.
     mesher.releaseOrder();
     std::vector<P3>().swap(input.points);
@@ -223,7 +226,12 @@ void writeMesh(InputCloud& input, Mesher& mesher, MeshArrays& out, Stat& stat, P
       for (int j = 0; j < 3; ++j) t[j] = outIndex[tri[f][j]];
       out.faces.push_back(t);
       out.faceQuality.push_back(triangleQuality(out.vertices[t[0]], out.vertices[t[1]], out.vertices[t[2]]));
-      if (((f + 1) & 8191) == 0) progress.update(double(f + 1) / double(faces));
+      // The triangles written so far are given back a block at a time, so that they and the
+      // output's faces do not add up at the peak.
+      if (((f + 1) & 8191) == 0) {
+        discardPages(tri.data(), (f + 1) * sizeof(Triangle));
+        progress.update(double(f + 1) / double(faces));
+      }
     }
     std::vector<Triangle>().swap(tri);
     progress.update(1.0);
@@ -257,9 +265,9 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& stat,
     progress.phase("Robust G2S: reading the points", 0, 3);
     InputCloud input = readPoints(std::move(cloud), stat);
     // The mesher sorts the points into its grid's cell order and measures their spacing.
-    // input.points and input.normals are kept for the output and the orientation.
+    // input.normals is kept for the orientation.
     progress.phase("Robust G2S: growing the mesh", 3, 92);
-    Mesher mesher(std::vector<P3>(input.points), p);
+    Mesher mesher(std::move(input.points), p);
     stat.spacing = mesher.spacing();
     stat.clumps = mesher.clumps();
     stat.clumpPointsMerged = mesher.clumpPointsMerged();

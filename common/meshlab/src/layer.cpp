@@ -29,25 +29,39 @@ CloudArrays readLayer(const CMeshO& mesh) {
   return a;
 }
 
-void writeLayer(const MeshArrays& mesh, CMeshO& out) {
+void writeLayer(MeshArrays mesh, CMeshO& out) {
   out.Clear();
   if (mesh.faces.empty()) return;
-  // Exact sizes reserved first: the vectors are allocated once and made resident in one call.
+  // Exact sizes reserved first: the vectors are allocated once, with huge pages advised.
   reserveHuge(out.vert, mesh.vertices.size(), /*populate=*/true);
   auto vi = vcg::tri::Allocator<CMeshO>::AddVertices(out, mesh.vertices.size());
   for (size_t i = 0; i < mesh.vertices.size(); ++i, ++vi) {
     const Vec3d& p = mesh.vertices[i];
     vi->P() = CMeshO::CoordType(p[0], p[1], p[2]);
   }
-  const bool quality = mesh.faceQuality.size() == mesh.faces.size();
+  std::vector<Vec3d>().swap(mesh.vertices);
+  const size_t faces = mesh.faces.size();
+  const bool quality = mesh.faceQuality.size() == faces;
   if (quality) out.face.EnableQuality();
-  reserveHuge(out.face, mesh.faces.size(), /*populate=*/true); // (vcglib's reserve reserves the quality vector too)
-  if (quality) prefault(out.face.QV.data(), mesh.faces.size() * sizeof(out.face.QV[0]));
-  auto fi = vcg::tri::Allocator<CMeshO>::AddFaces(out, mesh.faces.size());
-  for (size_t k = 0; k < mesh.faces.size(); ++k, ++fi) {
-    for (int j = 0; j < 3; ++j) fi->V(j) = &out.vert[mesh.faces[k][j]];
-    if (quality) fi->Q() = static_cast<CFaceO::QualityType>(mesh.faceQuality[k]);
+  reserveHuge(out.face, faces); // (vcglib's reserve reserves the quality vector too)
+  // The faces are added a block at a time, and the block's arrays are given back (whole pages,
+  // growth::discardPages) once it is written, so that the arrays and the layer's faces do not add
+  // up at the peak. Within the reserved room no face moves.
+  constexpr size_t kBlock = size_t(1) << 13;
+  for (size_t first = 0; first < faces; first += kBlock) {
+    const size_t last = std::min(faces, first + kBlock);
+    prefault(out.face.data() + first, (last - first) * sizeof(CFaceO));
+    if (quality) prefault(out.face.QV.data() + first, (last - first) * sizeof(out.face.QV[0]));
+    vcg::tri::Allocator<CMeshO>::AddFaces(out, last - first);
+    for (size_t k = first; k < last; ++k) {
+      CFaceO& f = out.face[k];
+      for (int j = 0; j < 3; ++j) f.V(j) = &out.vert[mesh.faces[k][j]];
+      if (quality) f.Q() = static_cast<CFaceO::QualityType>(mesh.faceQuality[k]);
+    }
+    discardPages(mesh.faces.data(), last * sizeof(mesh.faces[0]));
+    if (quality) discardPages(mesh.faceQuality.data(), last * sizeof(double));
   }
+  mesh = MeshArrays();
   // What MeshLab expects of a new layer (its creation filters call UpdateBoxAndNormals).
   vcg::tri::UpdateBounding<CMeshO>::Box(out);
   updateNormals(out);

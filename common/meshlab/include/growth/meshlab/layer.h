@@ -17,8 +17,8 @@ CloudArrays readLayer(const CMeshO& mesh);
 
 // `out` (cleared first) gets the mesh: its vertices rounded to the layer's scalar, its faces with
 // their quality (when given), the bounding box, and face and vertex normals (growth::updateNormals),
-// what MeshLab expects of a new layer.
-void writeLayer(const MeshArrays& mesh, CMeshO& out);
+// what MeshLab expects of a new layer. The arrays are freed as they are copied.
+void writeLayer(MeshArrays mesh, CMeshO& out);
 
 // The live vertices of `mesh` renumbered 0..n-1 and its live faces (a deleted vertex as ~0u).
 MeshArrays meshArrays(const CMeshO& mesh);
