@@ -751,7 +751,10 @@ TEST(G2SPass, InwardShellIsTurnedOut) {
   std::vector<Triangle> in;
   for (const Triangle& t : out) in.push_back(flipped(t));
   ASSERT_TRUE(p.add(in));
-  p.m->orientComponents();
+  const growth::g2s::Mesher::OrientationStat st = p.m->orientComponents();
+  EXPECT_EQ(st.components, 1u);
+  EXPECT_EQ(st.flipped, 1u);
+  EXPECT_EQ(st.facesFlipped, 8u);
   EXPECT_EQ(p.live(), canonical(out));
   EXPECT_EQ(facingOut(p, p.live(), P3(0.1, 0.2, 0.3)), 8.0);
   expectValid(p);
@@ -771,7 +774,10 @@ TEST(G2SPass, NestedShellsFaceOutOfTheMaterial) {
     for (const Triangle& t : outer) faces.push_back(given & 1 ? flipped(t) : t);
     for (const Triangle& t : inner) faces.push_back(given & 2 ? flipped(t) : t);
     ASSERT_TRUE(p.add(faces));
-    p.m->orientComponents();
+    const growth::g2s::Mesher::OrientationStat st = p.m->orientComponents();
+    EXPECT_EQ(st.components, 2u);
+    EXPECT_EQ(st.cavities, 1u);
+    EXPECT_EQ(st.flipped, size_t((given & 1) != 0) + size_t((given & 2) == 0));
     std::vector<Triangle> want = outer;
     for (const Triangle& t : inner) want.push_back(flipped(t));
     EXPECT_EQ(p.live(), canonical(want));
@@ -793,8 +799,11 @@ TEST(G2SPass, OrientationLeavesRightlyTurnedShellsAlone) {
   faces.insert(faces.end(), apart.begin(), apart.end());
   ASSERT_TRUE(p.add(faces));
   const std::vector<Triangle> before = p.m->triangles();
-  p.m->orientComponents();
+  const growth::g2s::Mesher::OrientationStat st = p.m->orientComponents();
   EXPECT_EQ(p.m->triangles(), before); // the same faces, in the same order and turn
+  EXPECT_EQ(st.components, 3u);
+  EXPECT_EQ(st.flipped, 0u);
+  EXPECT_EQ(st.facesFlipped, 0u);
 }
 
 // An open sheet has no inside: with the points' normals given it faces the way they point, and is
@@ -808,7 +817,9 @@ TEST(G2SPass, SheetFacesTheWayTheNormalsPoint) {
     p.build();
     ASSERT_TRUE(p.add(h.faces)); // facing +z
     const std::vector<P3> normals(p.pts.size(), P3(0, 0, nz)); // (the same for every point: no reorder needed)
-    p.m->orientComponents(&normals);
+    const growth::g2s::Mesher::OrientationStat st = p.m->orientComponents(&normals);
+    EXPECT_EQ(st.byNormals, 1u);
+    EXPECT_EQ(st.flipped, nz < 0 ? 1u : 0u);
     std::vector<Triangle> want = h.faces;
     if (nz < 0)
       for (Triangle& t : want) t = flipped(t);

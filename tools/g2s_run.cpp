@@ -196,6 +196,7 @@ int main(int argc, char** argv) {
     std::printf("handles_cut: %zu\nhandle_faces_removed: %zu\nhandle_faces_added: %zu\nhandles: %zu\n", st.handlesCut,
                 st.handleFacesRemoved, st.handleFacesAdded, st.handles);
     std::printf("pieces_dropped: %zu\npiece_faces_dropped: %zu\n", st.componentsDropped, st.componentFacesDropped);
+    std::printf("pieces: %zu\npieces_flipped: %zu\n", st.components, st.componentsFlipped);
     std::printf("edges_left_at_full_points: %zu\n", st.edgesLeftAtFullPoints);
     std::printf("thin_part_refusals: %zu\n", st.thinPartRefusals);
     std::printf("seconds: %.4f\n", best);

@@ -183,7 +183,9 @@ void cleanUp(Mesher& mesher, const Params& p, Stat& stat, InputCloud& input) {
   runPass(mesher, stat, live, "orientation", [&] {
     // (The layer's normals only matter for pieces with a free edge: none on a closed mesh.)
     const std::vector<P3> normals = boundary.edges > 0 ? layerNormals(input, mesher) : std::vector<P3>();
-    mesher.orientComponents(normals.empty() ? nullptr : &normals);
+    const Mesher::OrientationStat os = mesher.orientComponents(normals.empty() ? nullptr : &normals);
+    stat.components = os.components;
+    stat.componentsFlipped = os.flipped;
   });
   stat.workingBytes = std::max(stat.workingBytes, mesher.memoryBytes());
   // The points for the output, in the mesher's order (its point i is input point order()[i]),

@@ -72,6 +72,9 @@ struct Stat {
   size_t handleFacesAdded = 0;            // the faces that closed their loops (counted apart from the hole pass's)
   size_t handles = 0;                     // handles of the output (genus summed over its components;
                                           // 0 when sec. 4.2 is off, where it is not defined)
+  size_t components = 0;                  // connected pieces of the output (the orientation pass counts them)
+  size_t componentsFlipped = 0;           // of them, turned over by the orientation pass (closed shells to face
+                                          // out of the material, sheets the way the layer's normals point)
   size_t componentsDropped = 0;           // connected pieces with fewer than Params::minComponentFaces faces
   size_t componentFacesDropped = 0;       // and their faces
   size_t thinPartRefusals = 0;            // candidates refused by the thin-part rules (not in the paper:

@@ -162,7 +162,8 @@ size_t Mesher::componentVolumes(std::vector<std::uint32_t>& parent, std::vector<
   return components;
 }
 
-void Mesher::orientComponents(const std::vector<P3>* normals) {
+Mesher::OrientationStat Mesher::orientComponents(const std::vector<P3>* normals) {
+  OrientationStat st;
   const size_t n = grid_.size();
   if (alive_.size() != tri_.size()) alive_.assign(tri_.size(), 1);
   // 1. Union–find over the vertices of the live triangles, in the per-point scratch array. After
@@ -179,6 +180,8 @@ void Mesher::orientComponents(const std::vector<P3>* normals) {
   //    of the material (the inner wall of a hollow ball) and faces into the cavity (negative volume).
   std::vector<signed char> wanted(components, 1);
   nestedShellSigns(component, components, wanted);
+  st.components = components;
+  for (signed char w : wanted) st.cavities += w < 0;
   std::vector<char> flip(components, 0);
   // 3b. The sheets (pieces with a free edge that enclose little volume: a scan's open surface, a
   //     LiDAR tile's ground), where normals are given: the way the normals point on the whole. A
@@ -209,18 +212,25 @@ void Mesher::orientComponents(const std::vector<P3>* normals) {
   }
   bool any = false;
   for (size_t k = 0; k < components; ++k) {
-    flip[k] = !agree.empty() && agree[k] != 0 ? agree[k] < 0 : volume[k] * double(wanted[k]) < 0;
+    const bool byNormals = !agree.empty() && agree[k] != 0;
+    flip[k] = byNormals ? agree[k] < 0 : volume[k] * double(wanted[k]) < 0;
+    st.byNormals += byNormals;
+    st.flipped += flip[k];
     any = any || flip[k];
   }
-  if (!any) return;
+  if (!any) return st;
   // 4. The flipped components' triangles, then their half-edges in the point–edge map: every edge
   //    at a vertex of a flipped component is one of that component's (its triangles are all
   //    flipped), so reversing each such vertex's entries records the flip. A vertex with an edge
   //    carrying a triangle lies on a live triangle, so it has a component.
   for (size_t f = 0; f < tri_.size(); ++f)
-    if (alive_[f] && flip[component(tri_[f][0])]) std::swap(tri_[f][1], tri_[f][2]);
+    if (alive_[f] && flip[component(tri_[f][0])]) {
+      std::swap(tri_[f][1], tri_[f][2]);
+      ++st.facesFlipped;
+    }
   for (std::uint32_t v = 0; v < n; ++v)
     if (pem_.degree(v) > 0 && flip[component(v)]) pem_.reverseAt(v);
+  return st;
 }
 
 template <class ComponentOf>

@@ -221,7 +221,14 @@ public:
   // ground) has no inside; where the caller gives the layer's normals (in this mesher's point
   // order, zero where a point has none), it faces the way they point on the whole (the sum over
   // its faces of the face normal against its corners' normals), else as its own volume says.
-  void orientComponents(const std::vector<P3>* normals = nullptr);
+  struct OrientationStat {
+    size_t components = 0;      // connected pieces of the live triangles
+    size_t flipped = 0;         // of them, turned over
+    size_t byNormals = 0;       // sheets oriented by the normals given (flipped or not)
+    size_t cavities = 0;        // closed shells nested in an odd number of others (facing into them)
+    size_t facesFlipped = 0;    // the triangles of the pieces turned over
+  };
+  OrientationStat orientComponents(const std::vector<P3>* normals = nullptr);
 
   // Frees what only the growth uses: the grid's search structure, the per-point edge counters,
   // the queue and the search scratch. No search (seeds, growth, candidates) may follow; the
