@@ -70,6 +70,8 @@ private:
   // Triangle t meets no live face, no face added before and none of pending_ (exactly).
   // (ear: a triangle of close(), whose answer about the mesh's faces is kept for the loop.)
   bool meetsNothing(const Triangle& t, bool ear = false) const;
+  // Triangle t meets none of pending_ (exactly).
+  bool meetsNoPending(const Triangle& t) const;
   // Ear t meets a live face near loop_ (anyMeeting), answered once per ear and loop.
   bool earMeetsMesh(const Triangle& t) const;
   // The live faces near loop_ (near_ and the long ones) that t meets: stop(face) for each, until it
@@ -121,6 +123,10 @@ private:
   std::vector<std::uint32_t> loop_, opp_, face_;
   std::vector<Ear> ears_;
   std::vector<std::array<size_t, 3>> split_;
+  std::vector<signed char> valid_; // leastArea's state and area per triangle, best value and split per part
+  std::vector<double> area_, best_;
+  std::vector<std::array<size_t, 2>> failedParts_;
+  std::vector<std::uint32_t> bestSplit_;
 };
 
 

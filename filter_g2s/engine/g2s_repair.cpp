@@ -449,14 +449,18 @@ template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop
   return false;
 }
 
-bool Mesher::HolePass::meetsNothing(const Triangle& t, bool ear) const {
+bool Mesher::HolePass::meetsNoPending(const Triangle& t) const {
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
   for (const Triangle& p : pending_)
     if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
         facesIntersect(pos, t, p))
       return false;
-  return !(ear ? earMeetsMesh(t) : anyMeeting(t, [](std::uint32_t) { return true; }));
+  return true;
+}
+
+bool Mesher::HolePass::meetsNothing(const Triangle& t, bool ear) const {
+  return meetsNoPending(t) && !(ear ? earMeetsMesh(t) : anyMeeting(t, [](std::uint32_t) { return true; }));
 }
 
 bool Mesher::HolePass::earMeetsMesh(const Triangle& t) const {
@@ -542,10 +546,23 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
     if (a == 0 && b == n - 1) return std::int64_t(n - 1);
     return -1;
   };
-  std::vector<signed char> valid(n * n * n, -1);
-  auto isValid = [&](size_t i, size_t j, size_t k) {
+  // Per triangle: -2 untouched, -1 area known (area_), 0 fails, 1 passes the ears' tests (crossing
+  // untested), 2 passes all (area known from -1 on).
+  std::vector<signed char>& valid = valid_;
+  valid.assign(n * n * n, -2);
+  area_.resize(n * n * n);
+  auto areaOf = [&](size_t i, size_t j, size_t k) {
+    const size_t at = (i * n + j) * n + k;
+    if (valid[at] == -2) {
+      const Triangle t = tri(i, j, k);
+      area_[at] = 0.5 * normal(t[0], t[1], t[2]).Norm();
+      valid[at] = -1;
+    }
+    return area_[at];
+  };
+  auto cheapValid = [&](size_t i, size_t j, size_t k) -> signed char& {
     signed char& v = valid[(i * n + j) * n + k];
-    if (v >= 0) return v == 1;
+    if (v >= 0) return v;
     const Triangle t = tri(i, j, k);
     const P3 nt = normal(t[0], t[1], t[2]);
     bool ok = !isZero(nt) && pem.canAddTriangle(t[0], t[1], t[2]);
@@ -559,42 +576,72 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
         ok = cosBetween(nt, normal(loop_[a], loop_[(a + 1) % n], opp_[a])) >= minCos_;
       }
     }
-    ok = ok && (!crossingTest || meetsNothing(t));
-    v = ok ? 1 : 0;
-    return ok;
+    v = ok ? (crossingTest ? 1 : 2) : 0;
+    return v;
   };
+  auto crossingValid = [&](size_t i, size_t j, size_t k) {
+    signed char& v = cheapValid(i, j, k);
+    if (v == 1) v = meetsNothing(tri(i, j, k)) ? 2 : 0;
+    return v == 2;
+  };
+  // The crossing test is the costly one, and few triangles fail it: the least area is found with
+  // the untested triangles allowed (lazy), and only its triangles are tested; the failing ones
+  // are forbidden and the least area found again (for the parts that hold one), until its
+  // triangles pass. Every value is then at most the exact one and the optimum's is reached, so
+  // the optimum and, for each part, its first best split are the exact ones (sums round
+  // monotonically). After kLazyRounds rounds the triangles are tested as they come (eager): the
+  // same result.
+  constexpr int kLazyRounds = 32;
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> best(n * n, inf);
-  std::vector<std::uint32_t> split(n * n, 0);
+  std::vector<double>& best = best_;
+  std::vector<std::uint32_t>& split = bestSplit_;
+  best.assign(n * n, inf);
+  split.assign(n * n, 0);
   for (size_t i = 0; i + 1 < n; ++i) best[i * n + i + 1] = 0;
-  for (size_t len = 2; len < n; ++len)
-    for (size_t i = 0; i + len < n; ++i) {
-      const size_t k = i + len;
-      for (size_t j = i + 1; j < k; ++j) {
-        const double sub = best[i * n + j] + best[j * n + k];
-        if (!(sub < best[i * n + k])) continue;
-        const Triangle t = tri(i, j, k);
-        const double cost = sub + 0.5 * normal(t[0], t[1], t[2]).Norm();
-        // (The tests only where the triangle would improve the best: the same choice, fewer tests.)
-        if (cost < best[i * n + k] && isValid(i, j, k)) {
-          best[i * n + k] = cost;
-          split[i * n + k] = std::uint32_t(j);
+  std::vector<std::array<size_t, 2>>& failed = failedParts_; // (i, k) of the triangles that failed
+  failed.clear();
+  for (int round = 0;; ++round) {
+    const bool eager = round >= kLazyRounds;
+    for (size_t len = 2; len < n; ++len)
+      for (size_t i = 0; i + len < n; ++i) {
+        const size_t k = i + len;
+        if (round > 0 && !eager) { // (only the parts holding a forbidden triangle change)
+          bool holds = false;
+          for (const auto& f : failed) holds = holds || (i <= f[0] && f[1] <= k);
+          if (!holds) continue;
+        }
+        double& b = best[i * n + k];
+        b = inf;
+        split[i * n + k] = 0;
+        for (size_t j = i + 1; j < k; ++j) {
+          const double sub = best[i * n + j] + best[j * n + k];
+          if (!(sub < b)) continue;
+          const double cost = sub + areaOf(i, j, k);
+          // (The tests only where the triangle would improve the best: the same choice, fewer tests.)
+          if (cost < b && (eager ? crossingValid(i, j, k) : cheapValid(i, j, k) != 0)) {
+            b = cost;
+            split[i * n + k] = std::uint32_t(j);
+          }
         }
       }
+    if (!(best[n - 1] < inf)) return false;
+    // The triangles, outermost first.
+    out.clear();
+    std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
+    while (!stack.empty()) {
+      const size_t i = stack.back()[0], k = stack.back()[1];
+      stack.pop_back();
+      if (k < i + 2) continue;
+      const size_t j = split[i * n + k];
+      out.push_back({i, j, k});
+      stack.push_back({i, j});
+      stack.push_back({j, k});
     }
-  if (!(best[n - 1] < inf)) return false;
-  // The triangles, outermost first.
-  std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
-  while (!stack.empty()) {
-    const size_t i = stack.back()[0], k = stack.back()[1];
-    stack.pop_back();
-    if (k < i + 2) continue;
-    const size_t j = split[i * n + k];
-    out.push_back({i, j, k});
-    stack.push_back({i, j});
-    stack.push_back({j, k});
+    failed.clear();
+    for (const auto& s : out)
+      if (!crossingValid(s[0], s[1], s[2])) failed.push_back({s[0], s[2]});
+    if (failed.empty()) return true;
   }
-  return true;
 }
 
 bool Mesher::HolePass::closeLeastArea() {
@@ -606,7 +653,7 @@ bool Mesher::HolePass::closeLeastArea() {
   bool ok = true;
   for (const auto& s : split_) {
     const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
-    ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNothing(t);
+    ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNoPending(t); // (leastArea tested the mesh's faces)
     // Folds across its diagonals, against the triangles on their other side (added before it or after).
     const P3 nt = normal(t[0], t[1], t[2]);
     for (const Triangle& u : pending_) {
