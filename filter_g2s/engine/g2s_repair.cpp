@@ -343,28 +343,29 @@ std::int64_t Mesher::HolePass::faceOn(std::uint32_t v, std::uint32_t w) const {
   return -1;
 }
 
-// Any triangle on the loop's points lies in the ball around them and in their box. A face with
-// no edge longer than longest_ that meets it has a point within longest/√3 of it (every point of a
+// Any triangle on the points lies in the ball around them and in their box. A face with no edge
+// longer than longest_ that meets it has a point within longest/√3 of it (every point of a
 // triangle with edges of at most L is within L/√3 of a corner), hence in the ball grown by that
-// much; the longer ones are found in longCells_. Only the faces whose box meets the loop's box are
-// kept (meetsNothing rejects a face whose box misses the triangle's, so the others could never
-// count), with their boxes. Gathered once per loop: alive_ does not change between the gathering
-// and the loop's closure.
-void Mesher::HolePass::gatherNearLoop() {
+// much; the longer ones are found in longCells_. Only the faces whose box meets the points' box
+// are kept (meetsNothing rejects a face whose box misses the triangle's, so the others could never
+// count), with their boxes. The live faces are gathered; those taken out later are skipped by
+// the tests.
+void Mesher::HolePass::gatherNear(const std::vector<std::uint32_t>& points) {
   near_.clear();
+  gathered_.assign(points.begin(), points.end());
+  std::sort(gathered_.begin(), gathered_.end());
   P3 c(0, 0, 0);
-  for (std::uint32_t v : loop_) c += pts_[v];
-  c /= double(loop_.size());
+  for (std::uint32_t v : points) c += pts_[v];
+  c /= double(points.size());
   double r2 = 0, lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop_[0]][d];
-  for (std::uint32_t v : loop_) {
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[points[0]][d];
+  for (std::uint32_t v : points) {
     r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min(lo[d], pts_[v][d]);
       hi[d] = std::max(hi[d], pts_[v][d]);
     }
   }
-  earAnswers_.clear(); // (the answers were for the faces near the loop before)
   // Each face once (inNear_ marks the faces seen, cleared after).
   seen_.clear();
   auto consider = [&](std::uint32_t g) {
@@ -405,7 +406,7 @@ void Mesher::HolePass::gatherNearLoop() {
   for (std::uint32_t g : seen_) inNear_[g] = 0;
 }
 
-template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
+template <bool all, class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
   double lo[3], hi[3];
@@ -444,9 +445,15 @@ template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop
   for (const NearFace& e : near_)
     if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
           e.lo[2] > hi[2]) &&
-        meetsBeside(m_.tri_[e.g]) && stop(e.g))
+        (all || m_.alive_[e.g]) && meetsBeside(m_.tri_[e.g]) && stop(e.g))
       return true;
   return false;
+}
+
+bool Mesher::HolePass::gatheredHolds(const std::vector<std::uint32_t>& points) const {
+  for (std::uint32_t v : points)
+    if (!std::binary_search(gathered_.begin(), gathered_.end(), v)) return false;
+  return true;
 }
 
 bool Mesher::HolePass::meetsNoPending(const Triangle& t) const {
@@ -459,18 +466,26 @@ bool Mesher::HolePass::meetsNoPending(const Triangle& t) const {
   return true;
 }
 
-bool Mesher::HolePass::meetsNothing(const Triangle& t, bool ear) const {
-  return meetsNoPending(t) && !(ear ? earMeetsMesh(t) : anyMeeting(t, [](std::uint32_t) { return true; }));
-}
+bool Mesher::HolePass::meetsNothing(const Triangle& t) const { return meetsNoPending(t) && !meetsMesh(t); }
 
-bool Mesher::HolePass::earMeetsMesh(const Triangle& t) const {
-  // The mesh's faces do not change while one loop is closed (gatherNearLoop), and close() tries
-  // the ears that failed again at each later step: each ear's answer is kept for the loop.
-  for (const EarAnswer& k : earAnswers_)
-    if (k.t[0] == t[0] && k.t[1] == t[1] && k.t[2] == t[2]) return k.meets;
-  const bool meets = anyMeeting(t, [](std::uint32_t) { return true; });
-  earAnswers_.push_back(EarAnswer{t, meets});
-  return meets;
+bool Mesher::HolePass::meetsMesh(const Triangle& t) const {
+  if (!nearHasLong_) return anyMeeting<false>(t, [](std::uint32_t) { return true; }); // (rare: not kept)
+  // Kept per triangle: a face it meets (it meets the mesh while that face is live), or that it
+  // meets none, live or not (near_ was gathered with every face that can be live while the loop
+  // is closed: faces are only taken out and put back meanwhile).
+  Met& known = met_.emplace(t, Met{~0u, false}).first->second;
+  if (known.none) return false;
+  if (known.face != ~0u && m_.alive_[known.face]) return true;
+  bool any = false;
+  known.face = ~0u;
+  anyMeeting<true>(t, [&](std::uint32_t g) {
+    any = true;
+    if (!m_.alive_[g]) return false;
+    known.face = g;
+    return true;
+  });
+  known.none = !any;
+  return known.face != ~0u;
 }
 
 // False with pending_ and the point–edge map as before.
@@ -486,7 +501,7 @@ bool Mesher::HolePass::close() {
       ok = !isZero(normal(t[0], t[1], t[2])) && pem.canAddTriangle(t[0], t[1], t[2]);
       for (size_t i = 0; i < 3 && ok; ++i)
         ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop_[i], loop_[(i + 1) % 3], opp_[i])) >= minCos_;
-      ok = ok && meetsNothing(t, true);
+      ok = ok && meetsNothing(t);
       if (ok) {
         pem.addTriangle(t[0], t[1], t[2]);
         pending_.push_back(t);
@@ -515,7 +530,7 @@ bool Mesher::HolePass::close() {
       // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
       if (pem.triangles(v0, v2) != 0) continue;
       const Triangle t{v1, v0, v2};
-      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t, true)) continue;
+      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
       // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
       pem.addTriangle(t[0], t[1], t[2]);
       pending_.push_back(t);
@@ -686,11 +701,11 @@ bool Mesher::HolePass::blockers(const std::vector<std::uint32_t>& original, std:
   opp_.resize(m);
   for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
   pending_.clear();
-  gatherNearLoop();
+  gatherNear(loop_);
   if (!leastArea(false, split_)) return false;
   for (const auto& s : split_) {
     const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
-    anyMeeting(t, [&](std::uint32_t g) {
+    anyMeeting<false>(t, [&](std::uint32_t g) {
       out.push_back(g);
       return false;
     });
@@ -728,9 +743,11 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
     opp_.resize(m);
     for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
   };
-  // The loop closed as it is: by ears, else by its least-area triangulation.
+  // The loop closed as it is: by ears, else by its least-area triangulation. (The mesh's answers
+  // are kept for the loop's tries: faces are only taken out and put back until it is closed.)
+  met_.clear();
   setUp();
-  gatherNearLoop();
+  gatherNear(loop_);
   bool closed = close();
   if (!closed) {
     setUp();
@@ -739,10 +756,17 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
   // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
   // first that lets it close): the face's third point must be inside the mesh (its fan closed),
   // so that it joins the loop and leaves with a closed fan again.
+  bool widerGathered = false;
   for (size_t i = 0; i < m && !closed; ++i) {
     const std::uint32_t f = face_[i], v = original[i], w = original[(i + 1) % m];
     const std::uint32_t o = thirdPoint(f, v, w);
     if (!alive[f] || !pem.closed(o)) continue;
+    if (!widerGathered) { // (once for every try, before a face is taken out: the loop and all the third points)
+      tryPoints_.assign(original.begin(), original.end());
+      for (size_t j = 0; j < m; ++j) tryPoints_.push_back(thirdPoint(face_[j], original[j], original[(j + 1) % m]));
+      gatherNear(tryPoints_);
+      widerGathered = true;
+    }
     alive[f] = 0;
     pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
     setUp();
@@ -751,7 +775,6 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
       loop_.insert(loop_.begin() + std::ptrdiff_t(i + 1), o);
       opp_[i] = thirdPoint(static_cast<std::uint32_t>(f1), v, o);
       opp_.insert(opp_.begin() + std::ptrdiff_t(i + 1), thirdPoint(static_cast<std::uint32_t>(f2), o, w));
-      gatherNearLoop();
       closed = close();
     }
     if (closed) {
@@ -816,7 +839,7 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
         if (complete) opp_[i] = thirdPoint(static_cast<std::uint32_t>(f), cur[i], cur[(i + 1) % mk]);
       }
       if (!complete) break;
-      gatherNearLoop();
+      if (!gatheredHolds(loop_)) gatherNear(loop_);
       closed = close();
     }
     if (closed) {
