@@ -39,7 +39,7 @@ private:
   };
   struct Ear {
     double score;
-    std::uint32_t index;
+    std::uint32_t index; // the point's rank_
   };
   static constexpr long kMaxCells = 64;
 
@@ -132,6 +132,7 @@ private:
   // loop_[i]→loop_[i+1]; face_[i]: that face in the loop as found.
   std::vector<std::uint32_t> loop_, opp_, face_;
   std::vector<Ear> ears_;
+  std::vector<std::uint32_t> rank_; // close(): each loop point's place in the loop at the start
   std::vector<std::array<size_t, 3>> split_;
   std::vector<signed char> valid_; // leastArea's state and area per triangle, best value and split per part
   std::vector<double> area_, best_;

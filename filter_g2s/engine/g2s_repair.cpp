@@ -492,6 +492,31 @@ bool Mesher::HolePass::meetsMesh(const Triangle& t) const {
 bool Mesher::HolePass::close() {
   PointEdgeMap& pem = m_.pem_;
   pending_.clear();
+  // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours',
+  // then loop order (rank_: each point's place in the loop at the start, which the loop keeps as
+  // points leave it). A cut changes the ears at its two neighbours only; an ear that fails a test
+  // fails it at every later step (edges, faces pending and points' entries are only added while
+  // the loop is closed), so it is dropped.
+  rank_.resize(loop_.size());
+  for (size_t i = 0; i < rank_.size(); ++i) rank_[i] = static_cast<std::uint32_t>(i);
+  auto earAt = [&](size_t i, Ear& e) { // the ear at loop place i, if its score lets it be cut
+    const size_t m = loop_.size(), p = (i + m - 1) % m, q = (i + 1) % m;
+    const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
+    const P3 nt = normal(v1, v0, v2);
+    if (isZero(nt)) return false;
+    const double c1 = cosBetween(nt, normal(v0, v1, opp_[p]));
+    const double c2 = cosBetween(nt, normal(v1, v2, opp_[i]));
+    e = Ear{std::min(c1, c2), rank_[i]};
+    return e.score >= minCos_;
+  };
+  auto before = [](const Ear& x, const Ear& y) { return x.score != y.score ? x.score > y.score : x.index < y.index; };
+  ears_.clear();
+  if (loop_.size() > 3) {
+    Ear e;
+    for (size_t i = 0; i < loop_.size(); ++i)
+      if (earAt(i, e)) ears_.push_back(e);
+    std::sort(ears_.begin(), ears_.end(), before);
+  }
   bool ok = true;
   while (ok && loop_.size() >= 3) {
     const size_t m = loop_.size();
@@ -508,38 +533,36 @@ bool Mesher::HolePass::close() {
       }
       break;
     }
-    // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours'.
-    ears_.clear();
-    for (size_t i = 0; i < m; ++i) {
+    bool cut = false;
+    for (size_t k = 0; k < ears_.size() && !cut;) {
+      const size_t i = size_t(std::lower_bound(rank_.begin(), rank_.end(), ears_[k].index) - rank_.begin());
       const size_t p = (i + m - 1) % m, q = (i + 1) % m;
       const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
-      const P3 nt = normal(v1, v0, v2);
-      if (isZero(nt)) continue;
-      const double c1 = cosBetween(nt, normal(v0, v1, opp_[p]));
-      const double c2 = cosBetween(nt, normal(v1, v2, opp_[i]));
-      const double score = std::min(c1, c2);
-      if (score >= minCos_) ears_.push_back(Ear{score, static_cast<std::uint32_t>(i)});
-    }
-    std::sort(ears_.begin(), ears_.end(), [](const Ear& x, const Ear& y) {
-      return x.score != y.score ? x.score > y.score : x.index < y.index;
-    });
-    bool cut = false;
-    for (const Ear& e : ears_) {
-      const size_t i = e.index, p = (i + m - 1) % m, q = (i + 1) % m;
-      const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
-      // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
-      if (pem.triangles(v0, v2) != 0) continue;
       const Triangle t{v1, v0, v2};
-      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) continue;
+      // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
+      if (pem.triangles(v0, v2) != 0 || !pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) {
+        ears_.erase(ears_.begin() + std::ptrdiff_t(k));
+        continue;
+      }
       // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
       pem.addTriangle(t[0], t[1], t[2]);
       pending_.push_back(t);
       // v1 leaves the loop; the new loop edge v0→v2 has v1 opposite.
+      const std::uint32_t rp = rank_[p], rq = rank_[q];
       opp_[p] = v1;
       loop_.erase(loop_.begin() + std::ptrdiff_t(i));
       opp_.erase(opp_.begin() + std::ptrdiff_t(i));
+      rank_.erase(rank_.begin() + std::ptrdiff_t(i));
+      ears_.erase(ears_.begin() + std::ptrdiff_t(k));
       cut = true;
-      break;
+      // The ears at v0 and v2 anew.
+      ears_.erase(std::remove_if(ears_.begin(), ears_.end(), [&](const Ear& x) { return x.index == rp || x.index == rq; }),
+                  ears_.end());
+      if (m - 1 > 3) {
+        Ear e;
+        for (size_t at : {p < i ? p : p - 1, q > i ? q - 1 : q})
+          if (earAt(at, e)) ears_.insert(std::lower_bound(ears_.begin(), ears_.end(), e, before), e);
+      }
     }
     ok = cut;
   }
