@@ -457,12 +457,23 @@ bool Mesher::HolePass::gatheredHolds(const std::vector<std::uint32_t>& points) c
 }
 
 bool Mesher::HolePass::meetsNoPending(const Triangle& t) const {
+  if (pending_.empty()) return true;
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
-  for (const Triangle& p : pending_)
-    if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+  }
+  for (const Triangle& p : pending_) {
+    bool beside = false; // (boxes apart: nothing in common)
+    for (int d = 0; d < 3 && !beside; ++d)
+      beside = std::max({pts_[p[0]][d], pts_[p[1]][d], pts_[p[2]][d]}) < lo[d] ||
+               std::min({pts_[p[0]][d], pts_[p[1]][d], pts_[p[2]][d]}) > hi[d];
+    if (!beside && !apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
         facesIntersect(pos, t, p))
       return false;
+  }
   return true;
 }
 
