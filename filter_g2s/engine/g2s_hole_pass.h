@@ -136,6 +136,7 @@ private:
   std::vector<std::array<size_t, 3>> split_;
   std::vector<signed char> valid_; // leastArea's state and area per triangle, best value and split per part
   std::vector<double> area_, best_;
+  std::vector<P3> edgeNormal_;
   std::vector<std::array<size_t, 2>> failedParts_;
   std::vector<std::uint32_t> bestSplit_;
 };

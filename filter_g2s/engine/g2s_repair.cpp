@@ -599,7 +599,10 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
   // untested), 2 passes all (area known from -1 on).
   std::vector<signed char>& valid = valid_;
   valid.assign(n * n * n, -2);
-  area_.resize(n * n * n);
+  if (area_.size() < n * n * n) area_.resize(n * n * n); // (read only where valid says it was set)
+  // The normals of the faces on the loop edges, for the fold tests.
+  edgeNormal_.resize(n);
+  for (size_t a = 0; a < n; ++a) edgeNormal_[a] = normal(loop_[a], loop_[(a + 1) % n], opp_[a]);
   auto areaOf = [&](size_t i, size_t j, size_t k) {
     const size_t at = (i * n + j) * n + k;
     if (valid[at] == -2) {
@@ -621,8 +624,7 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
       if (e < 0) {
         ok = pem.triangles(loop_[side[s][0]], loop_[side[s][1]]) == 0;
       } else {
-        const size_t a = size_t(e);
-        ok = cosBetween(nt, normal(loop_[a], loop_[(a + 1) % n], opp_[a])) >= minCos_;
+        ok = cosBetween(nt, edgeNormal_[size_t(e)]) >= minCos_;
       }
     }
     v = ok ? (crossingTest ? 1 : 2) : 0;
