@@ -51,7 +51,13 @@ private:
     return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
   }
   // Face f into the long-face cells when an edge of it is longer than `longest_`.
-  void addIfLong(std::uint32_t f);
+  void addIfLong(std::uint32_t f) {
+    const Triangle& t = m_.tri_[f];
+    const double limit = longest_ * longest_;
+    const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
+    if ((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit) addLong(f);
+  }
+  void addLong(std::uint32_t f);
   // The live face on half-edge v→w (-1: none), and its third point.
   std::int64_t faceOn(std::uint32_t v, std::uint32_t w) const;
   std::uint32_t thirdPoint(std::uint32_t f, std::uint32_t v, std::uint32_t w) const {

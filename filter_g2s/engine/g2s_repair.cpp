@@ -311,11 +311,8 @@ long Mesher::HolePass::cellRange(const Triangle& t, long lo[3], long hi[3]) cons
   return boxCells(boxLo, boxHi, lo, hi);
 }
 
-void Mesher::HolePass::addIfLong(std::uint32_t f) {
+void Mesher::HolePass::addLong(std::uint32_t f) {
   const Triangle& t = m_.tri_[f];
-  const double limit = longest_ * longest_;
-  const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
-  if (!((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit)) return;
   long lo[3], hi[3];
   if (cellRange(t, lo, hi) > kMaxCells) {
     hugeFaces_.push_back(f);
