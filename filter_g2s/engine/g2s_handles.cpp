@@ -283,6 +283,7 @@ private:
   std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> added_;
   RegionGenus genus_;
   std::vector<char> inRing_, mark_;
+  std::vector<std::uint32_t> localIndex_; // regrow: the points' places in its local mesher
   std::vector<std::uint8_t> nt_;
   std::vector<std::uint32_t> nv_, ring_, next_, region_, cut_, rest_, outside_, blockers_;
 };
@@ -383,7 +384,11 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges, bool regr
       }
     }
     if (ok) {
-      for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
+      for (const auto& loop : loops) { // (one loop left open undoes the cut: the rest are not tried)
+        const size_t before = hs.closed;
+        m_.holePass_->closeLoop(loop, hs);
+        if (hs.closed == before) break;
+      }
       ok = any && hs.closed == loops.size();
     }
   }
@@ -547,9 +552,19 @@ bool Mesher::HandlePass::regrow(const std::vector<std::vector<std::uint32_t>>& l
     });
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  // (Each point's place in ids, ~0u for none, until this returns.)
+  if (localIndex_.empty()) localIndex_.assign(m_.grid_.size(), ~0u);
+  for (size_t i = 0; i < ids.size(); ++i) localIndex_[ids[i]] = std::uint32_t(i);
+  struct Unmark {
+    std::vector<std::uint32_t>& index;
+    const std::vector<std::uint32_t>& ids;
+    ~Unmark() {
+      for (std::uint32_t g : ids) index[g] = ~0u;
+    }
+  } unmark{localIndex_, ids};
   auto localOf = [&](std::uint32_t g) -> std::int64_t {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), g);
-    return it != ids.end() && *it == g ? std::int64_t(it - ids.begin()) : -1;
+    const std::uint32_t i = localIndex_[g];
+    return i != ~0u ? std::int64_t(i) : -1;
   };
   // The live faces with all three points among them are fixed.
   std::vector<std::uint32_t> fixed;

@@ -39,7 +39,7 @@ private:
   };
   struct Ear {
     double score;
-    std::uint32_t index;
+    std::uint32_t index; // the point's rank_
   };
   static constexpr long kMaxCells = 64;
 
@@ -51,7 +51,13 @@ private:
     return (std::uint64_t(x & 0x1FFFFF) << 42) | (std::uint64_t(y & 0x1FFFFF) << 21) | std::uint64_t(z & 0x1FFFFF);
   }
   // Face f into the long-face cells when an edge of it is longer than `longest_`.
-  void addIfLong(std::uint32_t f);
+  void addIfLong(std::uint32_t f) {
+    const Triangle& t = m_.tri_[f];
+    const double limit = longest_ * longest_;
+    const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
+    if ((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit) addLong(f);
+  }
+  void addLong(std::uint32_t f);
   // The live face on half-edge v→w (-1: none), and its third point.
   std::int64_t faceOn(std::uint32_t v, std::uint32_t w) const;
   std::uint32_t thirdPoint(std::uint32_t f, std::uint32_t v, std::uint32_t w) const {
@@ -65,16 +71,21 @@ private:
     const double d = std::sqrt(x.SquaredNorm() * y.SquaredNorm());
     return d > 0 ? (x * y) / d : -1.0;
   }
-  // The faces that a triangle on the points of loop_ can meet, into near_.
-  void gatherNearLoop();
-  // Triangle t meets no live face, no face added before and none of pending_ (exactly).
-  // (ear: a triangle of close(), whose answer about the mesh's faces is kept for the loop.)
-  bool meetsNothing(const Triangle& t, bool ear = false) const;
-  // Ear t meets a live face near loop_ (anyMeeting), answered once per ear and loop.
-  bool earMeetsMesh(const Triangle& t) const;
-  // The live faces near loop_ (near_ and the long ones) that t meets: stop(face) for each, until it
-  // returns true (then true).
-  template <class F> bool anyMeeting(const Triangle& t, F&& stop) const;
+  // The faces that a triangle on `points` can meet, into near_ (the points into gathered_).
+  void gatherNear(const std::vector<std::uint32_t>& points);
+  // Every one of `points` was gathered for.
+  bool gatheredHolds(const std::vector<std::uint32_t>& points) const;
+  // Triangle t (on gathered points) meets no live face, no face added before and none of pending_
+  // (exactly).
+  bool meetsNothing(const Triangle& t) const;
+  // Triangle t meets none of pending_ (exactly).
+  bool meetsNoPending(const Triangle& t) const;
+  // Triangle t (on gathered points) meets a live face (anyMeeting): the faces it meets are found
+  // once per loop (met_), live or not.
+  bool meetsMesh(const Triangle& t) const;
+  // The live faces near the gathered points (near_ and the long ones) that t meets, or (all) those
+  // of near_ live or not: stop(face) for each, until it returns true (then true).
+  template <bool all, class F> bool anyMeeting(const Triangle& t, F&& stop) const;
   // loop_'s triangulation of least area among those whose triangles pass the ears' tests, and the
   // crossing test if crossingTest: its triangles as loop positions (i, j, k), outermost first.
   bool leastArea(bool crossingTest, std::vector<std::array<size_t, 3>>& out);
@@ -107,11 +118,18 @@ private:
   std::vector<Triangle> pending_;
   std::vector<std::uint32_t> seen_;
   std::vector<NearFace> near_;
-  struct EarAnswer {
-    Triangle t;
-    bool meets;
+  struct TriangleHash {
+    size_t operator()(const Triangle& t) const {
+      return size_t((std::uint64_t(t[0]) * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t(t[1]) * 0xC2B2AE3D27D4EB4Full) ^
+                    (std::uint64_t(t[2]) * 0x165667B19E3779F9ull));
+    }
   };
-  mutable std::vector<EarAnswer> earAnswers_; // earMeetsMesh's answers for this loop
+  struct Met {
+    std::uint32_t face; // a face met (~0u: none known)
+    bool none;          // no face met, live or not
+  };
+  mutable std::unordered_map<Triangle, Met, TriangleHash> met_; // meetsMesh's answers for this loop
+  std::vector<std::uint32_t> gathered_, tryPoints_;
   // The long faces whose box meets the loop's box are in near_ too (from the cells that box
   // covers), unless it covers more than kMaxCells cells: then each triangle looks them up.
   bool nearHasLong_ = false;
@@ -120,7 +138,13 @@ private:
   // loop_[i]→loop_[i+1]; face_[i]: that face in the loop as found.
   std::vector<std::uint32_t> loop_, opp_, face_;
   std::vector<Ear> ears_;
+  std::vector<std::uint32_t> rank_; // close(): each loop point's place in the loop at the start
   std::vector<std::array<size_t, 3>> split_;
+  std::vector<signed char> valid_; // leastArea's state and area per triangle, best value and split per part
+  std::vector<double> area_, best_;
+  std::vector<P3> edgeNormal_;
+  std::vector<std::array<size_t, 2>> failedParts_;
+  std::vector<std::uint32_t> bestSplit_;
 };
 
 

@@ -315,11 +315,8 @@ long Mesher::HolePass::cellRange(const Triangle& t, long lo[3], long hi[3]) cons
   return boxCells(boxLo, boxHi, lo, hi);
 }
 
-void Mesher::HolePass::addIfLong(std::uint32_t f) {
+void Mesher::HolePass::addLong(std::uint32_t f) {
   const Triangle& t = m_.tri_[f];
-  const double limit = longest_ * longest_;
-  const P3 &a = pts_[t[0]], &b = pts_[t[1]], &c = pts_[t[2]];
-  if (!((a - b).SquaredNorm() > limit || (b - c).SquaredNorm() > limit || (c - a).SquaredNorm() > limit)) return;
   long lo[3], hi[3];
   if (cellRange(t, lo, hi) > kMaxCells) {
     hugeFaces_.push_back(f);
@@ -347,28 +344,29 @@ std::int64_t Mesher::HolePass::faceOn(std::uint32_t v, std::uint32_t w) const {
   return -1;
 }
 
-// Any triangle on the loop's points lies in the ball around them and in their box. A face with
-// no edge longer than longest_ that meets it has a point within longest/√3 of it (every point of a
+// Any triangle on the points lies in the ball around them and in their box. A face with no edge
+// longer than longest_ that meets it has a point within longest/√3 of it (every point of a
 // triangle with edges of at most L is within L/√3 of a corner), hence in the ball grown by that
-// much; the longer ones are found in longCells_. Only the faces whose box meets the loop's box are
-// kept (meetsNothing rejects a face whose box misses the triangle's, so the others could never
-// count), with their boxes. Gathered once per loop: alive_ does not change between the gathering
-// and the loop's closure.
-void Mesher::HolePass::gatherNearLoop() {
+// much; the longer ones are found in longCells_. Only the faces whose box meets the points' box
+// are kept (meetsNothing rejects a face whose box misses the triangle's, so the others could never
+// count), with their boxes. The live faces are gathered; those taken out later are skipped by
+// the tests.
+void Mesher::HolePass::gatherNear(const std::vector<std::uint32_t>& points) {
   near_.clear();
+  gathered_.assign(points.begin(), points.end());
+  std::sort(gathered_.begin(), gathered_.end());
   P3 c(0, 0, 0);
-  for (std::uint32_t v : loop_) c += pts_[v];
-  c /= double(loop_.size());
+  for (std::uint32_t v : points) c += pts_[v];
+  c /= double(points.size());
   double r2 = 0, lo[3], hi[3];
-  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[loop_[0]][d];
-  for (std::uint32_t v : loop_) {
+  for (int d = 0; d < 3; ++d) lo[d] = hi[d] = pts_[points[0]][d];
+  for (std::uint32_t v : points) {
     r2 = std::max(r2, (pts_[v] - c).SquaredNorm());
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min(lo[d], pts_[v][d]);
       hi[d] = std::max(hi[d], pts_[v][d]);
     }
   }
-  earAnswers_.clear(); // (the answers were for the faces near the loop before)
   // Each face once (inNear_ marks the faces seen, cleared after).
   seen_.clear();
   auto consider = [&](std::uint32_t g) {
@@ -409,7 +407,7 @@ void Mesher::HolePass::gatherNearLoop() {
   for (std::uint32_t g : seen_) inNear_[g] = 0;
 }
 
-template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
+template <bool all, class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop) const {
   const std::vector<P3>& pos = pos_;
   const PlaneOf tPlane(pos, t);
   double lo[3], hi[3];
@@ -448,35 +446,89 @@ template <class F> bool Mesher::HolePass::anyMeeting(const Triangle& t, F&& stop
   for (const NearFace& e : near_)
     if (!(e.hi[0] < lo[0] || e.lo[0] > hi[0] || e.hi[1] < lo[1] || e.lo[1] > hi[1] || e.hi[2] < lo[2] ||
           e.lo[2] > hi[2]) &&
-        meetsBeside(m_.tri_[e.g]) && stop(e.g))
+        (all || m_.alive_[e.g]) && meetsBeside(m_.tri_[e.g]) && stop(e.g))
       return true;
   return false;
 }
 
-bool Mesher::HolePass::meetsNothing(const Triangle& t, bool ear) const {
-  const std::vector<P3>& pos = pos_;
-  const PlaneOf tPlane(pos, t);
-  for (const Triangle& p : pending_)
-    if (!apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
-        facesIntersect(pos, t, p))
-      return false;
-  return !(ear ? earMeetsMesh(t) : anyMeeting(t, [](std::uint32_t) { return true; }));
+bool Mesher::HolePass::gatheredHolds(const std::vector<std::uint32_t>& points) const {
+  for (std::uint32_t v : points)
+    if (!std::binary_search(gathered_.begin(), gathered_.end(), v)) return false;
+  return true;
 }
 
-bool Mesher::HolePass::earMeetsMesh(const Triangle& t) const {
-  // The mesh's faces do not change while one loop is closed (gatherNearLoop), and close() tries
-  // the ears that failed again at each later step: each ear's answer is kept for the loop.
-  for (const EarAnswer& k : earAnswers_)
-    if (k.t[0] == t[0] && k.t[1] == t[1] && k.t[2] == t[2]) return k.meets;
-  const bool meets = anyMeeting(t, [](std::uint32_t) { return true; });
-  earAnswers_.push_back(EarAnswer{t, meets});
-  return meets;
+bool Mesher::HolePass::meetsNoPending(const Triangle& t) const {
+  if (pending_.empty()) return true;
+  const std::vector<P3>& pos = pos_;
+  const PlaneOf tPlane(pos, t);
+  double lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    lo[d] = std::min({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+    hi[d] = std::max({pts_[t[0]][d], pts_[t[1]][d], pts_[t[2]][d]});
+  }
+  for (const Triangle& p : pending_) {
+    bool beside = false; // (boxes apart: nothing in common)
+    for (int d = 0; d < 3 && !beside; ++d)
+      beside = std::max({pts_[p[0]][d], pts_[p[1]][d], pts_[p[2]][d]}) < lo[d] ||
+               std::min({pts_[p[0]][d], pts_[p[1]][d], pts_[p[2]][d]}) > hi[d];
+    if (!beside && !apartByPlane(pos, tPlane, t, p) && !apartByPlane(pos, p, t) && !apartInShadow(pos, tPlane, t, p) &&
+        facesIntersect(pos, t, p))
+      return false;
+  }
+  return true;
+}
+
+bool Mesher::HolePass::meetsNothing(const Triangle& t) const { return meetsNoPending(t) && !meetsMesh(t); }
+
+bool Mesher::HolePass::meetsMesh(const Triangle& t) const {
+  if (!nearHasLong_) return anyMeeting<false>(t, [](std::uint32_t) { return true; }); // (rare: not kept)
+  // Kept per triangle: a face it meets (it meets the mesh while that face is live), or that it
+  // meets none, live or not (near_ was gathered with every face that can be live while the loop
+  // is closed: faces are only taken out and put back meanwhile).
+  Met& known = met_.emplace(t, Met{~0u, false}).first->second;
+  if (known.none) return false;
+  if (known.face != ~0u && m_.alive_[known.face]) return true;
+  bool any = false;
+  known.face = ~0u;
+  anyMeeting<true>(t, [&](std::uint32_t g) {
+    any = true;
+    if (!m_.alive_[g]) return false;
+    known.face = g;
+    return true;
+  });
+  known.none = !any;
+  return known.face != ~0u;
 }
 
 // False with pending_ and the point–edge map as before.
 bool Mesher::HolePass::close() {
   PointEdgeMap& pem = m_.pem_;
   pending_.clear();
+  // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours',
+  // then loop order (rank_: each point's place in the loop at the start, which the loop keeps as
+  // points leave it). A cut changes the ears at its two neighbours only; an ear that fails a test
+  // fails it at every later step (edges, faces pending and points' entries are only added while
+  // the loop is closed), so it is dropped.
+  rank_.resize(loop_.size());
+  for (size_t i = 0; i < rank_.size(); ++i) rank_[i] = static_cast<std::uint32_t>(i);
+  auto earAt = [&](size_t i, Ear& e) { // the ear at loop place i, if its score lets it be cut
+    const size_t m = loop_.size(), p = (i + m - 1) % m, q = (i + 1) % m;
+    const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
+    const P3 nt = normal(v1, v0, v2);
+    if (isZero(nt)) return false;
+    const double c1 = cosBetween(nt, normal(v0, v1, opp_[p]));
+    const double c2 = cosBetween(nt, normal(v1, v2, opp_[i]));
+    e = Ear{std::min(c1, c2), rank_[i]};
+    return e.score >= minCos_;
+  };
+  auto before = [](const Ear& x, const Ear& y) { return x.score != y.score ? x.score > y.score : x.index < y.index; };
+  ears_.clear();
+  if (loop_.size() > 3) {
+    Ear e;
+    for (size_t i = 0; i < loop_.size(); ++i)
+      if (earAt(i, e)) ears_.push_back(e);
+    std::sort(ears_.begin(), ears_.end(), before);
+  }
   bool ok = true;
   while (ok && loop_.size() >= 3) {
     const size_t m = loop_.size();
@@ -486,45 +538,43 @@ bool Mesher::HolePass::close() {
       ok = !isZero(normal(t[0], t[1], t[2])) && pem.canAddTriangle(t[0], t[1], t[2]);
       for (size_t i = 0; i < 3 && ok; ++i)
         ok = cosBetween(normal(t[0], t[1], t[2]), normal(loop_[i], loop_[(i + 1) % 3], opp_[i])) >= minCos_;
-      ok = ok && meetsNothing(t, true);
+      ok = ok && meetsNothing(t);
       if (ok) {
         pem.addTriangle(t[0], t[1], t[2]);
         pending_.push_back(t);
       }
       break;
     }
-    // Ears by score: the smaller cosine of the new triangle's normal with its two neighbours'.
-    ears_.clear();
-    for (size_t i = 0; i < m; ++i) {
+    bool cut = false;
+    for (size_t k = 0; k < ears_.size() && !cut;) {
+      const size_t i = size_t(std::lower_bound(rank_.begin(), rank_.end(), ears_[k].index) - rank_.begin());
       const size_t p = (i + m - 1) % m, q = (i + 1) % m;
       const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
-      const P3 nt = normal(v1, v0, v2);
-      if (isZero(nt)) continue;
-      const double c1 = cosBetween(nt, normal(v0, v1, opp_[p]));
-      const double c2 = cosBetween(nt, normal(v1, v2, opp_[i]));
-      const double score = std::min(c1, c2);
-      if (score >= minCos_) ears_.push_back(Ear{score, static_cast<std::uint32_t>(i)});
-    }
-    std::sort(ears_.begin(), ears_.end(), [](const Ear& x, const Ear& y) {
-      return x.score != y.score ? x.score > y.score : x.index < y.index;
-    });
-    bool cut = false;
-    for (const Ear& e : ears_) {
-      const size_t i = e.index, p = (i + m - 1) % m, q = (i + 1) % m;
-      const std::uint32_t v0 = loop_[p], v1 = loop_[i], v2 = loop_[q];
-      // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
-      if (pem.triangles(v0, v2) != 0) continue;
       const Triangle t{v1, v0, v2};
-      if (!pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t, true)) continue;
+      // The new edge v0–v2 must not exist (it would get a third triangle or join two fans).
+      if (pem.triangles(v0, v2) != 0 || !pem.canAddTriangle(t[0], t[1], t[2]) || !meetsNothing(t)) {
+        ears_.erase(ears_.begin() + std::ptrdiff_t(k));
+        continue;
+      }
       // Recorded at once (the loop's later ears see its edges), taken back if the loop fails.
       pem.addTriangle(t[0], t[1], t[2]);
       pending_.push_back(t);
       // v1 leaves the loop; the new loop edge v0→v2 has v1 opposite.
+      const std::uint32_t rp = rank_[p], rq = rank_[q];
       opp_[p] = v1;
       loop_.erase(loop_.begin() + std::ptrdiff_t(i));
       opp_.erase(opp_.begin() + std::ptrdiff_t(i));
+      rank_.erase(rank_.begin() + std::ptrdiff_t(i));
+      ears_.erase(ears_.begin() + std::ptrdiff_t(k));
       cut = true;
-      break;
+      // The ears at v0 and v2 anew.
+      ears_.erase(std::remove_if(ears_.begin(), ears_.end(), [&](const Ear& x) { return x.index == rp || x.index == rq; }),
+                  ears_.end());
+      if (m - 1 > 3) {
+        Ear e;
+        for (size_t at : {p < i ? p : p - 1, q > i ? q - 1 : q})
+          if (earAt(at, e)) ears_.insert(std::lower_bound(ears_.begin(), ears_.end(), e, before), e);
+      }
     }
     ok = cut;
   }
@@ -546,10 +596,26 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
     if (a == 0 && b == n - 1) return std::int64_t(n - 1);
     return -1;
   };
-  std::vector<signed char> valid(n * n * n, -1);
-  auto isValid = [&](size_t i, size_t j, size_t k) {
+  // Per triangle: -2 untouched, -1 area known (area_), 0 fails, 1 passes the ears' tests (crossing
+  // untested), 2 passes all (area known from -1 on).
+  std::vector<signed char>& valid = valid_;
+  valid.assign(n * n * n, -2);
+  if (area_.size() < n * n * n) area_.resize(n * n * n); // (read only where valid says it was set)
+  // The normals of the faces on the loop edges, for the fold tests.
+  edgeNormal_.resize(n);
+  for (size_t a = 0; a < n; ++a) edgeNormal_[a] = normal(loop_[a], loop_[(a + 1) % n], opp_[a]);
+  auto areaOf = [&](size_t i, size_t j, size_t k) {
+    const size_t at = (i * n + j) * n + k;
+    if (valid[at] == -2) {
+      const Triangle t = tri(i, j, k);
+      area_[at] = 0.5 * normal(t[0], t[1], t[2]).Norm();
+      valid[at] = -1;
+    }
+    return area_[at];
+  };
+  auto cheapValid = [&](size_t i, size_t j, size_t k) -> signed char& {
     signed char& v = valid[(i * n + j) * n + k];
-    if (v >= 0) return v == 1;
+    if (v >= 0) return v;
     const Triangle t = tri(i, j, k);
     const P3 nt = normal(t[0], t[1], t[2]);
     bool ok = !isZero(nt) && pem.canAddTriangle(t[0], t[1], t[2]);
@@ -559,46 +625,75 @@ bool Mesher::HolePass::leastArea(bool crossingTest, std::vector<std::array<size_
       if (e < 0) {
         ok = pem.triangles(loop_[side[s][0]], loop_[side[s][1]]) == 0;
       } else {
-        const size_t a = size_t(e);
-        ok = cosBetween(nt, normal(loop_[a], loop_[(a + 1) % n], opp_[a])) >= minCos_;
+        ok = cosBetween(nt, edgeNormal_[size_t(e)]) >= minCos_;
       }
     }
-    ok = ok && (!crossingTest || meetsNothing(t));
-    v = ok ? 1 : 0;
-    return ok;
+    v = ok ? (crossingTest ? 1 : 2) : 0;
+    return v;
   };
+  auto crossingValid = [&](size_t i, size_t j, size_t k) {
+    signed char& v = cheapValid(i, j, k);
+    if (v == 1) v = meetsNothing(tri(i, j, k)) ? 2 : 0;
+    return v == 2;
+  };
+  // The crossing test is the costly one, and few triangles fail it: the least area is found with
+  // the untested triangles allowed (lazy), and only its triangles are tested; the failing ones
+  // are forbidden and the least area found again (for the parts that hold one), until its
+  // triangles pass. Every value is then at most the exact one and the optimum's is reached, so
+  // the optimum and, for each part, its first best split are the exact ones (sums round
+  // monotonically). After kLazyRounds rounds the triangles are tested as they come (eager): the
+  // same result.
+  constexpr int kLazyRounds = 32;
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> best(n * n, inf);
-  std::vector<std::uint32_t> split(n * n, 0);
+  std::vector<double>& best = best_;
+  std::vector<std::uint32_t>& split = bestSplit_;
+  best.assign(n * n, inf);
+  split.assign(n * n, 0);
   for (size_t i = 0; i + 1 < n; ++i) best[i * n + i + 1] = 0;
-  for (size_t len = 2; len < n; ++len)
-    for (size_t i = 0; i + len < n; ++i) {
-      const size_t k = i + len;
-      for (size_t j = i + 1; j < k; ++j) {
-        const double sub = best[i * n + j] + best[j * n + k];
-        if (!(sub < best[i * n + k])) continue;
-        const Triangle t = tri(i, j, k);
-        const double cost = sub + 0.5 * normal(t[0], t[1], t[2]).Norm();
-        // (The tests only where the triangle would improve the best: the same choice, fewer tests.)
-        if (cost < best[i * n + k] && isValid(i, j, k)) {
-          best[i * n + k] = cost;
-          split[i * n + k] = std::uint32_t(j);
+  std::vector<std::array<size_t, 2>>& failed = failedParts_; // (i, k) of the triangles that failed
+  failed.clear();
+  for (int round = 0;; ++round) {
+    const bool eager = round >= kLazyRounds;
+    for (size_t len = 2; len < n; ++len)
+      for (size_t i = 0; i + len < n; ++i) {
+        const size_t k = i + len;
+        if (round > 0 && !eager) { // (only the parts holding a forbidden triangle change)
+          bool holds = false;
+          for (const auto& f : failed) holds = holds || (i <= f[0] && f[1] <= k);
+          if (!holds) continue;
+        }
+        double& b = best[i * n + k];
+        b = inf;
+        split[i * n + k] = 0;
+        for (size_t j = i + 1; j < k; ++j) {
+          const double sub = best[i * n + j] + best[j * n + k];
+          if (!(sub < b)) continue;
+          const double cost = sub + areaOf(i, j, k);
+          // (The tests only where the triangle would improve the best: the same choice, fewer tests.)
+          if (cost < b && (eager ? crossingValid(i, j, k) : cheapValid(i, j, k) != 0)) {
+            b = cost;
+            split[i * n + k] = std::uint32_t(j);
+          }
         }
       }
+    if (!(best[n - 1] < inf)) return false;
+    // The triangles, outermost first.
+    out.clear();
+    std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
+    while (!stack.empty()) {
+      const size_t i = stack.back()[0], k = stack.back()[1];
+      stack.pop_back();
+      if (k < i + 2) continue;
+      const size_t j = split[i * n + k];
+      out.push_back({i, j, k});
+      stack.push_back({i, j});
+      stack.push_back({j, k});
     }
-  if (!(best[n - 1] < inf)) return false;
-  // The triangles, outermost first.
-  std::vector<std::array<size_t, 2>> stack{{0, n - 1}};
-  while (!stack.empty()) {
-    const size_t i = stack.back()[0], k = stack.back()[1];
-    stack.pop_back();
-    if (k < i + 2) continue;
-    const size_t j = split[i * n + k];
-    out.push_back({i, j, k});
-    stack.push_back({i, j});
-    stack.push_back({j, k});
+    failed.clear();
+    for (const auto& s : out)
+      if (!crossingValid(s[0], s[1], s[2])) failed.push_back({s[0], s[2]});
+    if (failed.empty()) return true;
   }
-  return true;
 }
 
 bool Mesher::HolePass::closeLeastArea() {
@@ -610,7 +705,7 @@ bool Mesher::HolePass::closeLeastArea() {
   bool ok = true;
   for (const auto& s : split_) {
     const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
-    ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNothing(t);
+    ok = pem.canAddTriangle(t[0], t[1], t[2]) && meetsNoPending(t); // (leastArea tested the mesh's faces)
     // Folds across its diagonals, against the triangles on their other side (added before it or after).
     const P3 nt = normal(t[0], t[1], t[2]);
     for (const Triangle& u : pending_) {
@@ -643,11 +738,11 @@ bool Mesher::HolePass::blockers(const std::vector<std::uint32_t>& original, std:
   opp_.resize(m);
   for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
   pending_.clear();
-  gatherNearLoop();
+  gatherNear(loop_);
   if (!leastArea(false, split_)) return false;
   for (const auto& s : split_) {
     const Triangle t{loop_[s[1]], loop_[s[0]], loop_[s[2]]};
-    anyMeeting(t, [&](std::uint32_t g) {
+    anyMeeting<false>(t, [&](std::uint32_t g) {
       out.push_back(g);
       return false;
     });
@@ -685,9 +780,11 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
     opp_.resize(m);
     for (size_t i = 0; i < m; ++i) opp_[i] = thirdPoint(face_[i], original[i], original[(i + 1) % m]);
   };
-  // The loop closed as it is: by ears, else by its least-area triangulation.
+  // The loop closed as it is: by ears, else by its least-area triangulation. (The mesh's answers
+  // are kept for the loop's tries: faces are only taken out and put back until it is closed.)
+  met_.clear();
   setUp();
-  gatherNearLoop();
+  gatherNear(loop_);
   bool closed = close();
   if (!closed) {
     setUp();
@@ -696,10 +793,17 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
   // Where it cannot be closed, the loop with one of its faces taken out (in loop order, the
   // first that lets it close): the face's third point must be inside the mesh (its fan closed),
   // so that it joins the loop and leaves with a closed fan again.
+  bool widerGathered = false;
   for (size_t i = 0; i < m && !closed; ++i) {
     const std::uint32_t f = face_[i], v = original[i], w = original[(i + 1) % m];
     const std::uint32_t o = thirdPoint(f, v, w);
     if (!alive[f] || !pem.closed(o)) continue;
+    if (!widerGathered) { // (once for every try, before a face is taken out: the loop and all the third points)
+      tryPoints_.assign(original.begin(), original.end());
+      for (size_t j = 0; j < m; ++j) tryPoints_.push_back(thirdPoint(face_[j], original[j], original[(j + 1) % m]));
+      gatherNear(tryPoints_);
+      widerGathered = true;
+    }
     alive[f] = 0;
     pem.removeTriangle(tri[f][0], tri[f][1], tri[f][2]);
     setUp();
@@ -708,7 +812,6 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
       loop_.insert(loop_.begin() + std::ptrdiff_t(i + 1), o);
       opp_[i] = thirdPoint(static_cast<std::uint32_t>(f1), v, o);
       opp_.insert(opp_.begin() + std::ptrdiff_t(i + 1), thirdPoint(static_cast<std::uint32_t>(f2), o, w));
-      gatherNearLoop();
       closed = close();
     }
     if (closed) {
@@ -773,7 +876,7 @@ void Mesher::HolePass::closeLoop(const std::vector<std::uint32_t>& original, Hol
         if (complete) opp_[i] = thirdPoint(static_cast<std::uint32_t>(f), cur[i], cur[(i + 1) % mk]);
       }
       if (!complete) break;
-      gatherNearLoop();
+      if (!gatheredHolds(loop_)) gatherNear(loop_);
       closed = close();
     }
     if (closed) {
