@@ -740,6 +740,23 @@ TEST(G2SPass, HandlePassLeavesTheObjectsHandlesAlone) {
   EXPECT_EQ(o.live(), canonical(oct));
 }
 
+// The handle count of faces put in alone, before any pass and without a seed: the frame's one
+// handle, and none on an octahedron.
+TEST(G2SPass, HandleCountOfFacesPutInAlone) {
+  Piece p;
+  std::vector<Triangle> faces;
+  frame(p, faces);
+  p.build();
+  ASSERT_TRUE(p.add(faces));
+  EXPECT_EQ(p.m->handleCount(p.m->boundary()), 1u);
+  Piece o;
+  std::vector<Triangle> oct;
+  octahedron(o.pts, oct, 1, P3(0, 0, 0));
+  o.build();
+  ASSERT_TRUE(o.add(oct));
+  EXPECT_EQ(o.m->handleCount(o.m->boundary()), 0u);
+}
+
 // --- Orientation ---
 
 // An octahedron given facing in is turned to face out (every face, and the point–edge map with it).

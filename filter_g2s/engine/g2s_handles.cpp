@@ -154,7 +154,7 @@ size_t Mesher::handleCount(const BoundaryCount& boundary) const {
   // change).
   const bool noneRemoved = foldsRefused_ + otherSheetBalls_ == 0 &&
                            std::find(alive_.begin(), alive_.end(), char(0)) == alive_.end();
-  if (noneRemoved) {
+  if (noneRemoved && seeds_ > 0) { // (faces put in without a seed, as a test does, are no component's)
     const long faces = long(tri_.size()), edges = (3 * faces + long(boundary.edges)) / 2;
     const long twice = 2 * long(seeds_) - (long(usedPoints_) - edges + faces) - long(boundary.loops);
     if (twice <= 0) return 0;
@@ -165,7 +165,7 @@ size_t Mesher::handleCount(const BoundaryCount& boundary) const {
   std::vector<char> used(n, 0);
   size_t faces = 0;
   for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f]) continue;
+    if (!live(f)) continue;
     ++faces;
     for (std::uint32_t v : tri_[f]) used[v] = 1;
   }

@@ -117,7 +117,7 @@ void Mesher::unionComponents(std::vector<std::uint32_t>& parent) const {
     return i;
   };
   for (size_t f = 0; f < tri_.size(); ++f) {
-    if (!alive_[f]) continue;
+    if (!live(f)) continue;
     for (int k = 1; k < 3; ++k) {
       const std::uint32_t r0 = root(tri_[f][0]), r1 = root(tri_[f][k]);
       if (r0 != r1) parent[std::max(r0, r1)] = std::min(r0, r1);

@@ -424,6 +424,8 @@ private:
   // boundary edge).
   bool choose(FrontEdge& e, int& level);
   bool isolated(std::uint32_t v) const { return edgeCount_[v] == 0; }
+  // Triangle f is live: every triangle is until the first pass sizes alive_ (the growth removes none).
+  bool live(size_t f) const { return alive_.size() != tri_.size() || alive_[f] != 0; }
   // (Both loads and a bitwise and: no branch, the outcome is data-dependent.)
   bool interior(std::uint32_t v) const { return (edgeCount_[v] != 0) & (freeEdges_[v] == 0); }
   // The mean length of v's edges (0 without one). (Defined here, inline: the searches ask it
