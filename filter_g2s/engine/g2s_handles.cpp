@@ -384,11 +384,7 @@ bool Mesher::HandlePass::cutAndClose(HandleStat& st, int maxLoopEdges, bool regr
       }
     }
     if (ok) {
-      for (const auto& loop : loops) { // (one loop left open undoes the cut: the rest are not tried)
-        const size_t before = hs.closed;
-        m_.holePass_->closeLoop(loop, hs);
-        if (hs.closed == before) break;
-      }
+      for (const auto& loop : loops) m_.holePass_->closeLoop(loop, hs);
       ok = any && hs.closed == loops.size();
     }
   }
