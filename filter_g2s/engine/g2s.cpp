@@ -84,7 +84,8 @@ void grow(Mesher& mesher, Stat& stat, Progress& progress) {
 std::vector<P3> layerNormals(const InputCloud& input, const Mesher& mesher) {
   std::vector<P3> normals;
   const std::vector<std::uint32_t>& order = mesher.order();
-  if (input.normals.size() != order.size()) return normals;
+  // (order() holds the mesher's points, fewer than the input's where clumps were merged.)
+  if (input.normals.empty()) return normals;
   normals.resize(order.size());
   size_t usable = 0;
   for (size_t i = 0; i < order.size(); ++i) {
