@@ -341,6 +341,40 @@ TEST(G2SBuild, OpenPiecesFaceTheWayTheLayersNormalsPoint) {
   }
 }
 
+// The same with a dense clump on the sheet (meshed as one point, so the mesher holds fewer points
+// than the layer): the layer's normals still orient it, both ways.
+TEST(G2SBuild, OpenPieceWithAClumpFacesTheWayTheLayersNormalsPoint) {
+  std::vector<growth::Vec3d> pts;
+  growth::Random rng(12);
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) {
+      const double dx = 0.3 * (double(rng.next() % 1001) / 1000.0 - 0.5), dy = 0.3 * (double(rng.next() % 1001) / 1000.0 - 0.5);
+      pts.emplace_back(0.01 * (i + dx), 0.01 * (j + dy), 0.0);
+    }
+  for (int k = 0; k < 40; ++k) // within a twentieth of a spacing of (0.2, 0.2, 0)
+    pts.emplace_back(0.2 + 0.0004 * (double(rng.next() % 1001) / 1000.0 - 0.5),
+                     0.2 + 0.0004 * (double(rng.next() % 1001) / 1000.0 - 0.5), 0.0);
+  for (double sign : {1.0, -1.0}) {
+    SCOPED_TRACE(sign);
+    growth::Cloud c;
+    c.points = pts;
+    c.normals.assign(pts.size(), growth::Vec3d(0, 0, sign));
+    Mesh cloud(new CMeshO);
+    growth::toMesh(c, *cloud);
+    const auto r = run(cloud);
+    expectValidOutput(cloud, r);
+    ASSERT_EQ(r->stat.clumps, 1u);
+    ASSERT_GT(r->stat.faces, 2500u);
+    size_t up = 0, down = 0;
+    for (const auto& f : r->mesh.face) {
+      const growth::Vec3d a = growth::Vec3d::Construct(f.cP(0)), b = growth::Vec3d::Construct(f.cP(1)),
+                         d = growth::Vec3d::Construct(f.cP(2));
+      (((b - a) ^ (d - a))[2] > 0 ? up : down) += 1;
+    }
+    EXPECT_EQ(sign > 0 ? down : up, 0u);
+  }
+}
+
 // Where a point is full (here the capacity is lowered to 64 neighbours, below the 120 each pole
 // needs), the growth goes on: the edges that would add a neighbour there stay open, counted,
 // and only around the poles; the rest of the sphere closes.
