@@ -142,6 +142,7 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   outputs["pieces_dropped"] = int(st.componentsDropped); // smaller than minComponentFaces
   outputs["sphere_diameter"] = double(st.sphereDiameter);
   outputs["seconds"] = double(st.seconds);
+  outputs["memory_peak_bytes"] = double(st.memory.peak); // the engine's own arrays, at their largest sum
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
   Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "
@@ -171,5 +172,10 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "
       "output %.3f)", st.seconds, st.secondsInput, st.secondsSplats, st.secondsBoxGrid, st.secondsGrowth,
       st.secondsTriangulation, st.secondsCleanup, st.secondsOutput);
+  const double mib = 1.0 / (1024.0 * 1024.0);
+  Log("Sphere Packing: memory peak %.1f MiB, %.0f bytes per point (input %.1f, box grid %.1f, growth %.1f, faces "
+      "%.1f, output %.1f MiB)", mib * double(st.memory.peak), double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)),
+      mib * double(st.memory.input), mib * double(st.memory.boxGrid), mib * double(st.memory.growth),
+      mib * double(st.memory.faces), mib * double(st.memory.output));
   return true;
 }

@@ -420,7 +420,7 @@ TEST(BoxGrid, SameGridForAnyNumberOfThreads) {
       double minDot = 0;
       const Point3d n = sampling.maxMinDirection(c.normals, g.pointsBegin(b), g.pointCount(b), &minDot);
       ASSERT_EQ(g.boxNormal(b), n);
-      ASSERT_EQ(g.boxMinDot(b), minDot);
+      ASSERT_EQ(g.boxMinDot(b), double(float(minDot))); // kept as a float
       if (minDot < 0) {
         EXPECT_TRUE(g.dTooLarge(b));
       }
@@ -524,4 +524,19 @@ TEST(SphereSampling, ACopyAnswersLikeTheOriginal) {
   double a = 0, b = 0;
   EXPECT_EQ(s.maxMinDirection(normals, idx.data(), idx.size(), &a), copy.maxMinDirection(normals, idx.data(), idx.size(), &b));
   EXPECT_EQ(a, b);
+}
+
+// The box normals are kept as two-byte codes of S_F's directions: every direction of S_F, and the
+// (0, 0, 1) of a box without normals, comes back bit for bit; anything else is refused.
+TEST(SphereSampling, DirectionsAreCodedInTwoBytesBitForBit) {
+  const SphereSampling s(6);
+  for (size_t i = 0; i < s.size(); ++i) {
+    const Point3d dir = s.direction(i);
+    const std::uint16_t code = s.code(dir);
+    ASSERT_NE(code, SphereSampling::kUpCode);
+    ASSERT_EQ(s.decode(code), dir) << i;
+  }
+  EXPECT_EQ(s.code(Point3d(0, 0, 1)), SphereSampling::kUpCode);
+  EXPECT_EQ(s.decode(SphereSampling::kUpCode), Point3d(0, 0, 1));
+  EXPECT_THROW(s.code(Point3d(0.6, 0.8, 0)), std::logic_error);
 }

@@ -1189,3 +1189,27 @@ TEST(SpherePackerFarPoints, ANearSmallPartStaysWhenAFarPointIsLeftOut) {
   for (const auto& v : r->mesh.vert) onSmall += (Point3d::Construct(v.cP()) - Point3d(0, 3, 0)).Norm() < 0.2 ? 1 : 0;
   EXPECT_GT(onSmall, 20u);
 }
+
+// The engine's memory (Stat::memory): each part counted, the peak at least what is held at once at
+// the end of the growth and at the output, and within the budget per input point at d = 2.5 mean
+// spacings (the scale of issue-sized clouds: about 0.66 output vertices per point).
+TEST(SpherePackerMemory, PeakAndItsPartsAreReportedWithinTheBudget) {
+  growth::CloudSpec spec = torusSpec();
+  spec.count = 200000;
+  const growth::CloudArrays cloud = growth::toArrays(growth::generateCloud(spec));
+  sp::Params p;
+  p.sphereDiameter = 2.5 * growth::meanSpacing(cloud.points);
+  growth::MeshArrays out;
+  sp::Stat st;
+  sp::build(cloud, out, p, st);
+  const sp::Stat::Memory& m = st.memory;
+  const size_t n = spec.count;
+  EXPECT_GE(m.input, 2 * 24 * n + 4 * n); // positions and normals in double, radii in float
+  EXPECT_GE(m.boxGrid, 4 * n);            // at least one reference per point
+  EXPECT_GE(m.growth, st.vertices * (24 + 24)); // positions and normals of G
+  EXPECT_GE(m.faces, 12 * st.faces);
+  EXPECT_GE(m.output, 24 * st.vertices + 12 * st.faces);
+  EXPECT_GE(m.peak, m.input + m.boxGrid + m.growth);
+  EXPECT_GE(m.peak, m.faces + m.output);
+  EXPECT_LE(double(m.peak) / double(n), 600.0) << "bytes per point";
+}

@@ -16,15 +16,11 @@ void BorderGraph::reserve(size_t n) {
   pos_.reserve(n);
   nrm_.reserve(n);
   rot_.reserve(n);
-  frame_.reserve(n);
 }
 
 std::uint32_t BorderGraph::addVertex(const Vec3d& position, const Vec3d& normal) {
   pos_.push_back(position);
   nrm_.push_back(normal);
-  Vec3d e1, e2;
-  tangentFrame(normal, e1, e2);
-  frame_.push_back(Frame{e1, e2});
   rot_.emplace_back();
   return static_cast<std::uint32_t>(pos_.size() - 1);
 }
@@ -48,9 +44,11 @@ inline double ccw(double a, double b) {
 } // namespace
 
 double BorderGraph::angleAt(std::uint32_t v, const Vec3d& x) const {
-  const Frame& f = frame_[v];
+  // The tangent frame is recomputed (the same bits every time): keeping it cost 48 bytes a vertex.
+  Vec3d e1, e2;
+  tangentFrame(nrm_[v], e1, e2);
   const Vec3d t = x - pos_[v];
-  return pseudoAngle(t * f.e1, t * f.e2);
+  return pseudoAngle(t * e1, t * e2);
 }
 
 int BorderGraph::gapOf(std::uint32_t v, const Vec3d& target) const {
@@ -177,7 +175,8 @@ size_t BorderGraph::loneVertices() const {
 }
 
 size_t BorderGraph::memoryBytes() const {
-  return pos_.capacity() * sizeof(Vec3d) * 2 + rot_.capacity() * sizeof(Rotation);
+  return pos_.capacity() * sizeof(Vec3d) + nrm_.capacity() * sizeof(Vec3d) +
+         rot_.capacity() * sizeof(Rotation);
 }
 
 } // namespace growth

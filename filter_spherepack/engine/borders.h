@@ -110,10 +110,6 @@ private:
   void insertAt(std::uint32_t v, int pos, std::uint32_t u);
 
   std::vector<Vec3d> pos_, nrm_;
-  struct Frame {
-    Vec3d e1, e2; // tangentFrame(normal(v)), kept: angleAt() is asked for often
-  };
-  std::vector<Frame> frame_;
   std::vector<Rotation> rot_;
   size_t edges_ = 0;
 };

@@ -1,4 +1,6 @@
 #include "box_grid.h"
+
+#include <stdexcept>
 #include <growth/error.h>
 #include <growth/parallel.h>
 #include <growth/progress.h>
@@ -56,6 +58,36 @@ Vec3d SphereSampling::faceDirection(int face, double u, double v) const {
 Vec3d SphereSampling::leafCentre(int face, std::uint32_t col, std::uint32_t row) const {
   const double m = double(std::uint32_t(1) << level_);
   return faceDirection(face, -1.0 + (2.0 * double(col) + 1.0) / m, -1.0 + (2.0 * double(row) + 1.0) / m);
+}
+
+constexpr std::uint16_t SphereSampling::kUpCode; // (odr-used: tests compare with it)
+
+std::uint16_t SphereSampling::code(const Vec3d& dir) const {
+  // The leaf whose centre dir is: found as sumLeaf finds the leaf of a direction (a centre lies
+  // half a cell from its leaf's edges), then checked bit for bit.
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (std::abs(dir[a]) > std::abs(dir[axis])) axis = a;
+  if (std::abs(dir[axis]) > 0 && level_ <= 6) {
+    const int face = 2 * axis + (dir[axis] > 0 ? 0 : 1);
+    const double inv = 1.0 / std::abs(dir[axis]);
+    const std::uint32_t cells = std::uint32_t(1) << level_;
+    auto leaf = [&](double t) {
+      const double f = (t * inv + 1.0) * 0.5 * double(cells);
+      return static_cast<std::uint32_t>(std::min(double(cells - 1), std::max(0.0, std::floor(f))));
+    };
+    const std::uint32_t col = leaf(dir[(axis + 1) % 3]), row = leaf(dir[(axis + 2) % 3]);
+    if (leafCentre(face, col, row) == dir)
+      return static_cast<std::uint16_t>((std::uint32_t(face) << (2 * level_)) | (row << level_) | col);
+  }
+  if (dir == Vec3d(0, 0, 1)) return kUpCode;
+  throw std::logic_error("box normal: not a direction of the sphere sampling");
+}
+
+Vec3d SphereSampling::decode(std::uint16_t code) const {
+  if (code == kUpCode) return Vec3d(0, 0, 1);
+  const std::uint32_t mask = (std::uint32_t(1) << level_) - 1;
+  return leafCentre(int(code >> (2 * level_)), code & mask, (std::uint32_t(code) >> level_) & mask);
 }
 
 Vec3d SphereSampling::direction(size_t i) const {
@@ -348,17 +380,43 @@ const SphereSampling& boxNormalSampling() {
 
 size_t BoxGrid::memoryBytes() const {
   return hash_.memoryBytes() + start_.capacity() * sizeof(std::uint32_t) +
-         points_.capacity() * sizeof(std::uint32_t) + boxNormal_.capacity() * sizeof(Vec3d) +
-         boxMinDot_.capacity() * sizeof(double) + boxNormal_.size() * 2 + pending_.capacity() * sizeof(std::uint32_t) +
-         twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(Vec3d);
+         points_.capacity() * sizeof(std::uint32_t) + normalCode_.capacity() * sizeof(std::uint16_t) +
+         minDot_.capacity() * sizeof(float) + normalCode_.size() * sizeof(std::atomic<std::uint8_t>) + pending_.capacity() * sizeof(std::uint32_t) +
+         twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(Vec3d) +
+         pendingCorner_.capacity() * sizeof(Vec3d) + flags_.capacity();
+}
+
+void BoxGrid::release() {
+  stopNormals();
+  hash_ = KeyHash();
+  std::vector<std::uint32_t>().swap(start_);
+  HugeVector<std::uint32_t>().swap(points_);
+  std::vector<std::int32_t>().swap(twin_);
+  std::vector<Vec3d>().swap(split_);
+  layerBoxes_ = 0;
+  std::vector<std::uint16_t>().swap(normalCode_);
+  std::vector<float>().swap(minDot_);
+  state_.reset();
+  std::vector<std::uint8_t>().swap(flags_);
+  std::vector<std::uint32_t>().swap(pending_);
+  std::vector<Vec3d>().swap(pendingCorner_);
+}
+
+void BoxGrid::storeNormal(size_t b, const Vec3d& normal, double minDot) const {
+  normalCode_[b] = sampling_.code(normal);
+  float m = float(minDot);
+  if (minDot < 0 && !(m < 0)) m = -std::numeric_limits<float>::denorm_min();
+  minDot_[b] = m;
 }
 
 void BoxGrid::computeNormal(int box, const SphereSampling& sampling) const {
   const size_t b = size_t(box);
   std::uint8_t expected = kNone;
   if (state_[b].compare_exchange_strong(expected, kBusy, std::memory_order_acq_rel)) {
-    boxNormal_[b] = sampling.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &boxMinDot_[b]);
-    if (counted_[b] && !opposed_[b] && boxMinDot_[b] < 0) ++dTooLargeCount_;
+    double minDot = 0;
+    const Vec3d n = sampling.maxMinDirection(*normals_, pointsBegin(box), pointCount(box), &minDot);
+    storeNormal(b, n, minDot);
+    if (flags_[b] == kCounted && minDot < 0) ++dTooLargeCount_;
     state_[b].store(kDone, std::memory_order_release);
     return;
   }
@@ -386,7 +444,7 @@ void BoxGrid::startNormals(int threads, const Vec3d& from) {
       if (stop_.load(std::memory_order_relaxed)) return;
       if (state_[b].load(std::memory_order_acquire) == kNone) computeNormal(int(b), sampling);
     }
-    for (size_t b = 0; b < boxNormal_.size(); ++b) {
+    for (size_t b = 0; b < normalCode_.size(); ++b) {
       if (stop_.load(std::memory_order_relaxed)) return;
       if (state_[b].load(std::memory_order_acquire) == kNone) computeNormal(int(b), sampling);
     }
@@ -681,13 +739,12 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<Vec3d>& normals, bool 
   Progress* progress = progress_;
   std::vector<std::uint32_t>& start = g_.start_;
   HugeVector<std::uint32_t>& points = g_.points_;
-  assignHuge(g_.boxNormal_, boxes, Vec3d(0, 0, 0));
-  assignHuge(g_.boxMinDot_, boxes, std::numeric_limits<double>::quiet_NaN());
+  assignHuge(g_.normalCode_, boxes, std::uint16_t(SphereSampling::kUpCode));
+  assignHuge(g_.minDot_, boxes, std::numeric_limits<float>::quiet_NaN());
   g_.state_.reset(new std::atomic<std::uint8_t>[boxes]);
   prefault(g_.state_.get(), boxes * sizeof(std::atomic<std::uint8_t>));
   for (size_t b = 0; b < boxes; ++b) g_.state_[b].store(kNone, std::memory_order_relaxed);
-  assignHuge(g_.counted_, boxes, std::uint8_t(0));
-  assignHuge(g_.opposed_, boxes, std::uint8_t(0));
+  assignHuge(g_.flags_, boxes, std::uint8_t(0));
   std::vector<std::uint8_t>& eager = eager_;
   assignHuge(eager, boxes, std::uint8_t(0));
   assignHuge(ownBox_, ownCoord_.size() / 3, 0); // box id of each own box: offset (0, 0, 0)
@@ -730,7 +787,7 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<Vec3d>& normals, bool 
       const size_t k = layers.firstEnd;
       if (layers.twoSided) {
         splits[size_t(worker)].push_back(Split{std::uint32_t(b), std::uint32_t(k), layers.split});
-        g_.opposed_[b] = 1;
+        g_.flags_[b] |= kOpposed;
         ++tooLarge;
       } else {
         dropped += n - k;
@@ -739,11 +796,13 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<Vec3d>& normals, bool 
       // Not "d too large" when some direction of S_F has a positive minimum: the maximum found by
       // maxMinDirection is at least that (up to rounding, hence the margin).
       if (eager[b] || !(sampling.quickLowerBound(normals, idx, k) > 1e-9)) {
-        g_.counted_[b] = 1;
+        g_.flags_[b] |= kCounted;
         if (eager[b] && deferNormals) continue; // computed later, on the compacted lists
-        g_.boxNormal_[b] = sampling.maxMinDirection(normals, idx, k, &g_.boxMinDot_[b]);
+        double minDot = 0;
+        const Vec3d n = sampling.maxMinDirection(normals, idx, k, &minDot);
+        g_.storeNormal(b, n, minDot);
         g_.state_[b].store(kDone, std::memory_order_relaxed);
-        if (g_.boxMinDot_[b] < 0 && !g_.opposed_[b]) ++tooLarge;
+        if (minDot < 0 && !(g_.flags_[b] & kOpposed)) ++tooLarge;
       }
     }
     workerDropped[size_t(worker)] += dropped;
@@ -790,14 +849,13 @@ void BoxGrid::Builder::filterAndNormals(const std::vector<Vec3d>& normals, bool 
     g_.twin_[boxes + t] = static_cast<std::int32_t>(twinOf[t]);
     g_.split_[t] = split[t].dir;
   }
-  g_.boxNormal_.resize(all, Vec3d(0, 0, 0));
-  g_.boxMinDot_.resize(all, std::numeric_limits<double>::quiet_NaN());
+  g_.normalCode_.resize(all, std::uint16_t(SphereSampling::kUpCode));
+  g_.minDot_.resize(all, std::numeric_limits<float>::quiet_NaN());
   std::unique_ptr<std::atomic<std::uint8_t>[]> state(new std::atomic<std::uint8_t>[all]);
   for (size_t b = 0; b < all; ++b)
     state[b].store(b < boxes ? g_.state_[b].load(std::memory_order_relaxed) : kNone, std::memory_order_relaxed);
   g_.state_.swap(state);
-  g_.counted_.resize(all, 0);
-  g_.opposed_.resize(all, 0);
+  g_.flags_.resize(all, 0);
   g_.layerBoxes_ = boxes;
 }
 
@@ -819,11 +877,10 @@ void BoxGrid::build(const std::vector<Vec3d>& pts, const std::vector<Vec3d>& nor
   stopNormals();
   start_.assign(1, 0);
   points_.clear();
-  boxNormal_.clear();
-  boxMinDot_.clear();
+  normalCode_.clear();
+  minDot_.clear();
   state_.reset();
-  counted_.clear();
-  opposed_.clear();
+  flags_.clear();
   twin_.clear();
   split_.clear();
   layerBoxes_ = 0;

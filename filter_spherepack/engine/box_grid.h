@@ -41,41 +41,39 @@ public:
 
   void reset(size_t expected) {
     size_t cap = 16;
-    while (cap < 2 * expected) cap *= 2;
+    while (cap * kLoadDen < expected * kLoadNum) cap *= 2;
     // Written whole here: made resident in one call (huge_pages.h), not page by page.
-    assignHuge(keys_, cap, Key(0));
-    assignHuge(vals_, cap, -1);
+    assignHuge(slots_, cap, Slot{0, -1});
     mask_ = cap - 1;
     shift_ = 64;
     for (size_t c = cap; c > 1; c >>= 1) --shift_;
     size_ = 0;
   }
   size_t size() const { return size_; }
-  size_t memoryBytes() const { return keys_.capacity() * sizeof(Key) + vals_.capacity() * sizeof(int); }
+  size_t memoryBytes() const { return slots_.capacity() * sizeof(Slot); }
 
   // Value stored for k, or -1.
   int find(Key k) const {
     size_t h = slot(k);
     for (;;) {
-      const int v = vals_[h];
-      if (v < 0) return -1;
-      if (keys_[h] == k) return v;
+      const Slot& s = slots_[h];
+      if (s.val < 0) return -1;
+      if (s.key == k) return s.val;
       h = (h + 1) & mask_;
     }
   }
   // Value stored for k; when absent, stores `value` and returns it.
   int findOrInsert(Key k, int value) {
-    if (2 * (size_ + 1) > keys_.size()) grow();
+    if ((size_ + 1) * kLoadNum > slots_.size() * kLoadDen) grow();
     size_t h = slot(k);
     for (;;) {
-      const int v = vals_[h];
-      if (v < 0) {
-        keys_[h] = k;
-        vals_[h] = value;
+      Slot& s = slots_[h];
+      if (s.val < 0) {
+        s = Slot{k, value};
         ++size_;
         return value;
       }
-      if (keys_[h] == k) return v;
+      if (s.key == k) return s.val;
       h = (h + 1) & mask_;
     }
   }
@@ -83,9 +81,10 @@ public:
   void set(Key k, int value) {
     size_t h = slot(k);
     for (;;) {
-      if (vals_[h] < 0) return;
-      if (keys_[h] == k) {
-        vals_[h] = value;
+      Slot& s = slots_[h];
+      if (s.val < 0) return;
+      if (s.key == k) {
+        s.val = value;
         return;
       }
       h = (h + 1) & mask_;
@@ -93,21 +92,29 @@ public:
   }
 
 private:
+  // At most kLoadDen / kLoadNum = 3/4 of the slots are used: probes stay short (linear probing,
+  // about 2.5 slots per successful look-up), with a third of the memory of a half-full table.
+  static constexpr size_t kLoadNum = 4, kLoadDen = 3;
+  // A key and its value side by side, 12 bytes: a probe reads one cache line, not two.
+#pragma pack(push, 4)
+  struct Slot {
+    Key key;
+    std::int32_t val; // -1: empty
+  };
+#pragma pack(pop)
+  static_assert(sizeof(Slot) == 12, "packed slot");
   // Fibonacci hashing: the top bits of the product depend on every bit of the key (the bits just
   // above bit 20, taken before, ignored the x of a box key and the first vertex of an edge key,
   // so keys that differ only there all probed one run of slots).
   size_t slot(Key k) const { return static_cast<size_t>((k * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow() {
-    std::vector<Key> k;
-    std::vector<int> v;
-    k.swap(keys_);
-    v.swap(vals_);
-    reset(k.size());
-    for (size_t i = 0; i < k.size(); ++i)
-      if (v[i] >= 0) findOrInsert(k[i], v[i]);
+    HugeVector<Slot> old;
+    old.swap(slots_);
+    reset(old.size());
+    for (const Slot& s : old)
+      if (s.val >= 0) findOrInsert(s.key, s.val);
   }
-  std::vector<Key> keys_;
-  std::vector<int> vals_;
+  HugeVector<Slot> slots_;
   size_t mask_ = 0, size_ = 0;
   int shift_ = 64; // 64 − log2(capacity)
 };
@@ -178,6 +185,12 @@ public:
   // The same by testing every direction of S_F (reference for tests).
   Vec3d maxMinDirectionBruteForce(const std::vector<Vec3d>& normals, const std::uint32_t* idx,
                                          size_t count, double* minDot = nullptr) const;
+
+  // A direction maxMinDirection() returns (a direction of S_F, or (0, 0, 1) for no normals) in two
+  // bytes, and back bit for bit: the box normals are stored so. Level 6 at most.
+  static constexpr std::uint16_t kUpCode = 0xffff; // (0, 0, 1)
+  std::uint16_t code(const Vec3d& dir) const;
+  Vec3d decode(std::uint16_t code) const;
 
   // A lower bound of maxMinDirection()'s value, at the cost of one pass over the normals: their
   // minimum at the direction of S_F nearest to their sum (the search's first guess); −∞ when the
@@ -292,8 +305,8 @@ public:
   const BoxIndexer& indexer() const { return index_; }
   // Boxes of the partition that refer to a point (ids 0 .. boxCount() − 1); the second layers of
   // the two-sided boxes have the ids after them (up to layerCount()).
-  size_t boxCount() const { return layerBoxes_ > 0 ? layerBoxes_ : boxNormal_.size(); }
-  size_t layerCount() const { return boxNormal_.size(); }
+  size_t boxCount() const { return layerBoxes_ > 0 ? layerBoxes_ : normalCode_.size(); }
+  size_t layerCount() const { return normalCode_.size(); }
   size_t twoSidedBoxes() const { return layerCount() - boxCount(); }
   // Id of the box containing p, or -1 when that box refers to no point. In a two-sided box, the
   // layer of the points whose normals the paper's filter keeps.
@@ -318,14 +331,15 @@ public:
   // The box normal (sec. 4.1). Computed by build() (or startNormals()) for most boxes, on first
   // use for the others: the same value either way, but a first use writes to the grid, so these
   // accessors must not be called from several threads at once.
-  const Vec3d& boxNormal(int box) const {
+  Vec3d boxNormal(int box) const {
     if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
-    return boxNormal_[size_t(box)];
+    return sampling_.decode(normalCode_[size_t(box)]);
   }
-  // max over S_F of min_p <n_p, n>: negative means d looked too large in this box.
+  // max over S_F of min_p <n_p, n>, rounded to float (keeping its sign): negative means d looked
+  // too large in this box.
   double boxMinDot(int box) const {
     if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
-    return boxMinDot_[size_t(box)];
+    return double(minDot_[size_t(box)]);
   }
   // Sec. 4.1: d is too large in a box when its box normal has a negative scalar product with the
   // normals of points registered in it, before the normal filter (which drops the points whose
@@ -334,7 +348,7 @@ public:
   // points (and at least four): thin plates with 2:1 point counts on their sides give a third, a
   // box across a fold up to a half; scattered flipped normals (1 in 17 in the tests) stay below.
   static constexpr double kOpposedShare = 0.25;
-  bool dTooLarge(int box) const { return opposed_[size_t(box)] != 0 || boxMinDot(box) < 0; }
+  bool dTooLarge(int box) const { return (flags_[size_t(box)] & kOpposed) != 0 || boxMinDot(box) < 0; }
   size_t dTooLargeCount() const { return dTooLargeCount_.load(); }
   size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
   // Points whose boxes in reach were not all among the 27 around their own box (rounding at a box
@@ -342,6 +356,8 @@ public:
   size_t pointsAtBoxFaces() const { return facePoints_; }
   size_t references() const { return points_.size(); }
   size_t memoryBytes() const;
+  // Frees the grid (after finishNormals()); the counts stay. The grid is empty afterwards.
+  void release();
 
 private:
   static constexpr int kSpan = 16; // boxes per axis within the largest reach (2·7 + 2)
@@ -362,13 +378,16 @@ private:
   std::vector<Vec3d> split_;    // per second layer (id − boxCount()): the direction that
                                        // splits its box (its side: <n, split> < 0)
   size_t layerBoxes_ = 0;              // boxCount() when some box is two-sided, else 0
-  mutable std::vector<Vec3d> boxNormal_;
-  mutable std::vector<double> boxMinDot_;
+  // Per box: the box normal (SphereSampling::code), and the best minimum as a float of the same sign.
+  mutable std::vector<std::uint16_t> normalCode_;
+  mutable std::vector<float> minDot_;
+  // Stores box b's normal and minimum (the sign of minDot kept where float rounds it to zero).
+  void storeNormal(size_t b, const Vec3d& normal, double minDot) const;
   std::unique_ptr<std::atomic<std::uint8_t>[]> state_; // per box: kNone, kBusy, kDone
-  std::vector<std::uint8_t> counted_;  // boxes that count for dTooLargeCount (all but those the
-                                       // quick test cleared)
-  std::vector<std::uint8_t> opposed_;  // boxes where the normal filter dropped a point (counted
-                                       // as "d too large" by build())
+  // Per box, set by build(): kCounted, a box that counts for dTooLargeCount (all but those the
+  // quick test cleared); kOpposed, a box that saw two sides (counted as "d too large" by build()).
+  static constexpr std::uint8_t kCounted = 1, kOpposed = 2;
+  std::vector<std::uint8_t> flags_;
   std::vector<std::uint32_t> pending_; // deferred boxes, for startNormals()/finishNormals()
   std::vector<Vec3d> pendingCorner_; // their lower corners, until startNormals() orders them
   mutable SphereSampling sampling_{0}; // for the box normals computed on first use

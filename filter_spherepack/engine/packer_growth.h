@@ -51,6 +51,18 @@ public:
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNoVertex, kNoVertex);
   }
   const SplatVertexLists& lists() const { return lists_; }
+  // Frees what only the growth uses (vertex grid, splat vertex lists, queue): the graph G stays.
+  void releaseSearch() {
+    vgrid_ = VertexGrid();
+    lists_ = SplatVertexLists();
+    queue_.release();
+    std::vector<std::uint32_t>().swap(near_);
+    std::vector<Found>().swap(found_);
+  }
+  // Bytes of the growth's arrays (graph, vertex grid, splat vertex lists, candidate queue).
+  size_t memoryBytes() const {
+    return graph_.memoryBytes() + vgrid_.memoryBytes() + lists_.memoryBytes() + queue_.memoryBytes();
+  }
 
   // Sec. 3.3: the two starting vertices (already projected onto their splats).
   void start(const Vec3d& s1, std::uint32_t splat1, const Vec3d& s2, std::uint32_t splat2) {

@@ -122,11 +122,13 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool fl
 // The report: warnings on what the cloud made the method do (unoriented normals, d too large for
 // sec. 4.1's normal filter, faces removed, points unreached), and the errors of a non-manifold or
 // empty result.
-void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
-            bool noFaces, Stat& st) {
-  const double opposite = double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
-                              ? oppositeNeighbourShare(in.points, in.normals, scale.medianSpacing)
-                              : 0.0;
+double oppositeNormalShare(const InputCloud& in, const CloudScale& scale, const Stat& st) {
+  return double(st.boxesDTooLarge) >= kTwoSidedBoxShareToCheck * double(st.boxes)
+             ? oppositeNeighbourShare(in.points, in.normals, scale.medianSpacing)
+             : 0.0;
+}
+
+void report(size_t inputPoints, double opposite, double d, double s, const BorderGraph& g, bool noFaces, Stat& st) {
   if (opposite >= kOppositeNeighbourShare)
     st.warnings.push_back("The normals look unoriented: for " + fmt(100 * opposite) + " % of the points the "
                           "nearest point's normal points to the other side, and in " +
@@ -154,8 +156,8 @@ void report(const InputCloud& in, const CloudScale& scale, double d, double s, c
                           "smaller d), misregistered scans.");
   if (st.nonManifoldVertices > 0 || st.nonManifoldEdges > 0) // cannot happen: makeManifold
     throw std::logic_error("sphere packing: the output is not manifold after the clean-up");
-  if (st.unreachedPoints * 100 > in.points.size())
-    st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(in.points.size())) +
+  if (st.unreachedPoints * 100 > inputPoints)
+    st.warnings.push_back(fmt(100.0 * double(st.unreachedPoints) / double(inputPoints)) +
                           " % of the points have no vertex within d: parts too small or too sparse to hold a "
                           "triangle of side d (a growth was started on every part that could), or the growth "
                           "was stopped by a defect there.");

@@ -147,8 +147,11 @@ void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const P
 // packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, and the report.
 void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, MeshArrays& out,
                Stat& st);
-void report(const InputCloud& in, const CloudScale& scale, double d, double s, const BorderGraph& g,
-            bool noFaces, Stat& st);
+// The share of the points whose nearest point's normal points to the other side, asked for when
+// many boxes see normals that disagree (Stat::boxesDTooLarge); 0 otherwise.
+double oppositeNormalShare(const InputCloud& in, const CloudScale& scale, const Stat& st);
+// `opposite`: oppositeNormalShare, taken before the input was freed.
+void report(size_t inputPoints, double opposite, double d, double s, const BorderGraph& g, bool noFaces, Stat& st);
 
 } // namespace detail
 } // namespace spherepack

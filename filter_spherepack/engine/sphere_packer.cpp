@@ -141,7 +141,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   // Sec. 4.3: splat radii.
   progress.phase("Sphere packing: splat sizes", 2, 10);
   st.secondsInput = watch.lap();
-  const std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
+  std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
   st.secondsSplats = watch.lap();
 
   // Sec. 4.1: box grid.
@@ -160,12 +160,26 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   progress.phase("Sphere packing: growing", 21, 92);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
   growEveryPart(growth, first, in, radius, grid, order, d, st);
-  std::vector<std::uint32_t>().swap(order.orig);
-  std::vector<std::uint32_t>().swap(order.rank);
   const BorderGraph& g = growth.graph();
   grid.finishNormals();
   st.boxesDTooLarge = grid.dTooLargeCount();
   st.boxesTwoSided = grid.twoSidedBoxes();
+  st.unreachedPoints = unreachedPoints(growth, in.points.size());
+  const size_t inputPoints = in.points.size();
+  const double opposite = oppositeNormalShare(in, scale, st);
+  // The peak: everything is held at the end of the growth. What the regions and the output do not
+  // need is freed before them.
+  st.memory.input = in.points.capacity() * sizeof(Vec3d) + in.normals.capacity() * sizeof(Vec3d) +
+                    radius.capacity() * sizeof(float) + (order.orig.capacity() + order.rank.capacity()) * sizeof(std::uint32_t);
+  st.memory.boxGrid = grid.memoryBytes();
+  st.memory.growth = growth.memoryBytes();
+  st.memory.peak = st.memory.input + st.memory.boxGrid + st.memory.growth;
+  grid.release();
+  growth.releaseSearch();
+  in = InputCloud();
+  order = Renumbering();
+  std::vector<float>().swap(radius);
+  const size_t held = growth.memoryBytes(); // the graph G
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: region triangulation.
@@ -180,9 +194,12 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
 
   // Output and report.
   progress.phase("Sphere packing: writing the mesh", 97, 100);
-  st.unreachedPoints = unreachedPoints(growth, in.points.size());
   writeMesh(faces, g, floatStorage, out, st);
-  report(in, scale, d, s, g, faces.empty(), st);
+  st.memory.faces = faces.capacity() * sizeof(Triangle);
+  st.memory.output = out.vertices.capacity() * sizeof(Vec3d) + out.faces.capacity() * sizeof(out.faces[0]) +
+                     out.faceQuality.capacity() * sizeof(double);
+  st.memory.peak = std::max(st.memory.peak, held + st.memory.faces + st.memory.output);
+  report(inputPoints, opposite, d, s, g, faces.empty(), st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();
 }

@@ -153,6 +153,17 @@ struct Stat {
                                  // MeshLab 2020.09): below d where rounding moved the vertices (a
                                  // warning says so when by more than kSmallestEdgeTolerance·d)
   double qualityAvg = 0;         // Q_avg of the output
+  // The engine's own arrays, in bytes as allocated: each part at its largest, and the largest sum
+  // of the parts held at the same time (the engine's peak; the host's copy of the cloud and the
+  // output layer come on top).
+  struct Memory {
+    size_t input = 0;   // positions and normals (double), splat radii, the spatial order
+    size_t boxGrid = 0; // box hash, per-box normals and flags, the boxes' point lists (sec. 4.1)
+    size_t growth = 0;  // graph G with its rotations, vertex grid, splat vertex lists, candidate queue
+    size_t faces = 0;   // the triangles of the regions and the clean-up's arrays
+    size_t output = 0;  // the mesh handed to the caller (MeshArrays)
+    size_t peak = 0;
+  } memory;
   double seconds = 0;
   double secondsInput = 0;       // of which: reading the cloud, mean spacing and area (defaults)
   double secondsBoxGrid = 0;     //           box grid, normal filter, some box normals (sec. 4.1)

@@ -104,7 +104,8 @@ def test_plugins_bind_the_wheels_qt_and_libmeshlab_common():
 
 # --- Sphere Packing ------------------------------------------------------------------------------
 
-SP_OUTPUTS = {"vertices", "faces", "holes", "faces_removed", "pieces_dropped", "sphere_diameter", "seconds"}
+SP_OUTPUTS = {"vertices", "faces", "holes", "faces_removed", "pieces_dropped", "sphere_diameter", "seconds",
+              "memory_peak_bytes"}
 G2S_OUTPUTS = {"vertices", "faces", "holes", "non_manifold_vertices_removed", "faces_removed", "seconds"}
 
 
@@ -117,6 +118,8 @@ def test_sphere_packing_adds_a_layer_and_leaves_the_cloud_untouched():
     mesh = ms.current_mesh()
     assert out["faces"] == mesh.face_number() > 0 and out["vertices"] == mesh.vertex_number()
     assert out["holes"] == 0 and out["faces_removed"] == 0 and out["seconds"] > 0
+    # The engine's peak: more than the output's vertices and faces, and within its per-point budget.
+    assert 24 * out["vertices"] + 12 * out["faces"] < out["memory_peak_bytes"] < 1000 * len(p)
     d = out["sphere_diameter"]
     assert 0 < d < 0.2
     # Every edge at least d (double precision here: no float rounding).

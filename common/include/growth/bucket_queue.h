@@ -45,6 +45,22 @@ public:
     return fifos_[static_cast<size_t>(l)].pop();
   }
 
+  // Bytes allocated for the items (capacity: what the queue held at its largest since the last release()).
+  size_t memoryBytes() const {
+    size_t b = fifos_.capacity() * sizeof(Fifo);
+    for (const auto& f : fifos_) b += f.items.capacity() * sizeof(T);
+    return b;
+  }
+  // Empties the queue and frees its storage.
+  void release() {
+    for (auto& f : fifos_) {
+      f.clear();
+      std::vector<T, Alloc>().swap(f.items);
+    }
+    size_ = 0;
+    best_ = levels();
+  }
+
   void clear() {
     for (auto& f : fifos_) f.clear();
     size_ = 0;
