@@ -85,16 +85,22 @@ def read_filters(root):
 
 
 def strip_fences(text):
-    """(prose, code): the text outside fenced code blocks and inside them, line numbers kept."""
-    prose, code, fenced = [], [], False
+    """(prose, code): the text outside code blocks (fenced, or indented by four spaces after a blank
+    line) and inside them, each the length of text with the other's characters blanked."""
+    prose, code, fenced, indented, previous = [], [], False, False, ""
     for line in text.split("\n"):
+        blank = " " * len(line)
         if line.lstrip().startswith("```"):
             fenced = not fenced
-            prose.append("")
-            code.append("")
+            prose.append(blank)
+            code.append(blank)
+            previous = line
             continue
-        (code if fenced else prose).append(line)
-        (prose if fenced else code).append("")
+        indented = not fenced and line.startswith("    ") and (indented or not previous.strip())
+        in_code = fenced or indented
+        (code if in_code else prose).append(line)
+        (prose if in_code else code).append(blank)
+        previous = line
     return "\n".join(prose), "\n".join(code)
 
 
@@ -117,14 +123,14 @@ def anchors(text):
 
 
 def sections(text):
-    """[(heading text, level, body)] of every heading, the body running to the next heading of the
-    same or a higher level."""
+    """[(heading text, level, body)] of every heading, the body (outside code blocks) running to the
+    next heading of the same or a higher level."""
     prose = strip_fences(text)[0]
     heads = [(m.start(), len(m.group(1)), m.group(2)) for m in re.finditer(r"^(#{1,6})\s+(.*)$", prose, re.M)]
     out = []
     for i, (start, level, title) in enumerate(heads):
-        end = next((s for s, lv, _ in heads[i + 1:] if lv <= level), len(text))
-        out.append((title, level, text[start:end]))
+        end = next((s for s, lv, _ in heads[i + 1:] if lv <= level), len(prose))
+        out.append((title, level, prose[start:end]))
     return out
 
 
@@ -201,7 +207,7 @@ DIARY = [
     (r"(?i)\bsessions?\b", "a session"),
     (r"(?i)\bbranch(es)?\s*[`'\"]", "a branch name"),
     (r"(?i)\b(load|load average|loads)\s+(of\s+)?\d", "a machine load"),
-    (r"(?i)\brun [A-H]\b", "a benchmark run's letter"),
+    (r"\b[Rr]uns? [A-H]\b(?! [a-z])", "a benchmark run's letter"),
     (r"\b20\d\d-\d\d-\d\d\b", "a date"),
     (r"(\.\./shared|/work/shared|shared folder)", "the shared folder beside the repository"),
 ]
