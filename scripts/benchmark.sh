@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The comparison benchmark against MeshLab's Ball Pivoting (issue 3). Builds the project, makes a
+# The comparison benchmark against MeshLab's Ball Pivoting. Builds the project, makes a
 # scratch MeshLab prefix with the freshly built plugins (scripts/meshlab_env.sh), then runs
 # scripts/benchmark.py (code in scripts/bench/), which writes out/benchmark/results.md (tables),
 # results.jsonl and plots/.
@@ -28,13 +28,13 @@
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
-# out/benchmark), --data-dir DIR (default ../shared/data), --no-build (use the build as it is). Rows are merged into results.jsonl by
+# out/benchmark), --data-dir DIR (the folder of the public scans; default $GROWTH_DATA_DIR, else ../shared/data), --no-build (use the build as it is). Rows are merged into results.jsonl by
 # (cloud, method) across invocations (--fresh starts over); each row records its run's date.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${GROWTH_BUILD_DIR:-$root/build}
 out=$root/out/benchmark
-data=$(cd "$root/.." && pwd)/shared/data
+data=${GROWTH_DATA_DIR:-$(cd "$root/.." && pwd)/shared/data}
 command="scripts/benchmark.sh $*"
 
 if [ "${1:-}" = "--pymeshlab" ]; then

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Robust G2S's repairs (filter_g2s/engine/g2s_repair.cpp) against the build before them and CGAL's
-advancing front, as in docs/g2s-hole-pass.md: for each cloud, the mesh of BEFORE (a g2s_run without
+advancing front, as in docs/design/g2s-hole-pass.md: for each cloud, the mesh of BEFORE (a g2s_run without
 the repairs), of AFTER with --holes 0 (the intersection removal only) and with its defaults, and of
 afsr_run, all measured by mesh_measures; prints the Markdown table of that page.
 

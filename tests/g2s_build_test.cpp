@@ -885,7 +885,7 @@ TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
 
 // Issue 13 item 5: the samplings of plates three spacings thick that closed with a handle, a
 // tunnel through a rim's corner between chamfer triangles from one sheet to the other and the side
-// strip (docs/g2s-robustness.md, "The handles"). Each handle had a cycle of three edges bounding
+// strip (docs/design/g2s-small-handles.md). Each handle had a cycle of three edges bounding
 // no face that does not separate the faces around it; the handle pass (Params::removeSmallHandles)
 // takes the faces on one side of it out and closes the loops: all three close with the plate's
 // topology, facing out. With the pass off each keeps its handle, so the test fails without it.
@@ -927,7 +927,7 @@ TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
 }
 
 // Issue 13 item 5: the last rim holes of 120 samplings of plates three spacings thick (the 62 of
-// the tests above and a wider set, docs/g2s-robustness.md). Where a crossing's fins keep a rim
+// the tests above and a wider set, docs/design/g2s-thin-parts.md). Where a crossing's fins keep a rim
 // hole open, the hole pass grows into it again (Mesher::HandlePass::regrow): the faces within 1.5
 // spacings of the loop go, the growth runs from the loop's edges on the points around it with the
 // faces there fixed, and its triangles are kept only if they cross no face and leave every point

@@ -689,7 +689,7 @@ TEST(SpherePacker, EveryComponentIsMeshed) {
 
 namespace {
 // A sphere of 20,000 points (mean spacing about 0.0125) and, over its cap z > 0.5, a second scan
-// layer of the same density `offset` further out: a misregistered scan (docs/spherepack-components.md).
+// layer of the same density `offset` further out: a misregistered scan (docs/design/spherepack-every-part.md).
 growth::Cloud sphereWithSecondLayer(double offset) {
   growth::CloudSpec big = sphereSpec();
   big.count = 20000;

@@ -11,6 +11,6 @@
   fits            slopes of time and lines of memory against points
   plots           the histogram and scaling plots
   tables          the Markdown tables and sections
-  report          results.md, and --publish into docs/benchmark/ and docs/results.md (or README.md's markers)
+  report          results.md, and with --publish docs/benchmark/results.md
   cli             the command line
 """

@@ -68,9 +68,8 @@ def parse_args(description):
                     help="measure the no-op filter floor (memory) of the saved rows' clouds again; restricted by "
                          "--clouds when given")
     ap.add_argument("--publish", action="store_true",
-                    help="copy the plots (< 200 KB) and tables to docs/benchmark/ and the summary into "
-                         "README.md between its results markers, or into docs/results.md when the README "
-                         "has none (as now)")
+                    help="write the tables to docs/benchmark/results.md and copy the plots it shows (< 200 KB) "
+                         "there, replacing the previous publication")
     ap.add_argument("--fresh", action="store_true", help="forget the rows of earlier invocations")
     ap.add_argument("--out", required=True)
     ap.add_argument("--build", required=True)

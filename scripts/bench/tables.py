@@ -1,4 +1,4 @@
-"""The Markdown of the results: the header (command, machine, load), the headline ratios against
+"""The Markdown of the results: the header (command, machine, date), the headline ratios against
 Ball Pivoting, Robust G2S against CGAL, the real scans, the speed check, one table per cloud and
 the scaling section."""
 import math
@@ -130,12 +130,13 @@ EXPLANATION = (
 
 
 def header_lines(rows, command):
+    """The header every results page starts with: the command that made it, the machine and the
+    run's date (the dates, when the rows come from several invocations)."""
     mach = machine()
     runs = sorted({r["run"] for r in rows})
     return ["Command%s: `%s`  " % ("s" if "`; `" in command else "", command),
             "Machine: %s, `nproc` = %s, %s memory.  " % (mach["cpu"], mach["nproc"], mach["memory"]),
-            "Run%s: %s. Load average (1 min) seen around the runs: %s.  " % (
-                "s" if len(runs) > 1 else "", ", ".join(runs), load_range(rows)),
+            "Date%s: %s.  " % ("s" if len(runs) > 1 else "", ", ".join(runs)),
             "Each meshlabserver call was repeated %s and the fastest kept." % repeat_text(rows), "",
             EXPLANATION, ""]
 
