@@ -174,8 +174,9 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       st.secondsTriangulation, st.secondsCleanup, st.secondsOutput);
   const double mib = 1.0 / (1024.0 * 1024.0);
   Log("Sphere Packing: memory peak %.1f MiB, %.0f bytes per point (input %.1f, box grid %.1f, growth %.1f, faces "
-      "%.1f, output %.1f MiB)", mib * double(st.memory.peak), double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)),
-      mib * double(st.memory.input), mib * double(st.memory.boxGrid), mib * double(st.memory.growth),
-      mib * double(st.memory.faces), mib * double(st.memory.output));
+      "%.1f, output %.1f MiB); estimated beforehand %.1f MiB, against %.1f MiB available", mib * double(st.memory.peak),
+      double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)), mib * double(st.memory.input),
+      mib * double(st.memory.boxGrid), mib * double(st.memory.growth), mib * double(st.memory.faces),
+      mib * double(st.memory.output), mib * double(st.memory.estimate), mib * double(st.memory.limit));
   return true;
 }

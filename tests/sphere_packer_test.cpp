@@ -1213,3 +1213,40 @@ TEST(SpherePackerMemory, PeakAndItsPartsAreReportedWithinTheBudget) {
   EXPECT_GE(m.peak, m.faces + m.output);
   EXPECT_LE(double(m.peak) / double(n), 600.0) << "bytes per point";
 }
+
+// The peak estimated before the box grid (Stat::memory.estimate) is within a fifth of the peak at
+// small, usual and large d; a run whose estimate exceeds Params::maxMemoryBytes is refused before
+// the box grid, with the estimate in the message, and leaves nothing.
+TEST(SpherePackerMemory, TheEstimateIsCloseAndALimitRefusesBeforeTheWork) {
+  growth::CloudSpec spec = torusSpec();
+  spec.count = 100000;
+  const growth::CloudArrays cloud = growth::toArrays(growth::generateCloud(spec));
+  const double spacing = growth::meanSpacing(cloud.points);
+  for (double k : {1.5, 2.5, 5.0}) {
+    sp::Params p;
+    p.sphereDiameter = k * spacing;
+    growth::MeshArrays out;
+    sp::Stat st;
+    sp::build(cloud, out, p, st);
+    EXPECT_GT(st.memory.limit, 0u) << "the machine's available memory";
+    const double ratio = double(st.memory.estimate) / double(st.memory.peak);
+    EXPECT_GT(ratio, 0.8) << k << " spacings";
+    EXPECT_LT(ratio, 1.25) << k << " spacings";
+  }
+  sp::Params p;
+  p.sphereDiameter = 2.5 * spacing;
+  p.maxMemoryBytes = 8u << 20; // 8 MiB: less than the input alone
+  growth::MeshArrays out;
+  out.faces.push_back({0, 1, 2});
+  sp::Stat st;
+  try {
+    sp::build(cloud, out, p, st);
+    FAIL() << "not refused";
+  } catch (const growth::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("GiB of memory"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("larger d"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(out.faces.empty() && out.vertices.empty());
+  EXPECT_EQ(st.memory.limit, p.maxMemoryBytes);
+  EXPECT_EQ(st.secondsBoxGrid, 0.0) << "refused before the box grid";
+}

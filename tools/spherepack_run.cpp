@@ -154,9 +154,9 @@ int main(int argc, char** argv) {
                 "peak_rss_before_build_kib: %ld\nbytes_per_point_engine: %.1f\n",
                 best, double(st.vertices) / best, peakRssKiB(), 1024.0 * double(peakRssKiB()) / double(st.inputPoints),
                 rssBefore, 1024.0 * double(peakRssKiB() - rssBefore) / double(st.inputPoints));
-    std::printf("memory_peak_bytes: %zu\nmemory_bytes_per_point: %.1f\nmemory_input_bytes: %zu\nmemory_box_grid_bytes: %zu\n"
+    std::printf("memory_estimate_bytes: %zu\nmemory_peak_bytes: %zu\nmemory_bytes_per_point: %.1f\nmemory_input_bytes: %zu\nmemory_box_grid_bytes: %zu\n"
                 "memory_growth_bytes: %zu\nmemory_faces_bytes: %zu\nmemory_output_bytes: %zu\n",
-                st.memory.peak, double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)), st.memory.input,
+                st.memory.estimate, st.memory.peak, double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)), st.memory.input,
                 st.memory.boxGrid, st.memory.growth, st.memory.faces, st.memory.output);
     for (const auto& w : st.warnings) std::printf("warning: %s\n", w.c_str());
     if (measure) {

@@ -1,6 +1,11 @@
 // Sec. 4.3 and 4.1: the splat radii and the box grid the growth runs on (packer_steps.h).
 #include "packer_steps.h"
 
+#include <growth/error.h>
+
+#include <algorithm>
+#include <cstdio>
+
 namespace growth {
 namespace spherepack {
 namespace detail {
@@ -17,6 +22,65 @@ std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params
   st.splatsUnbounded = splatStats.unbounded;
   st.splatsClamped = splatStats.clamped;
   return radius;
+}
+
+namespace {
+// The mean number of boxes of side 1 within distance rho of a point placed at random: the volume of
+// the unit cube grown by rho (Steiner's formula).
+double boxesWithin(double rho) {
+  const double pi = 3.14159265358979323846;
+  return 1 + 6 * rho + 3 * pi * rho * rho + 4 * pi / 3 * rho * rho * rho;
+}
+} // namespace
+
+MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z) {
+  MemoryEstimate e;
+  const double n = double(in.points.size()), d = z.d;
+  double refs = 0, rhoSum = 0;
+  if (radius == nullptr) {
+    refs = n * boxesWithin(1.0);
+    rhoSum = n;
+  } else {
+    for (float r : *radius) {
+      const double rho = r > kLargeSplatPerD * d ? 1 + std::min(double(r) / d, BoxGrid::kMaxExtraReach) : 1.0;
+      refs += boxesWithin(rho);
+      rhoSum += rho;
+    }
+  }
+  // Boxes: the surface's area in boxes of side d, times the boxes across it within the mean reach
+  // on both sides.
+  const double rho = n > 0 ? rhoSum / n : 1.0;
+  const double boxes = std::min(refs, z.scale.area / (d * d) * (2 * rho + 1));
+  e.input = size_t(n * (2 * sizeof(Vec3d) + sizeof(float) + 2 * sizeof(std::uint32_t)));
+  e.boxGrid = size_t(4 * refs + boxes * kBoxBytes);
+  e.growth = size_t(z.expected * kGrowthBytesPerVertex + 4 * n);
+  // Fixed sizes (tables at their smallest, the queue) weigh on small clouds: a tenth more.
+  e.peak = size_t(1.1 * double(e.input + e.boxGrid + e.growth));
+  return e;
+}
+
+size_t availableMemoryBytes() {
+  std::FILE* f = std::fopen("/proc/meminfo", "r");
+  if (f == nullptr) return 0;
+  char line[256];
+  size_t kib = 0;
+  while (std::fgets(line, sizeof line, f) != nullptr)
+    if (std::sscanf(line, "MemAvailable: %zu kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib * 1024;
+}
+
+void checkMemory(const MemoryEstimate& e, const Sizes& z, const Params& params, Stat& st) {
+  st.memory.estimate = e.peak;
+  st.memory.limit = params.maxMemoryBytes > 0 ? params.maxMemoryBytes : availableMemoryBytes();
+  if (st.memory.limit == 0 || e.peak <= st.memory.limit) return;
+  const double gib = 1.0 / (1024.0 * 1024.0 * 1024.0);
+  throw Error("Sphere packing would need about " + fmt(gib * double(e.peak)) + " GiB of memory for " +
+              std::to_string(st.inputPoints) + " points at d = " + fmt(z.d) + " (box grid " + fmt(gib * double(e.boxGrid)) +
+              ", growth " + fmt(gib * double(e.growth)) + ", input " + fmt(gib * double(e.input)) + " GiB, for about " +
+              fmt(z.expected) + " vertices), more than the " + fmt(gib * double(st.memory.limit)) +
+              " GiB " + (params.maxMemoryBytes > 0 ? "allowed" : "available") +
+              ". A larger d needs less (the vertices fall with d squared); or subsample the cloud.");
 }
 
 // Sec. 4.1: the box grid, normal filter and box normals. A splat larger than d is referred to by

@@ -86,6 +86,25 @@ void leaveOutFarPoints(InputCloud& in, double d, Stat& st);
 // packer_prepare.cpp, sec. 4.3 and 4.1: the splat radii and the box grid.
 std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params& params, const Renumbering& order,
                               Stat& st, Progress& progress);
+// The engine's peak memory, estimated from the cloud, its sizes and splat radii (Stat::Memory has
+// the parts measured): the box grid's references from the boxes within each point's reach, its
+// boxes from the surface area, the growth from the vertices expected.
+struct MemoryEstimate {
+  size_t input = 0, boxGrid = 0, growth = 0, peak = 0;
+};
+// Bytes per box (hash slot at 3/4 load, CSR offset, normal code, minimum, state and flags) and per
+// vertex of the growth (graph G with its reserve, splat vertex lists, vertex grid), as allocated.
+constexpr double kBoxBytes = 12.0 / 0.75 + 4 + 2 + 4 + 2;
+constexpr double kGrowthBytesPerVertex = 400;
+// Without the radii (null), every splat is taken as small (reach d): a lower bound, checked before
+// the splat radii are computed.
+MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z);
+// Sets Stat::memory.estimate and .limit; throws growth::Error, with the estimate, when it exceeds
+// Params::maxMemoryBytes (0: the memory available, availableMemoryBytes()).
+void checkMemory(const MemoryEstimate& e, const Sizes& z, const Params& params, Stat& st);
+// The memory the machine has available for a new process without swapping (Linux: MemAvailable
+// in /proc/meminfo); 0 where unknown.
+size_t availableMemoryBytes();
 void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>& radius, double d,
                   const Params& params, const Renumbering& order, Stat& st, Progress& progress);
 

@@ -138,11 +138,14 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   std::vector<int>().swap(in.vertexIndex); // not needed here
   Renumbering order = spatialOrder(in, d, params.spatialOrderMinPoints);
 
+  checkMemory(estimateMemory(in, nullptr, sizes), sizes, params, st); // (a lower bound: refused early)
+
   // Sec. 4.3: splat radii.
   progress.phase("Sphere packing: splat sizes", 2, 10);
   st.secondsInput = watch.lap();
   std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
   st.secondsSplats = watch.lap();
+  checkMemory(estimateMemory(in, &radius, sizes), sizes, params, st);
 
   // Sec. 4.1: box grid.
   progress.phase("Sphere packing: box grid", 10, 20);

@@ -34,6 +34,9 @@ struct Params {
                                  // largest always stays): flaps of misregistered scan layers, bits
                                  // of stray points; 0 keeps all
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  size_t maxMemoryBytes = 0;     // refuse, before the box grid, a run whose estimated peak
+                                 // (Stat::memory.estimate) exceeds this; 0: the memory the machine
+                                 // has available (Linux: MemAvailable), no limit where unknown
   size_t spatialOrderMinPoints = 20000; // clouds with at least this many points are processed in a
                                  // spatial order of the points (memory locality); the same mesh
   int threads = 0;                // threads for the per-box and per-point phases (0 = automatic, at
@@ -163,6 +166,8 @@ struct Stat {
     size_t faces = 0;   // the triangles of the regions and the clean-up's arrays
     size_t output = 0;  // the mesh handed to the caller (MeshArrays)
     size_t peak = 0;
+    size_t estimate = 0; // the peak as estimated before the box grid (Params::maxMemoryBytes)
+    size_t limit = 0;    // the limit it was checked against (0: none)
   } memory;
   double seconds = 0;
   double secondsInput = 0;       // of which: reading the cloud, mean spacing and area (defaults)
