@@ -175,8 +175,8 @@ size_t BorderGraph::loneVertices() const {
 }
 
 size_t BorderGraph::memoryBytes() const {
-  return pos_.capacity() * sizeof(Vec3d) + nrm_.capacity() * sizeof(Vec3d) +
-         rot_.capacity() * sizeof(Rotation);
+  // In use: the reserve beyond (BorderGraph::reserve) is address space that is never written.
+  return pos_.size() * sizeof(Vec3d) + nrm_.size() * sizeof(Vec3d) + rot_.size() * sizeof(Rotation);
 }
 
 } // namespace growth

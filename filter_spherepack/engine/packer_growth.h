@@ -40,8 +40,9 @@ public:
     // Cells of the crossing check's radius (√5·d): its ball then meets at most 3 × 3 × 3 cells
     // (at most 4 × 4 × 4 with cells of 2d), and the ball of radius d of the distance check
     // (sec. 3.6), the most frequent query, at most 2 × 2 × 2.
-    // Reserve for the estimate, within reason (the estimate can be high on noisy clouds).
-    const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, size_t(1) << 21);
+    // Reserve for the estimate and a quarter more, so that the arrays are not copied as they grow
+    // (a reserve beyond what is used is address space, never written).
+    const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, p.maxOutputVertices);
     vgrid_.reset(grid.indexer().origin(), crossingSearchRadius(d), reserve);
     graph_.reserve(reserve);
   }

@@ -95,7 +95,7 @@ struct MemoryEstimate {
 // Bytes per box (hash slot at 3/4 load, CSR offset, normal code, minimum, state and flags) and per
 // vertex of the growth (graph G with its reserve, splat vertex lists, vertex grid), as allocated.
 constexpr double kBoxBytes = 12.0 / 0.75 + 4 + 2 + 4 + 2;
-constexpr double kGrowthBytesPerVertex = 400;
+constexpr double kGrowthBytesPerVertex = 300;
 // Without the radii (null), every splat is taken as small (reach d): a lower bound, checked before
 // the splat radii are computed.
 MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z);

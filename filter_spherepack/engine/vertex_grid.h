@@ -19,8 +19,11 @@ public:
   // Cells of side `cell`, anchored at `origin` (coordinates up to 2^20 cells away either side).
   void reset(const Vec3d& origin, double cell, size_t expectedVertices = 16) {
     index_ = BoxIndexer(origin, cell);
-    hash_.reset(expectedVertices);
+    // Cells hold several vertices each (about 6 on a surface with cells of √5·d): the table is
+    // sized for a quarter as many cells as vertices, and grows when needed.
+    hash_.reset(expectedVertices / 4);
     next_.clear();
+    next_.reserve(expectedVertices);
   }
   double cellSize() const { return index_.side(); }
 
@@ -81,7 +84,7 @@ public:
     return false;
   }
 
-  size_t memoryBytes() const { return hash_.memoryBytes() + next_.capacity() * sizeof(int); }
+  size_t memoryBytes() const { return hash_.memoryBytes() + next_.size() * sizeof(int); } // (the reserve: address space)
 
 private:
   static constexpr std::int64_t kBias = std::int64_t(1) << (BoxIndexer::kBits - 1);
