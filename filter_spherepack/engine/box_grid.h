@@ -206,8 +206,8 @@ private:
                               double* minDot, const Vec3d* warm) const;
   Vec3d faceDirection(int face, double u, double v) const;
   // A direction of S_F: the centre of a leaf cell, computed when needed (a normalisation; the
-  // search visits a few leaves per box, each then costing a pass over the box's normals). A table
-  // of all 24,576 would hold 590 KB for the whole session, most of the filter's fixed memory.
+  // search visits a few leaves per box, each then costing a pass over the box's normals), rather
+  // than a table of all 24,576 (590 KB held for the whole session).
   Vec3d leafCentre(int face, std::uint32_t col, std::uint32_t row) const;
   size_t cellIndex(int face, int depth, std::uint32_t x, std::uint32_t y) const {
     return tables_->offset[size_t(depth)] + ((size_t(face) << (2 * depth)) | (size_t(y) << depth) | x);
@@ -249,9 +249,8 @@ size_t filterBoxNormals(const std::vector<Vec3d>& normals, std::uint32_t* idx, s
 // two-sided: idx is reordered to the first group, then the second, each in its order, and both
 // are kept as the box's two layers (the paper's filter would drop the second). Otherwise the
 // paper's filter: with |n̄| >= threshold the points of the second group are dropped (the others
-// kept in order at the front of idx), else all are kept.
-// (Putting the points that face sideways, a plate's rim, in both layers was tried: more holes
-// along the rim.)
+// kept in order at the front of idx), else all are kept. Points that face sideways (a plate's
+// rim) go to one layer only (docs/design/spherepack-thin-parts.md).
 constexpr size_t kTwoSidedMinPoints = 4;
 struct BoxLayers {
   size_t firstEnd = 0;        // points kept (not two-sided), or the first layer's end (two-sided)

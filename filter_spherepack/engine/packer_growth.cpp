@@ -11,7 +11,7 @@ namespace detail {
 // linear), at least kStartClearancePerD·d from every vertex placed so far: a point with a vertex
 // between d and that far lies on a surface already meshed there (a misregistered second scan
 // layer, or the rim of a gap the growth left), and a start on it would only grow a separate sheet
-// over or beside the mesh (docs/spherepack-components.md).
+// over or beside the mesh (docs/design/spherepack-every-part.md).
 void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in, const std::vector<float>& radius,
                    const BoxGrid& grid, const Renumbering& order, double d, Stat& st) {
   growth.start(first.s1, first.splat1, first.s2, first.splat2);

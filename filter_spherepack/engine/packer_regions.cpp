@@ -94,7 +94,7 @@ size_t dropSmallComponents(std::vector<Triangle>& faces, size_t vertexCount, siz
 
 // Pieces too small to be a part of the surface: flaps grown onto a misregistered second scan
 // layer, cut off from the mesh by the regions left open between the layers, and bits of stray
-// points (docs/spherepack-components.md). Whole pieces go, so the rest keeps every guarantee.
+// points (docs/design/small-pieces.md). Whole pieces go, so the rest keeps every guarantee.
 void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st) {
   if (params.minComponentFaces > 1)
     st.componentsDropped = dropSmallComponents(faces, g.vertexCount(), size_t(params.minComponentFaces),

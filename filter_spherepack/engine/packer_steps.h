@@ -31,7 +31,7 @@ constexpr double kSplatFirstReachPerAreaSpacing = 2.5;
 constexpr double kLargeSplatPerD = 1.0;
 // A start after the first (sec. 3.3 again) keeps this many d from every vertex: two spacings or
 // so more than the d that any vertex keeps, so that no start lands on a second layer of a surface
-// already meshed (the flaps on the bunny's misregistered scans lie 0.4-2 d off the mesh, median 0.84 d).
+// already meshed (flaps on misregistered scan layers lie up to about 2 d off the mesh).
 constexpr double kStartClearancePerD = 2.0;
 constexpr double kTriangleAreaFactor = 0.86602540378443864676; // √3/2: area per vertex of a d-lattice is (√3/2)·d²
 
@@ -43,8 +43,7 @@ std::string fmt(double v);
 // order of the points keeps the input order through these maps (box lists, ties of neighbours
 // and of the starting vertex), so the mesh is the same as without renumbering. Small clouds fit
 // in the caches and are not renumbered (orig/rank stay empty: identity): Params::spatialOrderMinPoints,
-// 20,000 by default (torus, 2 threads: 10k and 20k the same time either way, 30k -4 %, 100k -7 %,
-// 1M -12 %).
+// 20,000 by default (below it the order makes no difference to the time).
 struct Renumbering {
   std::vector<std::uint32_t> orig; // new index -> input index (until the starting vertices)
   std::vector<std::uint32_t> rank; // input index -> new index (for the box grid)

@@ -31,8 +31,8 @@ using namespace detail;
 
 CloudScale cloudScale(const std::vector<Vec3d>& points, int threads, const std::vector<Vec3d>* normals) {
   CloudScale sc;
-  // 8,000 samples (3,000 of them with a local fit) are enough for medians within about 1 %
-  // (docs/sampling-estimate.md); more only cost time (the default 20,000 were 8 % of a 30k run).
+  // 8,000 samples (3,000 of them with a local fit) give medians within about 1 %; more only cost
+  // time (docs/design/spherepack-default-sizes.md).
   SamplingOptions options;
   options.maxSamples = 8000;
   options.maxNoiseSamples = 3000;

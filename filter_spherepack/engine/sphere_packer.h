@@ -102,9 +102,9 @@ std::string defaultDiameterReason(const CloudScale& scale);
 double defaultSplatSize(const CloudScale& scale, double d);
 
 // Stat::smallestEdge below d·(1 − kSmallestEdgeTolerance) is warned about. The engine keeps every
-// edge at least d in double; float storage rounds a coordinate x by up to |x|·2^-24, which takes
-// 0.002 % off d on the merged bunny (d = 0.0007 at coordinates up to 0.19) and 23 % at 10^6 from
-// the origin (d = 0.24, steps of 0.0625). Shortfalls below 0.01 % are reported, not warned about.
+// edge at least d in double; float storage rounds a coordinate x by up to |x|·2^-24, which is
+// negligible near the origin and a large share of d far from it (geo-referenced coordinates).
+// Shortfalls below 0.01 % are reported, not warned about.
 constexpr double kSmallestEdgeTolerance = 1e-4;
 
 struct Stat {

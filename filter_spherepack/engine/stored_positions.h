@@ -3,9 +3,8 @@
 // double in PyMeshLab), for checks that must hold on the output as it is saved, not only on the
 // engine's doubles: two faces that nearly touch in double can intersect once rounded to float.
 //
-// The rounding is kept through an empty asm statement: GCC 12.2 at -O2 and -O3 folds
-// double(float(x)) back to x in vectorised loops (measured on these machines: a loop over 200k
-// points left every coordinate unrounded; -O1 and -fno-tree-vectorize rounded them).
+// The rounding is kept through an empty asm statement: GCC 12 at -O2 and -O3 can fold
+// double(float(x)) back to x in vectorised loops.
 #include <growth/vec3.h>
 
 #include <vector>
