@@ -1,5 +1,5 @@
 // Robust G2S: dense clumps meshed as one point (Mesher::mergeClumps, see kClumpNeighbours).
-// (In a file of its own: beside the growth it changed the compiler's inlining of the growth's
+// (In a file of its own: beside the growth it changes the compiler's inlining of the growth's
 // queries, which then cost more than the clump search itself.)
 #include "g2s_mesher.h"
 
