@@ -84,9 +84,9 @@ const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0
 //   normal, and kUnderFrontGap spacings or more in front of the front triangle's plane), with at
 //   least kUnderSheetEdges edges and its triangle facing the same way (cosine above
 //   kUnderSameWayCos): the new triangle would lie in the material under that sheet. It catches
-//   what the fold rules above miss at a plate's rim: a front triangle across the top-side corner
-//   continuing to a bottom point less than kFoldGap behind it, through the corner of the material,
-//   with a fold under 40 degrees, from which the bottom would grow inside out.
+//   what the fold rules above leave alone at a plate's rim: a front triangle across the top-side
+//   corner continuing to a bottom point less than kFoldGap behind it, through the corner of the
+//   material, from which the bottom would grow inside out.
 constexpr double kUnderGap = 0.5;
 constexpr double kUnderReach = 3.0;
 constexpr double kUnderFrontGap = 1.0;
@@ -720,7 +720,8 @@ bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uin
   // Called for most accepted candidates near the crossings of a noisy scan, so in two small
   // queries rather than one over the whole wide cylinder: first the nearest qualifying point in
   // the narrow cylinder from gap to reach (the ball around that section), then any point below it
-  // in the wide one (the ball around that section, stopping at the first). (A slightly larger ball, (1 + 1e-9): the predicates decide membership.)
+  // in the wide one (the ball around that section, stopping at the first). (A slightly larger
+  // ball, (1 + 1e-9): the predicates decide membership.)
   double lowest = std::numeric_limits<double>::infinity();
   const double half = 0.5 * (reach - gap);
   anyInBall(centroid + n * (0.5 * (gap + reach)), std::sqrt(half * half + narrow2) * (1 + 1e-9),
