@@ -36,7 +36,7 @@ namespace {
 struct Case {
   std::string name;
   CloudSpec spec;
-  bool forG2S = true; // false: the sphere packer only (G2S takes seconds on far points today, issue 13 item 2)
+  bool forG2S = true; // false: the sphere packer only (tests/g2s_outliers_test.cpp covers G2S on far points)
 };
 
 std::vector<Case> clouds() {

@@ -1162,7 +1162,7 @@ TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
   bool warned = false;
   for (const auto& w : r->st.warnings) warned = warned || w.find("below d") != std::string::npos;
   if (sizeof(CMeshO::ScalarType) == sizeof(float)) {
-    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // what the audit found (0.77 d on its horse)
+    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // float storage shortens some edge below d
     EXPECT_TRUE(warned);
   } else {
     EXPECT_GE(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance));
