@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Robust G2S's repairs (filter_g2s/engine/g2s_repair.cpp) against the build before them and CGAL's
-advancing front, as in docs/design/g2s-hole-pass.md: for each cloud, the mesh of BEFORE (a g2s_run without
+"""Robust G2S's repairs (filter_g2s/engine/g2s_repair.cpp, docs/design/g2s-hole-pass.md) against a
+build without them and CGAL's advancing front: for each cloud, the mesh of BEFORE (a g2s_run without
 the repairs), of AFTER with --holes 0 (the intersection removal only) and with its defaults, and of
-afsr_run, all measured by mesh_measures; prints the Markdown table of that page.
+afsr_run, all measured by mesh_measures; prints a Markdown table.
 
-  scripts/g2s_repair_table.py --before /work/main/build/g2s_run --build build --out out/repair CLOUD.ply...
+  scripts/g2s_repair_table.py --before OLD_BUILD/g2s_run --build build --out out/repair CLOUD.ply...
 """
 import argparse, json, os, subprocess
 

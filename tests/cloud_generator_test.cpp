@@ -153,8 +153,8 @@ TEST(CloudGenerator, ToMeshCopiesPointsAndNormals) {
 
 TEST(CloudGenerator, ExistingCloudsAreUnchanged) {
   // Tests and benchmarks depend on the seeded clouds: first, second and last point (exact, as
-  // printed with %.17g) and the coordinate sums of six specs, recorded from main at d4b9873 before
-  // CloudSpec grew new members and shapes.
+  // printed with %.17g) and the coordinate sums of six specs, recorded once: new members and
+  // shapes of CloudSpec must leave them as they are.
   struct Ref {
     Shape shape;
     bool nonUniform;

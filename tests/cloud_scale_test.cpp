@@ -94,7 +94,7 @@ TEST(CloudScale, MostlyDuplicatesFinishQuickly) {
   const SamplingEstimate e = growth::estimateSampling(cloud, 1);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   expectFiniteSane(e);
-  // The sanitizer build (scripts/sanitize.sh) runs this code about 10 times slower; a search
+  // The sanitizer build (scripts/sanitize.sh) runs this code several times slower; a search
   // without the visit limit takes minutes in either.
 #ifdef GROWTH_SANITIZED
   EXPECT_LT(seconds, 20.0);
@@ -140,8 +140,8 @@ TEST(CloudScale, OneFarPointChangesNothing) {
     EXPECT_NEAR(2.5 * e.medianSpacing / (2.5 * clean.medianSpacing), 1.0, 0.03) << at; // d = 2.5 spacings
     EXPECT_NEAR(e.noise, clean.noise, 0.01 * clean.medianSpacing) << at;
   }
-  // The mean spacing is robust too now (it was multiplied by more than 10 when the far point was a
-  // sample: its grid had one cell for the whole sphere).
+  // The mean spacing is robust too (a far point among its samples must not give its grid one
+  // cell for the whole sphere).
   auto small = growth::generateCloud(spec(Shape::Sphere, 5000)).points;
   const double mean = growth::meanSpacing(small);
   small.insert(small.begin(), Point3d(2e4, -3e4, 1e4));

@@ -1,4 +1,4 @@
-// Determinism of both engines (issue 13, item 8): the same cloud and parameters give the same mesh,
+// Determinism of both engines: the same cloud and parameters give the same mesh,
 // bit for bit (vertex positions and normals, face vertex indices, normals and quality), on a rerun,
 // on 1 or 2 threads, and when two runs go on at once in one process (no shared mutable state).
 // Clean, noisy, outlier-ridden, non-uniform, clustered and open clouds.
@@ -36,7 +36,7 @@ namespace {
 struct Case {
   std::string name;
   CloudSpec spec;
-  bool forG2S = true; // false: the sphere packer only (G2S takes seconds on far points today, issue 13 item 2)
+  bool forG2S = true; // false: the sphere packer only (tests/g2s_outliers_test.cpp covers G2S on far points)
 };
 
 std::vector<Case> clouds() {

@@ -199,9 +199,10 @@ TEST(G2SBuild, NonUniformDensityStaysClosed) {
   EXPECT_EQ(r->stat.vertices, 5000u);
 }
 
-// Issue 13 item 4: on clean closed clouds every input point is a vertex and the mesh is closed:
+// On clean closed clouds every input point is a vertex and the mesh is closed:
 // F = 2N - 4 + 4g with N the number of points, over several sizes, cloud seeds and random seeds.
-// The last two clouds each kept a hole of four edges that no G2S sphere spans (Mesher::quadClosure).
+// The last two clouds each have a loop of four edges that no G2S sphere spans (Mesher::quadClosure
+// closes it).
 TEST(G2SBuild, CleanClosedCloudsUseEveryPoint) {
   struct Case {
     Shape shape;
@@ -238,9 +239,8 @@ TEST(G2SBuild, CleanClosedCloudsUseEveryPoint) {
   }
 }
 
-// Issue 13 item 1: a latitude-longitude sampling (a UV-sphere's vertices, a turntable scan) puts
-// 600 neighbours around each pole. It used to fail the whole run ("more than 255 edges at one
-// point"); it meshes closed, every point used.
+// A latitude-longitude sampling (a UV-sphere's vertices, a turntable scan) puts 600 neighbours
+// around each pole, more than 255 edges at one point: it meshes closed, every point used.
 TEST(G2SBuild, LatitudeLongitudeSphereMeshesClosed) {
   CloudSpec spec;
   spec.shape = Shape::LatLongSphere;
@@ -260,12 +260,12 @@ TEST(G2SBuild, LatitudeLongitudeSphereMeshesClosed) {
   EXPECT_TRUE(r->stat.warnings.empty());
 }
 
-// Scan-line sampling (audit of 2026-12-03): a LiDAR or structured-light scan samples densely along
-// lines that lie a few spacings apart. With the paper's seed search (the third point within
-// k = 2 edges of the seed edge's midpoint) only points of the seed point's own line are reached,
-// every triangle is a sliver, and a plane 3 spacings between lines gave no face at all (3,400
-// points), or 6 faces with noise (13,400 points). The seed sphere is searched once more, twice as
-// wide, when every point in it lies near the seed edge's line; the plane then meshes whole.
+// Scan-line sampling (docs/design/g2s-scan-lines.md): a LiDAR or structured-light scan samples
+// densely along lines that lie a few spacings apart. With the paper's seed search (the third point
+// within k = 2 edges of the seed edge's midpoint) only points of the seed point's own line are
+// reached and every triangle is a sliver, so a plane 3 spacings between lines gets next to no
+// face. The seed sphere is searched once more, twice as wide, when every point in it lies near the
+// seed edge's line; the plane then meshes whole.
 TEST(G2SBuild, ScanLineSamplingIsSeededAndMeshed) {
   for (double jitter : {0.0, 0.001}) {
     SCOPED_TRACE(jitter);
@@ -576,7 +576,7 @@ TEST(G2SBuild, OrientComponentsKeepsThePointEdgeMapInStep) {
   EXPECT_GT(flippedClouds, 0u); // the flip itself was exercised
 }
 
-// Issue 13 item 5: closed shells face out of the material. Faces of `mesh` counted by whether
+// Closed shells face out of the material. Faces of `mesh` counted by whether
 // their normal points away from `centre` (per shell: the shell of radius below `split` or above).
 struct Facing {
   size_t innerOut = 0, innerIn = 0, outerOut = 0, outerIn = 0;
@@ -701,20 +701,17 @@ TEST(G2SBuild, ThinSlabFacesOutward) {
   EXPECT_LE(r->stat.holes, 12u);
 }
 
-// Issue 13 item 5: closed plates three and four mean nearest-neighbour spacings thick, several
-// samplings. The growth used to cross the plate's interior from one sheet to the other (where a
-// sheet's sampling has a gap wider than the plate, or at a rim), so that the other sheet grew
-// inside out and the rims stayed open: at 0.025 (30,000 points, seed 1) 28,508 faces of the top
-// faced into the plate, 1,260 boundary edges in 34 holes. The thin-part rules keep every face of
-// the large faces looking out of the plate (a few triangles at the rims, 3 spacings high with two
-// 90-degree edges, cut across the corner of the material); the rims' loops, which the growth
-// leaves open (22, 14 and 18 holes on the first three samplings before g2s_thin.cpp), are closed
-// after it, where the closure crosses neither the mesh nor itself (the least-area one, else the
-// least-area one whose triangles cross nothing, with the unused points inside joined to the loop):
-// most samplings mesh closed, the others keep one or two small holes at a rim (seed 12 kept one
-// before the crossing-free closures). Two of them closed with a handle (a tunnel through a rim)
-// before the handle pass (Params::removeSmallHandles, g2s_handles.cpp).
-// (At two spacings the growth still crosses: not solved.)
+// Closed plates three and four mean nearest-neighbour spacings thick, several samplings
+// (docs/design/g2s-thin-parts.md). Without the thin-part rules the growth crosses the plate's
+// interior from one sheet to the other (where a sheet's sampling has a gap wider than the plate,
+// or at a rim), so that the other sheet grows inside out and the rims stay open. The rules keep
+// every face of the large faces looking out of the plate (a few triangles at the rims, 3 spacings
+// high with two 90-degree edges, cut across the corner of the material); the rims' loops, which
+// the growth leaves open, are closed after it (g2s_thin.cpp), where the closure crosses neither
+// the mesh nor itself (the least-area one, else the least-area one whose triangles cross nothing,
+// with the unused points inside joined to the loop); handles through a rim are cut by the handle
+// pass (Params::removeSmallHandles, g2s_handles.cpp).
+// (At two spacings the growth still crosses.)
 // Params::thinPartRules is the option that makes the difference on thin plates: without it the
 // growth's candidate choice is the paper's, and on these samplings the front crosses the plate
 // and grows its other sheet inside out.
@@ -740,9 +737,8 @@ TEST(G2SBuild, ThinPartRulesAreWhatKeepsAThinPlatesSheetsFacingOut) {
 
 // Params::loopClosures: the growth closes loops of three free edges by their third point and loops
 // of four by the better diagonal (not in the paper, whose G2S balls can hold a neighbouring vertex
-// on a curved or noisy surface, so that such loops stay open). Measured on a sphere with noise of
-// half a spacing, 30,000 points, after the growth and sec. 4.2 alone: 93 holes with the closures,
-// 952 without (seed 1).
+// on a curved or noisy surface, so that such loops stay open; docs/design/g2s-loop-closures.md).
+// On a noisy sphere, after the growth and sec. 4.2 alone, they leave several times fewer holes.
 TEST(G2SBuild, LoopClosuresAreWhatClosesTheGrowthsSmallLoops) {
   const Mesh cloud = cloudMesh(noisy(Shape::Sphere, 30000, 0.5));
   g2s::Params p = defaults();
@@ -759,8 +755,8 @@ TEST(G2SBuild, LoopClosuresAreWhatClosesTheGrowthsSmallLoops) {
 }
 
 // Params::mergeClumps: a dense clump (a twentieth of the points on one spot) is meshed as one
-// point; without it the growth meshes the clump point by point (measured on 20,000 points: 7
-// holes, 5 times the time, against none).
+// point; without it the growth meshes the clump point by point, slowly, and leaves holes there
+// (docs/design/g2s-dense-clumps.md).
 TEST(G2SBuild, ClumpMergingIsWhatKeepsADenseClumpFromOpeningHoles) {
   CloudSpec spec;
   spec.count = 20000;
@@ -784,18 +780,18 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     double thickness;
     size_t points;
     std::uint64_t seed;
-    size_t maxHoles; // measured: 0 on each
-    long euler = 2;  // measured: 2, the plate's topology
+    size_t maxHoles; // 0 on each
+    long euler = 2;  // the plate's topology
   };
-  // Seed 10 and the 100k seed 1 sampling are the rim crossings the under-a-sheet rule stops
-  // (g2s_growth.cpp, kUnderGap): without it, 26,283 and 93,426 faces of their large faces faced in.
-  // The 100k seed 2 sampling keeps a hole of 3 edges round a spike at a corner without the hole
-  // pass's spike step (g2s_repair.cpp), seed 5 a rim loop with a flap. Seed 7 kept a rim loop of
-  // 7 edges with a handle beside it until the wider closure (Mesher::widenHoles: the faces on the
-  // loop's edges taken out, the wider loop closed); seed 9 a rim loop of 10 edges, closed with the
-  // faces at its points taken out (its 11 points left out, counted as spikes). Seed 4 kept a rim
-  // loop of 11 edges until the blockers' widening (g2s_handles.cpp: the faces its least-area
-  // triangulation meets, and the faces at their points, taken out).
+  // Seed 10 and the 100k seed 1 sampling are rim crossings the under-a-sheet rule stops
+  // (g2s_growth.cpp, kUnderGap): without it, most of their large faces face in. The 100k seed 2
+  // sampling keeps a hole of 3 edges round a spike at a corner without the hole pass's spike step
+  // (g2s_repair.cpp), seed 5 a rim loop with a flap. Seed 7 needs the wider closure for a rim loop
+  // of 7 edges with a handle beside it (Mesher::widenHoles: the faces on the loop's edges taken
+  // out, the wider loop closed); seed 9 a rim loop of 10 edges, closed with the faces at its points
+  // taken out (its points left out, counted as spikes). Seed 4 needs the blockers' widening for a
+  // rim loop of 11 edges (g2s_handles.cpp: the faces its least-area triangulation meets, and the
+  // faces at their points, taken out).
   for (const Case c : {Case{0.025, 30000, 1, 0}, Case{0.025, 30000, 3, 0}, Case{0.02, 50000, 7, 0},
                        Case{0.025, 50000, 1, 0}, Case{0.033, 30000, 1, 0}, Case{0.02, 50000, 1, 0},
                        Case{0.025, 30000, 2, 0}, Case{0.025, 30000, 12, 0}, Case{0.025, 30000, 10, 0},
@@ -831,26 +827,24 @@ TEST(G2SBuild, ThinSlabsThreeAndFourSpacingsThickFaceOutwardAndClose) {
     off.maxHoleEdges = 0;
     const auto paper = run(cloud, off);
     EXPECT_EQ(paper->stat.holes, r->stat.holes + r->stat.holesClosed);
-    // The closures cross neither the mesh nor each other (checked where, unchecked, they did:
-    // 3 and 12 intersecting pairs; about 1-2 s per mesh, so not on every sampling).
+    // The closures cross neither the mesh nor each other (checked on the samplings where
+    // unchecked closures did; the exact test is too slow for every sampling).
     const bool checkCrossings = (c.seed == 1 && c.points == 30000) || c.seed == 7;
     if (!checkCrossings) continue;
     EXPECT_EQ(growth::countSelfIntersections(r->mesh), 0u);
   }
 }
 
-// Issue 13 item 5: samplings of plates three spacings thick where the front crossed the material
-// and grew the other sheet inside out (found on a wider set of seeds than the tests above: 4 of
-// 62). Seed 33: at a rim a chamfer went on to a bottom point 1.7 spacings behind its front
-// triangle, with nothing meshed in front of it yet; seed 40: down through a gap of the top sheet's
-// sampling; 50k seeds 4 and 9 at rims. Before the rule on the triangles grown on from a crossing
-// (Mesher::refusedAfterCrossing) 29,000-49,000 of their large faces faced in, with 1,000-1,500
-// boundary edges along the rims; now none faces in, seeds 33 and 40 close with the plate's topology
-// (seed 40 by the blockers' widening of the hole pass). The 50k ones kept one rim hole of 24-30
-// edges (more than maxHoleEdges), where the crossing's first triangles are left, until the hole
-// pass's regrowth (Mesher::HandlePass::regrow: the faces within 1.5 spacings of the loop taken
-// out, the hole grown into again by G2S from its edges on the points around it): now all four
-// close with the plate's topology.
+// Samplings of plates three spacings thick where the front crosses the material and, without the
+// rule on the triangles grown on from a crossing (Mesher::refusedAfterCrossing), grows the other
+// sheet inside out. Seed 33: at a rim a chamfer goes on to a bottom point under 2 spacings behind
+// its front triangle, with nothing meshed in front of it yet; seed 40: down through a gap of the
+// top sheet's sampling; 50k seeds 4 and 9 at rims. With the rule none faces in; seeds 33 and 40
+// close with the plate's topology (seed 40 by the blockers' widening of the hole pass). The 50k
+// ones leave one rim hole of more than maxHoleEdges edges, where the crossing's first triangles
+// are left, which the hole pass's regrowth closes (Mesher::HandlePass::regrow: the faces within
+// 1.5 spacings of the loop taken out, the hole grown into again by G2S from its edges on the
+// points around it): all four close with the plate's topology.
 TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
   struct Case {
     double thickness;
@@ -874,7 +868,7 @@ TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
     EXPECT_EQ(r->topo.components, 1u);
     EXPECT_EQ(r->stat.nonManifoldVertices, 0u);
     // Points left out: at most 3 by the growth, plus those the hole pass's wider closures take out
-    // (counted as spikes; measured 18 and 27 on seeds 33 and 40, at the crossing's fins).
+    // (counted as spikes, at the crossing's fins).
     EXPECT_LE(r->stat.unusedPoints, 3u + r->stat.holeSpikes);
     EXPECT_LE(r->stat.holeSpikes, 40u);
     if (c.maxBoundaryEdges == 0) {
@@ -883,13 +877,13 @@ TEST(G2SBuild, ThinSlabSheetsDoNotGrowInsideOutAfterACrossing) {
   }
 }
 
-// Issue 13 item 5: the samplings of plates three spacings thick that closed with a handle, a
+// Samplings of plates three spacings thick that close with a handle, a
 // tunnel through a rim's corner between chamfer triangles from one sheet to the other and the side
-// strip (docs/design/g2s-small-handles.md). Each handle had a cycle of three edges bounding
+// strip (docs/design/g2s-small-handles.md). Each handle has a cycle of three edges bounding
 // no face that does not separate the faces around it; the handle pass (Params::removeSmallHandles)
 // takes the faces on one side of it out and closes the loops: all three close with the plate's
 // topology, facing out. With the pass off each keeps its handle, so the test fails without it.
-// (Seed 7 had a handle too, beside a rim hole of 7 edges: the hole pass's wider closure
+// (Seed 7 has a handle too, beside a rim hole of 7 edges: the hole pass's wider closure
 // (Mesher::widenHoles) takes that hole's faces out with the handle's, see the test above.)
 TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
   struct Case {
@@ -926,15 +920,16 @@ TEST(G2SBuild, SmallHandlesThroughAThinSlabsRimAreCut) {
   }
 }
 
-// Issue 13 item 5: the last rim holes of 120 samplings of plates three spacings thick (the 62 of
-// the tests above and a wider set, docs/design/g2s-thin-parts.md). Where a crossing's fins keep a rim
+// Rim holes of plates three spacings thick that no closure closes (docs/design/g2s-thin-parts.md,
+// docs/design/g2s-hole-pass.md). Where a crossing's fins keep a rim
 // hole open, the hole pass grows into it again (Mesher::HandlePass::regrow): the faces within 1.5
 // spacings of the loop go, the growth runs from the loop's edges on the points around it with the
 // faces there fixed, and its triangles are kept only if they cross no face and leave every point
-// with one fan. 50k seeds 4 and 9 kept a hole of 30 and 24 edges, 30k seed 41 one of 21 edges with
-// a handle beside it: all three are regrown and close with the plate's topology, facing out. 50k
-// seed 8 (a hole of 10 edges and a handle) closes by a wider closure once a point's extra fan goes
-// with the faces taken out (HandlePass::splitFans): every try had left a point with two fans.
+// with one fan. 50k seeds 4 and 9 leave a hole of 30 and 24 edges, 30k seed 41 one of 21 edges
+// with a handle beside it: all three are regrown and close with the plate's topology, facing out.
+// 50k seed 8 (a hole of 10 edges and a handle) closes by a wider closure only when a point's extra
+// fan goes with the faces taken out (HandlePass::splitFans): otherwise every try leaves a point
+// with two fans.
 TEST(G2SBuild, RimHolesThatNoClosureClosesAreGrownIntoAgain) {
   struct Case {
     double thickness;
@@ -965,9 +960,9 @@ TEST(G2SBuild, RimHolesThatNoClosureClosesAreGrownIntoAgain) {
     const SlabFacing facing = slabFacing(r->mesh, spec.slabHalfSize, spec.slabThickness);
     EXPECT_EQ(facing.inward, 0u);
     EXPECT_LE(facing.inwardAtRims, r->stat.faces / 1000);
-    // The regrowth uses the points around the hole again: at most 3 left out (measured 0-3).
+    // The regrowth uses the points around the hole again: at most 3 left out.
     EXPECT_LE(r->stat.unusedPoints, 3u);
-    // The regrown faces cross nothing (checked on one; the exact test takes 1-2 s per mesh).
+    // The regrown faces cross nothing (checked on one: the exact test is slow).
     if (c.seed != 41) continue;
     EXPECT_EQ(growth::countSelfIntersections(r->mesh), 0u);
     // The same mesh on a rerun (the regrowth is deterministic).
@@ -980,10 +975,10 @@ TEST(G2SBuild, RimHolesThatNoClosureClosesAreGrownIntoAgain) {
 }
 
 // A sheet's sampling gap wider than the plate: on the 0.025 slab (30,000 points, seed 9) the only
-// point of a bottom edge's search sphere was a top point 3 spacings behind and 4.3 ahead (a fold of
-// 35 degrees), taken directly as the single point of its region, and the whole top grew on from it
-// inside out (26,506 faces of the large faces facing in). The fold-across-a-gap rule
-// (g2s_growth.cpp, kGapFoldCos) refuses it: the bottom sheet goes on beyond the gap.
+// point of a bottom edge's search sphere is a top point 3 spacings behind and 4.3 ahead (a fold of
+// 35 degrees), which the paper takes directly as the single point of its region, growing the whole
+// top on from it inside out. The fold-across-a-gap rule (g2s_growth.cpp, kGapFoldCos) refuses it:
+// the bottom sheet goes on beyond the gap.
 TEST(G2SBuild, ThinSlabWithAGapInASheetFacesOutward) {
   CloudSpec spec;
   spec.shape = Shape::Slab;

@@ -169,7 +169,7 @@ TEST(G2SFront, ThreeFreeEdgesAroundAHoleAreClosedByTheirTriangle) {
   EXPECT_EQ(m.findCandidate(in[2], in[0], in[5]).point, in[1]);
 }
 
-// Issue 13 item 4: an unused point inside the loop is not skipped. The loop's edges grow to it
+// An unused point inside the loop is not skipped. The loop's edges grow to it
 // (by the G2S search) and it ends as a vertex of the three triangles that fill the loop.
 TEST(G2SFront, ALoopWithAnUnusedPointInsideGrowsToThePoint) {
   std::vector<P3> pts{P3(0, 0, 0), P3(1, 0, 0), P3(0.5, -0.8, 0),         // a, b, p
@@ -288,10 +288,8 @@ TEST(G2SPriority, FlatnessPriorityReducesTwistingOnThinParts) {
   // edges first delays such jumps. On flattened ellipsoids (a sphere squashed to 5 % of its
   // height: two close faces meeting at a sharp rim), m = 8 flatness classes must leave fewer
   // boundary edges than a single class (size priority only) over three clouds, and on none of them
-  // more than 2 % above it. (Measured, m = 8 against m = 1: 909 / 1,003, 923 / 908, 226 / 911; the
-  // under-a-sheet rules, g2s_growth.cpp kUnderGap and after a crossing, stop some of the crossings
-  // of the single class too: before the first, 906 / 1,001, 905 / 923, 907 / 980; before the
-  // second, 902 / 1,003, 907 / 902, 916 / 993.)
+  // more than 2 % above it. (The under-a-sheet rules, g2s_growth.cpp kUnderGap and after a
+  // crossing, stop some of the single class's crossings too, so on one cloud the two come close.)
   size_t total[2] = {0, 0};
   for (std::uint64_t seed : {1, 2, 3}) {
     growth::CloudSpec spec;

@@ -1,4 +1,4 @@
-// Robust G2S on clouds with far points and dense clusters (issue 13, item 2): the spacing it
+// Robust G2S on clouds with far points and dense clusters: the spacing it
 // measures and logs is growth::meanSpacing (the one mesh_measures and the benchmark use), and
 // one point far away changes neither it nor the mesh's holes.
 #include "filter_g2s_layer.h"

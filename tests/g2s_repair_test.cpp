@@ -85,8 +85,8 @@ const Case kNoisy[] = {
 
 } // namespace
 
-// Item 4 of issue 15: without the removal these clouds gave intersecting pairs (the benchmark's
-// 100k versions 7 to 103).
+// Without the removal, noisy clouds like these give intersecting pairs
+// (docs/design/crossing-faces.md).
 TEST(G2SRepair, NoisyCloudsGiveNoIntersectingFacesNoDefectsAndTheSameMeshTwice) {
   size_t removed = 0, closed = 0;
   for (const Case& c : kNoisy) {
@@ -115,12 +115,10 @@ TEST(G2SRepair, NoisyCloudsGiveNoIntersectingFacesNoDefectsAndTheSameMeshTwice) 
   EXPECT_GT(closed, 0u);
 }
 
-// Closed noisy clouds (audit of 2026-12-03): the growth closed without a free edge, so the removal
-// of intersecting faces, which starts from the boundary, did not look, and 17 of 270 noisy closed
-// clouds (sphere, torus, genus 2; 2k-20k points; sigma 0.1-0.5 spacings) kept 2-9 intersecting
-// pairs. Each was an ear (a loop of three free edges closed, G2S or not) folded back over its front
-// triangle and lying across the faces at its points. Such an ear now makes the removal look: it
-// takes it out and the hole pass closes the hole.
+// Closed noisy clouds: where the growth closes without a free edge, the removal of intersecting
+// faces, which starts from the boundary, has nowhere to start, yet an ear (a loop of three free
+// edges closed, G2S or not) folded back over its front triangle can lie across the faces at its
+// points. Such an ear makes the removal look: it takes it out and the hole pass closes the hole.
 TEST(G2SRepair, FoldedEarsOfClosedNoisyCloudsAreFound) {
   struct Closed {
     Shape shape;

@@ -110,7 +110,7 @@ TEST(G2SSeed, CylinderTestRejectsPointsOnBothSidesEvenFarAway) {
   EXPECT_TRUE(outside.passesCylinderTest(in3[0], in3[1], in3[2]));
 }
 
-// Issue 13 item 3: the cylinder walk is bounded by the triangle's size, not by the bounding box.
+// The cylinder walk is bounded by the triangle's size, not by the bounding box.
 // Unbounded, a far point 10^6 away along the axis means 7 x 10^5 ball queries for one test, and a
 // triangle a few 10^-7 across on a unit sphere 1.4 x 10^7; bounded, at most 1024 per side.
 TEST(G2SSeed, TheCylinderWalkIsBoundedByTheTrianglesSize) {
@@ -146,7 +146,7 @@ TEST(G2SSeed, TheCylinderWalkIsBoundedByTheTrianglesSize) {
   EXPECT_LE(m.cylinderQueries(), 2048u * m.seedAttempts() + 2048u);
 }
 
-// Issue 13 item 5: a seed on one sheet of a thin part does not copy the orientation of the
+// A seed on one sheet of a thin part does not copy the orientation of the
 // nearest triangle when that triangle is on the other sheet. Two parallel grids 1.5 apart (unit
 // spacing); a triangle on the top one faces up (out of the part); a seed right below it, on the
 // bottom sheet, must face down (out of the part), not up like its nearest triangle.

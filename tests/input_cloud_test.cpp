@@ -66,8 +66,8 @@ TEST(InputCloud, NonFiniteCoordinatesAreRefusedWithTheirCount) {
   EXPECT_NE(e.find("2 of 100 vertices have NaN or infinite"), std::string::npos) << e;
 }
 
-// A fuzz finding (fuzz/regressions/cloud/torus_1e38_g2s_nan_centre): a cloud 1e38 across overflowed
-// G2S's sums of edge lengths into a NaN search centre. Such coordinates are refused, with a count.
+// A cloud 1e38 across (fuzz/regressions/cloud/torus_1e38_g2s_nan_centre) would overflow G2S's
+// sums of edge lengths into a NaN search centre. Such coordinates are refused, with a count.
 TEST(InputCloud, HugeCoordinatesAreRefusedWithTheirCount) {
   CMeshO m;
   sphereMesh(m, 100);

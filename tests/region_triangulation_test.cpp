@@ -157,7 +157,7 @@ TEST(RegionTriangulation, BordersLongerThanTheLimitStayHoles) {
 }
 
 // A face is too flat to output when its largest angle exceeds 179° (or two vertices coincide):
-// the audit's face with edges d, d, 2d has 180°.
+// a face with edges d, d, 2d has 180°.
 TEST(RegionTriangulation, NearlyCollinearFacesAreRecognised) {
   const growth::Vec3d a(0, 0, 0), c(2, 0, 0);
   EXPECT_TRUE(growth::nearlyCollinear(a, growth::Vec3d(1, 0, 0), c));

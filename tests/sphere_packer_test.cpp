@@ -172,7 +172,7 @@ TEST(SpherePacker, FacesAreOrientedLikeTheNormalsAndCarryQt) {
     EXPECT_LT((Point3d::Construct(copy.face[i].cN()) - Point3d::Construct(r->mesh.face[i].cN())).Norm(), 1e-6);
 }
 
-// Issue 13 item 5: the packer follows the input normals, which point out of the material, so
+// The packer follows the input normals, which point out of the material, so
 // the inner wall of a hollow ball faces the hollow; a thin closed plate (0.05 thick, about 1.7 d)
 // faces out on both large faces.
 TEST(SpherePacker, HollowBallAndThinSlabFaceOutOfTheMaterial) {
@@ -214,15 +214,13 @@ TEST(SpherePacker, HollowBallAndThinSlabFaceOutOfTheMaterial) {
   EXPECT_LE(flipped, 10u); // stray faces across the rim
 }
 
-// Issue 13 item 5: closed plates about three mean spacings thick (as Robust G2S's thin-plate tests)
-// at the automatic d. The noise estimate used to read the two sheets as one noisy surface (d about
-// 0.065 = 8 spacings on the first), and the paper's box filter drops the smaller side where a box
-// sees both: 9-33 % of each side was meshed. Now the estimate leaves out the neighbours on the
-// other sheet, d follows the plate's thickness (thickness / 1.2), and the boxes that see both
-// sides keep both as two layers: 96-99 % of each side is meshed (measured), facing out of the
-// plate. The rims keep holes where two 90-degree edges lie 1.2 d apart: 41 and 52 regions left
-// open with the usual splat size, whose overhangs past the rim met; 10 and 14 with s = 0.9 × the
-// thickness (18 and 27 boundary loops with those of the faces the clean-up removed).
+// Closed plates about three mean spacings thick (as Robust G2S's thin-plate tests) at the automatic
+// d (docs/design/spherepack-thin-parts.md). The noise estimate leaves out the neighbours on the
+// other sheet, so that it does not read the two sheets as one noisy surface: d follows the plate's
+// thickness (thickness / 1.2), and the boxes that see both sides keep both as two layers, so both
+// sides are meshed, facing out of the plate. The rims keep a few holes where two 90-degree edges
+// lie 1.2 d apart; the smaller splats (s = 0.9 × the thickness) keep their overhangs past the rim
+// from meeting.
 TEST(SpherePacker, ThinPlatesAboutThreeSpacingsThickAreMeshedOnBothSides) {
   for (const auto& c : {std::make_pair(0.025, 30000), std::make_pair(0.02, 50000)}) {
     SCOPED_TRACE(testing::Message() << "thickness " << c.first << ", " << c.second << " points");
@@ -243,7 +241,7 @@ TEST(SpherePacker, ThinPlatesAboutThreeSpacingsThickAreMeshedOnBothSides) {
     EXPECT_NE(s->stat.diameterReason.find("thin parts"), std::string::npos) << s->stat.diameterReason;
     EXPECT_NEAR(s->stat.splatSize, sp::kThinSplatPerGap * c.first, 0.05 * c.first);
     EXPECT_LE(s->stat.holes, 20u);
-    EXPECT_LE(s->m.boundaryLoops, 40u); // measured 18 and 27 (41 and 52 regions open before the smaller s)
+    EXPECT_LE(s->m.boundaryLoops, 40u); // the rims' loops, with those of the faces the clean-up removed
     EXPECT_EQ(s->stat.boundaryLoops, s->m.boundaryLoops);
     double top = 0, bottom = 0, wrong = 0;
     for (const auto& f : s->mesh.face) {
@@ -518,7 +516,7 @@ TEST(SpherePacker, DefaultDiameterFollowsTheNoise) {
   EXPECT_NEAR(st.sphereDiameter, sp::kDefaultDiameterPerNoise * st.scale.noise, 1e-12);
   // The spacing it logs is growth::meanSpacing's estimator (the trimmed mean) on the estimate's
   // 8,000 samples: within sampling error of the number Robust G2S and mesh_measures report from
-  // 20,000 (issue 13: one spacing estimator).
+  // 20,000 (one spacing estimator for both filters and the measures).
   std::vector<Point3d> layer;
   for (const auto& v : cloud.vert) layer.push_back(Point3d::Construct(v.cP()));
   const double reference = growth::meanSpacing(layer);
@@ -532,7 +530,7 @@ TEST(SpherePacker, DefaultDiameterFollowsTheNoise) {
 }
 
 // The default d is robust: one point far away, or 1 % of outliers scattered around the cloud,
-// change it by less than 5 % (the mean spacing, a mean, grew about 90-fold with the far point).
+// change it by less than 5 %.
 TEST(SpherePacker, DefaultDiameterIgnoresFarPointsAndOutliers) {
   growth::CloudSpec spec = sphereSpec();
   spec.count = 50000;
@@ -1019,8 +1017,7 @@ TEST(SpherePackerProgress, CancelLeavesNothing) {
 
 // The limit on the output is checked again while the mesh grows: the estimate before the growth
 // comes from the points' surface area, and large splats on a thick noisy cloud cover more
-// (fuzz/regressions/cloud/spherepack_output_past_estimate grew 51,000 vertices where about 10,000
-// were estimated).
+// (fuzz/regressions/cloud/spherepack_output_past_estimate grows far past its estimate).
 TEST(SpherePackerBadInput, OutputPastTheEstimateStopsWithAClearError) {
   growth::CloudSpec s = sphereSpec();
   s.count = 2000;
@@ -1042,9 +1039,10 @@ TEST(SpherePackerBadInput, OutputPastTheEstimateStopsWithAClearError) {
   EXPECT_NE(e.find("larger sphere diameter"), std::string::npos) << e;
 }
 
-// Audit 2026-12-03, A: one stray point a million units away made the extent exceed the box grid's
-// 2^21 boxes of side d per axis, and the whole cloud was refused ("use a larger d"). The far point
-// is now left out of the packing, counted and warned about; the sphere is meshed closed.
+// One stray point a million units away would make the extent exceed the box grid's 2^21 boxes of
+// side d per axis, and the whole cloud be refused ("use a larger d"): the far point is left out of
+// the packing, counted and warned about, and the sphere is meshed closed
+// (docs/design/spherepack-far-points.md).
 TEST(SpherePackerFarPoints, OneStrayPointFarAwayIsLeftOut) {
   growth::CloudSpec spec = sphereSpec();
   spec.count = 20000;
@@ -1123,9 +1121,9 @@ TEST(SpherePackerFarPoints, ASmallPartFarAwayIsLeftOutWithAWarning) {
   EXPECT_NE(r->st.warnings[0].find("mesh it on its own"), std::string::npos) << r->st.warnings[0];
 }
 
-// Audit 2026-12-03, B: a vertex placed at the midpoint of an edge of length 2d gave a face with
-// three collinear vertices (edges d, d, 2d: zero area) on this torus with 10 % outliers. No face
-// with an angle above 179° is written; the mesh stays manifold, the three edges a hole.
+// A vertex placed at the midpoint of an edge of length 2d can give a face with three collinear
+// vertices (edges d, d, 2d: zero area), as on this torus with 10 % outliers. No face with an angle
+// above 179° is written; the mesh stays manifold, the three edges a hole.
 TEST(SpherePackerFlatFaces, NoFaceWithCollinearVertices) {
   growth::CloudSpec s = torusSpec();
   s.count = 5000;
@@ -1147,7 +1145,7 @@ TEST(SpherePackerFlatFaces, NoFaceWithCollinearVertices) {
   EXPECT_EQ(flat, 0u);
 }
 
-// Audit 2026-12-03, C: a torus 300 across, 10^6 from the origin. The engine keeps every edge at
+// A torus 300 across, 10^6 from the origin. The engine keeps every edge at
 // least d in double, but MeshLab 2020.09 stores float, whose steps are 0.0625 there. The smallest
 // edge reported is the one of the stored mesh, and a warning says why it is below d.
 TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
@@ -1164,7 +1162,7 @@ TEST(SpherePackerStoredPrecision, SmallestEdgeIsMeasuredAsStored) {
   bool warned = false;
   for (const auto& w : r->st.warnings) warned = warned || w.find("below d") != std::string::npos;
   if (sizeof(CMeshO::ScalarType) == sizeof(float)) {
-    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // what the audit found (0.77 d on its horse)
+    EXPECT_LT(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance)); // float storage shortens some edge below d
     EXPECT_TRUE(warned);
   } else {
     EXPECT_GE(r->m.edgeMin, d * (1 - sp::kSmallestEdgeTolerance));
@@ -1192,7 +1190,7 @@ TEST(SpherePackerFarPoints, ANearSmallPartStaysWhenAFarPointIsLeftOut) {
 
 // The engine's memory (Stat::memory): each part counted, the peak at least what is held at once at
 // the end of the growth and at the output, and within the budget per input point at d = 2.5 mean
-// spacings (the scale of issue-sized clouds: about 0.66 output vertices per point).
+// spacings (about 0.66 output vertices per point).
 TEST(SpherePackerMemory, PeakAndItsPartsAreReportedWithinTheBudget) {
   growth::CloudSpec spec = torusSpec();
   spec.count = 200000;

@@ -234,8 +234,8 @@ TEST(SplatRadii, RenumberedPointsGetTheSameRadii) {
   EXPECT_EQ(sb.clamped, sa.clamped);
 }
 
-// The local splat radius as computed before the scratch arrays and the sort were rewritten for
-// speed (commit 7970b81, verbatim): the rewrite must give the same radius and the same fan, bit for
+// The local splat radius as computed by the plain code that the faster scratch arrays and sort
+// replaced (verbatim): the rewrite must give the same radius and the same fan, bit for
 // bit, on every kind of neighbourhood.
 namespace reference {
 using growth::tangentFrame;

@@ -1,7 +1,7 @@
 // Measures what the first write to fresh memory costs on this machine: page by page (one page
 // fault per 4 KiB page) against growth::prefault (one madvise(MADV_POPULATE_WRITE) call for the
-// range), on a fresh 64 MiB anonymous mapping each time, fastest of 3. The figures quoted in
-// huge_pages.h and docs/benchmark/notes.md come from this tool.
+// range), on a fresh 64 MiB anonymous mapping each time, fastest of 3: the costs that
+// growth/huge_pages.h weighs.
 //
 //   fault_cost [MiB]
 #include <growth/huge_pages.h>

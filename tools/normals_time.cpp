@@ -1,7 +1,7 @@
 // Times growth::updateNormals against the vcglib calls it replaces (UpdateNormal::
 // PerFaceNormalized, PerVertexAngleWeighted, NormalizePerVertex) on a mesh, fastest of 5 each,
-// and prints the largest difference between the two results' unit normals. The figures quoted in
-// docs/benchmark/notes.md come from this tool, on meshes written by `g2s_run ... -o mesh.ply`.
+// and prints the largest difference between the two results' unit normals; a mesh to time can be
+// written by `g2s_run ... -o mesh.ply`.
 //
 //   normals_time <mesh.ply>
 #include <cstring> // (vcglib's headers use strcpy without including it)

@@ -60,9 +60,9 @@ Vec3d genus2Project(Vec3d q) {
 
 // The triangulation samples are drawn from: marching tetrahedra (6 tetrahedra per grid cube
 // around its main diagonal, the same split in every cube, so neighbours share their faces'
-// edge points bit for bit) on a grid of step 0.08 over the shape's box: 71,664 triangles, built in
-// about 0.1 s. Finer grids only cost time: the rejection below removes the triangulation's error
-// (a grid of 0.04 gives the same area to 4e-7).
+// edge points bit for bit) on a grid of step 0.08 over the shape's box. Finer grids only cost
+// time: the rejection below removes the triangulation's error (a grid of 0.04 gives the same area
+// to 4e-7).
 struct Genus2Mesh {
   std::vector<Vec3d> corner;   // 3 per triangle
   std::vector<double> cumulativeArea; // flat areas, summed in triangle order

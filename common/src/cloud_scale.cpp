@@ -66,7 +66,7 @@ struct Search {
 };
 
 // Another sheet is seen when at least this many points of it are (a stray point with an opposed
-// normal is no sheet: on a torus with 10 % uniform outliers, a sixth of the samples saw one); its
+// normal is no sheet: among uniform outliers, many samples see one); its
 // gap is the distance across to the kSheetPoints-th nearest of them.
 constexpr int kSheetPoints = 3;
 
@@ -127,7 +127,7 @@ bool nearestOthers(const Search& s, const Point& c, std::uint32_t self, size_t w
     if (r >= s.cap) return false;
     r = std::min(s.cap, 1.5 * r);
   }
-  // A typical search ends with about 1.7 want points: sorting them all is faster than a selection.
+  // A typical search ends with fewer than 2 want points: sorting them all is faster than a selection.
   if (out.size() > 2 * want) {
     std::nth_element(out.begin(), out.begin() + std::ptrdiff_t(want - 1), out.end());
     out.resize(want);

@@ -9,7 +9,7 @@
 // and the sign of the exact sum is the sign of the expansion's largest component.
 //
 // This file must be compiled without contraction of a*b+c into a fused multiply-add (the split
-// and the error terms rely on every product and sum being rounded on its own): common/CMakeLists
+// and the error terms rely on every product and sum being rounded on its own): common/CMakeLists.txt
 // sets -ffp-contract=off for it.
 #include <growth/exact_predicates.h>
 

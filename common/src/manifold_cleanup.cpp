@@ -199,8 +199,8 @@ ManifoldCleanupStat removeNonManifoldVertices(const std::vector<Triangle>& faces
     for (size_t v = 0; v < vertexCount; ++v) work[v] = static_cast<std::uint32_t>(v);
     std::fill(queued.begin(), queued.end(), 1);
   }
-  // (Rows for the suspects only, rebuilt when the work reaches a vertex of a removed triangle,
-  // cost more on the merged bunny scans: three rebuilds over all triangles.)
+  // (Rows for all triangles at once: rows for the suspects only, rebuilt when the work reaches a
+  // vertex of a removed triangle, cost more on merged scans, which rebuild them several times.)
   const Incidence inc(faces, vertexCount, alive);
   std::vector<std::uint32_t> removeFaces;
   for (size_t head = 0; head < work.size(); ++head) {

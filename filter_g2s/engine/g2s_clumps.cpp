@@ -1,5 +1,5 @@
 // Robust G2S: dense clumps meshed as one point (Mesher::mergeClumps, see kClumpNeighbours).
-// (In a file of its own: beside the growth it changed the compiler's inlining of the growth's
+// (In a file of its own: beside the growth it changes the compiler's inlining of the growth's
 // queries, which then cost more than the clump search itself.)
 #include "g2s_mesher.h"
 
@@ -82,7 +82,7 @@ size_t markCorePoints(const MortonGrid& grid, const std::vector<P3>& crowded, do
 // of it (core = 2: their own points within r are within its 1.25r). So a point joins when it is
 // within r of a core point (and never farther than 1.25r from one), and the expanded points are
 // r/4 apart: a clump of m points far smaller than r costs O(m), where expanding every core point
-// would cost O(m^2) (0.5 s for 5,000 points). In each clump the member nearest the centroid stays
+// would cost O(m^2). In each clump the member nearest the centroid stays
 // (ties: the lower caller index); drop[q] = 1 for the others. Adds to `clumps` and `merged`.
 void groupClumps(const MortonGrid& grid, double r, std::vector<char>& core, std::vector<char>& drop, size_t& clumps,
                  size_t& merged) {

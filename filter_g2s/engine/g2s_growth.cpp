@@ -38,11 +38,12 @@ constexpr double kSeedMaxCircumradius = 3.0;
 // 2 x 1024 ball queries per seed attempt instead of box size / circumradius.
 constexpr long kMaxCylinderSlabs = 1024;
 
-// Thin parts (issue 13 item 5; not in the paper, whose analysis assumes a surface locally flat at
-// the scale of its G2S balls). Where a closed part is a few spacings thick, a search sphere and a
-// G2S ball can reach the part's other sheet: the front then crosses the material, and the sheet
-// grown on from the crossing is the other sheet seen from inside, inside out. Measured on closed
-// slabs 3-4 mean nearest-neighbour spacings thick (tests/g2s_build_test.cpp, ThinSlab*):
+// Thin parts (not in the paper, whose analysis assumes a surface locally flat at the scale of its
+// G2S balls; docs/design/g2s-thin-parts.md). Where a closed part is a few spacings thick, a search
+// sphere and a G2S ball can reach the part's other sheet: the front then crosses the material, and
+// the sheet grown on from the crossing is the other sheet seen from inside, inside out. The rules
+// are set for closed slabs 3-4 mean nearest-neighbour spacings thick (tests/g2s_build_test.cpp,
+// ThinSlab*):
 // - kSheetGap: a point this many spacings (growth::meanSpacing) or more off the front triangle's
 //   plane may lie on another sheet; sampling noise stays well below it (the noisy test clouds have
 //   sigma <= 0.25 spacings);
@@ -54,9 +55,8 @@ constexpr long kMaxCylinderSlabs = 1024;
 //   ahead, and the fold is the surface. Folds in front of the front triangle, or less than
 //   kFoldGap behind it, are left alone: in merged scans that is where the front steps between
 //   layers of one surface a spacing or two apart (misregistration), and refusing those steps
-//   opened holes (bunny_merged_normals.ply: 4,240 holes with kSheetGap on either side, 4,193
-//   now, 4,198 without the rule; 0978fef 4,201), while a thin part's other sheet lies a whole
-//   thickness (3 spacings or more, where the rule is needed) behind;
+//   opens holes, while a thin part's other sheet lies a whole thickness (3 spacings or more,
+//   where the rule is needed) behind;
 // - other sheet in a G2S ball: for a flat candidate (beta < 30 degrees), points inside its G2S
 //   ball farther from its plane than R / sqrt 2, kSheetGap spacings and the local mesh edge length
 //   do not make it fail: on a smooth, well-sampled sheet no point of the sheet lies there, so they
@@ -71,29 +71,28 @@ const double kFlatAheadCos = std::cos(10.0 * 3.14159265358979323846 / 180.0);
 //   on a sheet parallel to the front's (kGapSheetPoints points near it in that plane), is refused
 //   when the front's sheet goes on flat beyond it (a wider ball than the search sphere: in a gap of
 //   the sheet, the search sphere can hold the other sheet's point alone). kGapSheetReach is 4
-//   spacings: within 3, about 7 points of a sheet are expected (the mean spacing is the mean
-//   nearest-neighbour distance, about half the edge length), and where the other sheet's sampling
-//   is sparse too, as under the gap the front looks through, only 3 were found (a handle through
-//   a slab 3 spacings thick, 100k points seed 1).
+//   spacings, not 3: within 3, about 7 points of a sheet are expected (the mean spacing is the
+//   mean nearest-neighbour distance, about half the edge length), but under the gap the front
+//   looks through, the other sheet's sampling can be sparse too, with as few as 3 there.
 const double kGapFoldCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
 constexpr int kGapSheetPoints = 5;
 constexpr double kGapSheetReach = 4.0;
 const double kOtherSheetFlatCos = std::cos(30.0 * 3.14159265358979323846 / 180.0);
-// - under a sheet (rims; branch thin): a candidate kUnderGap spacings or more behind the front
+// - under a sheet (rims): a candidate kUnderGap spacings or more behind the front
 //   triangle, on a surface, is refused when a point of the mesh lies in front of the new triangle
 //   (in the cylinder over its circumcircle, kSheetGap spacings to kUnderReach circumradii along its
 //   normal, and kUnderFrontGap spacings or more in front of the front triangle's plane), with at
 //   least kUnderSheetEdges edges and its triangle facing the same way (cosine above
-//   kUnderSameWayCos): the new triangle would lie in the material under that sheet. At the rim of
-//   a plate 3 spacings thick, a front triangle across the top-side corner otherwise continued to a
-//   bottom point 0.8-1.7 spacings behind it, through the corner of the material (fold 20-42
-//   degrees, under the fold rules above), and the bottom grew inside out from it.
+//   kUnderSameWayCos): the new triangle would lie in the material under that sheet. It catches
+//   what the fold rules above leave alone at a plate's rim: a front triangle across the top-side
+//   corner continuing to a bottom point less than kFoldGap behind it, through the corner of the
+//   material, from which the bottom would grow inside out.
 constexpr double kUnderGap = 0.5;
 constexpr double kUnderReach = 3.0;
 constexpr double kUnderFrontGap = 1.0;
 constexpr std::uint32_t kUnderSheetEdges = 4;
 constexpr double kUnderSameWayCos = 0.25;
-// - after a crossing (branch gens): the triangles grown on from a candidate kUnderGap or more
+// - after a crossing: the triangles grown on from a candidate kUnderGap or more
 //   behind its front triangle, for Mesher::kCrossingMark generations (marked on their points), are
 //   refused when they lie under a sheet of the mesh facing the same way beyond an empty layer: a
 //   point with kUnderSheetEdges edges and its triangle facing the same way, within kChildNarrow
@@ -105,13 +104,10 @@ constexpr double kUnderSameWayCos = 0.25;
 //   down through a gap of the top sheet's sampling) leads the front onto the other sheet, the
 //   sheet it would grow there is the other sheet inside out, under the sheet already meshed: its
 //   first triangles are refused, and the front reaches that sheet elsewhere the right way round.
-//   Measured on 62 samplings of plates 3-3.15 spacings thick (docs/g2s-robustness.md, "Sheets
-//   grown inside out after a crossing"): 4 grew one sheet inside out before, none now. The empty
-//   layer keeps a noisy sheet's own upper points (sigma 0.5 spacings put points 2-4 spacings above
-//   a triangle at the bottom of the spread: 670 refusals on a noisy torus without the wide
-//   cylinder, 2,091 with the circumcircle's) from counting as a sheet, and the narrow axis keeps
-//   slivers' wide circumcircles from reaching far. kChildGap 2.5 rather than 2: the same plates,
-//   and fewer points of the merged bunny's second layers left out.
+//   The empty layer keeps a noisy sheet's own upper points (noise of sigma 0.5 spacings puts points
+//   2-4 spacings above a triangle at the bottom of the spread) from counting as a sheet, and the
+//   narrow axis keeps slivers' wide circumcircles from reaching far. kChildGap is 2.5 rather than
+//   2: as good on thin plates, and fewer points of a merged scan's second layers are left out.
 //   (The crossing is Mesher::kCrossingGap = kUnderGap spacings behind.)
 constexpr double kChildGap = 2.5;
 constexpr double kChildReach = 4.0;
@@ -356,9 +352,8 @@ bool Mesher::unusedPointInside(std::uint32_t a, std::uint32_t b, std::uint32_t c
   });
 }
 
-// search and its steps are inlined into their one caller, findCandidate, as they were before the
-// ear and loop handling were split off (a separate function cost 2.5 % of the growth's
-// instructions on a clean sphere).
+// The candidate search's steps are inlined into their one caller, findCandidate: they run for
+// every front edge, where a call per step shows in the growth's time.
 #if defined(__GNUC__)
 #define GROWTH_G2S_INLINE __attribute__((always_inline)) inline
 #else
@@ -452,9 +447,9 @@ GROWTH_G2S_INLINE Candidate Mesher::g2sPoint(std::uint32_t a, std::uint32_t b, s
   // Several points: the reference point is the one whose smallest sphere through it and the
   // edge's endpoints is empty. Where several are (the G2S triangulation is not unique off the
   // plane), the one with the smallest such sphere: the point a sphere growing from the edge
-  // meets first, as in the planar Delaunay case. (Measured against "flattest class first" on
-  // the merged bunny scans and noisy clouds: fewer holes, boundary edges and non-manifold
-  // vertices, and fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
+  // meets first, as in the planar Delaunay case. (Rather than "flattest class first": on merged
+  // scans and noisy clouds it leaves fewer holes, boundary edges and non-manifold vertices, with
+  // fewer G2S tests; the flatness still orders the queue, sec. 4.1.) They are
   // tested in that order, skipping the points the topological tests reject.
   // The list is ordered lazily: the first kLazyPicks are selected one by one, the next smallest
   // (R², id) among the untested candidates (the first one or two are usually taken, so most of a
@@ -722,11 +717,11 @@ bool Mesher::underASheetAfterCrossing(std::uint32_t a, std::uint32_t b, std::uin
   const double wide2 = kChildWide * kChildWide * spacing_ * spacing_;
   const double narrow2 = std::min(ball.radius2, kChildNarrow * kChildNarrow * spacing_ * spacing_);
   const P3 centroid = (A + B + Q) / 3.0;
-  // Called for most accepted candidates near the crossings of a noisy scan (689,404 times on the
-  // merged bunny), so in two small queries rather than one over the whole wide cylinder: first
-  // the nearest qualifying point in the narrow cylinder from gap to reach (the ball around that
-  // section), then any point below it in the wide one (the ball around that section, stopping at
-  // the first). (A slightly larger ball, (1 + 1e-9): the predicates decide membership.)
+  // Called for most accepted candidates near the crossings of a noisy scan, so in two small
+  // queries rather than one over the whole wide cylinder: first the nearest qualifying point in
+  // the narrow cylinder from gap to reach (the ball around that section), then any point below it
+  // in the wide one (the ball around that section, stopping at the first). (A slightly larger
+  // ball, (1 + 1e-9): the predicates decide membership.)
   double lowest = std::numeric_limits<double>::infinity();
   const double half = 0.5 * (reach - gap);
   anyInBall(centroid + n * (0.5 * (gap + reach)), std::sqrt(half * half + narrow2) * (1 + 1e-9),

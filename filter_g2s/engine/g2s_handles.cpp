@@ -1,13 +1,13 @@
 // Robust G2S: small handles cut after the growth (Mesher::removeSmallHandles), and the hole
-// pass's wider closure (Mesher::widenHoles); not in the paper.
+// pass's wider closure (Mesher::widenHoles); not in the paper (docs/design/g2s-small-handles.md,
+// docs/design/g2s-hole-pass.md).
 //
 // Where two sheets of one surface come within a spacing or two (the rim of a plate 3 spacings
 // thick, the overlapping layers of a merged scan), the growth can join them twice and leave a
-// tunnel: a handle of the mesh that the surface does not have. Measured on the closed slabs
-// 3 spacings thick (docs/g2s-robustness.md, "The handles"): each handle sat within two rings of
-// one rim vertex, and each was cut by a cycle of three mesh edges that bounds no face (a
-// non-face 3-cycle): removing the faces on one side of such a cycle lowered the genus of the two
-// rings around it from 1 to 0. So, as Guskov and Wood's topological noise removal (2001) does
+// tunnel: a handle of the mesh that the surface does not have. On closed slabs 3 spacings thick,
+// such a handle lies within two rings of one rim vertex and is cut by a cycle of three mesh edges
+// that bounds no face (a non-face 3-cycle): removing the faces on one side of the cycle lowers the
+// genus of the two rings around it from 1 to 0. So, as Guskov and Wood's topological noise removal (2001) does
 // with its short non-separating cycles, but only for the shortest ones:
 //  - the pass runs only where the mesh has a handle: the sum over components of
 //    (2 - V + E - F - loops) / 2 is above 0 (a clean sphere stops there without numbering its
@@ -32,8 +32,6 @@
 // blockers: at a plate's rim, triangles left from the front's crossing through the material, a
 // fin across the hole), the faces on its edges and the blockers go, then also all the faces at
 // the blockers' points off the loop; the loops this leaves are closed as above.
-// Measured in docs/g2s-robustness.md, "Small handles cut": 16 of 17 slab samplings close with the
-// plate's topology; the bunny's 741 handles become 516 and its 717 holes 260.
 // A handle of the object itself (a torus' tube, a mug's handle) has no cycle of three edges
 // around it unless it is sampled by three points across, so it stays.
 #include "g2s_hole_pass.h"
@@ -852,10 +850,9 @@ Mesher::HandleStat Mesher::removeSmallHandles(const BoundaryCount& boundary, int
   st.handlesBefore = handleCount(boundary);
   if (st.handlesBefore == 0 || maxHoleEdges < 3) return st;
   // The paper's growth alone (no thin-part rule acted, no face taken out, none added by a repair)
-  // is not scanned: its handles are taken as the object's. Measured before this gate: on the clean
-  // torus and genus-2 clouds of tests/g2s_build_test.cpp (CleanClosedCloudsUseEveryPoint, 2,164 to
-  // 25,000 points) the scan cut nothing, at 9 % more instructions on a torus of 200k points; the
-  // small handles measured came where the repairs or the thin-part rules acted.
+  // is not scanned: its handles are taken as the object's. On clean closed clouds the scan cuts
+  // nothing and only costs time; the small handles come where the repairs or the thin-part rules
+  // acted.
   const bool plainGrowth = foldsRefused_ + otherSheetBalls_ == 0 && tri_.size() == grownTriangles_ &&
                            std::find(alive_.begin(), alive_.end(), char(0)) == alive_.end();
   if (plainGrowth) return st;

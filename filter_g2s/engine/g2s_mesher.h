@@ -64,7 +64,7 @@ class Mesher {
 public:
   // Grid cells are this many mean spacings wide. The mesher's queries are balls of about 2–3
   // spacings; larger cells scan more points but probe fewer cells, and probes cost more
-  // (measured with tools/g2s_grid_bench.cpp and callgrind: 6–8 best, 8 slightly ahead).
+  // (tools/g2s_grid_bench.cpp times the grid's queries at several cell widths).
   static constexpr double kCellSpacings = 8.0;
   // Dense clumps (a scanner dwelling on a spot; not in the paper): a point with at least
   // kClumpNeighbours others within kClumpRadius spacings is a clump's core point, impossible on a

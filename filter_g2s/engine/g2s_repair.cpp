@@ -1,18 +1,18 @@
-// Repairs after the paper's method (sec. 4.2's cleanup): self-intersecting faces, then small holes.
-// Measured in docs/g2s-hole-pass.md.
+// Repairs after the paper's method (sec. 4.2's cleanup): self-intersecting faces, then small holes
+// (docs/design/crossing-faces.md, docs/design/g2s-hole-pass.md).
 //
 // Self-intersections. On noisy clouds a triangle that closes a loop of free edges (an ear or a
 // quad, Mesher::findCandidate) can overlap the fan of one of its points, and where two fronts grow
 // over each other (layers of noisy points) their sheets can cross: the G2S and topological tests
-// see points and edges, not faces. Measured on the noisy clouds, every intersecting pair had a
-// face that closed a loop, or lay near the boundary (a crossing of two sheets ends at a free edge
+// see points and edges, not faces. On noisy clouds, an intersecting pair has a face that closed a
+// loop, or lies near the boundary (a crossing of two sheets ends at a free edge
 // of one of them unless it closes on itself). So the exact test (growth/self_intersections.h)
 // takes each loop-closing triangle against the faces at its points and their neighbours, and the
 // faces near the vertices that can be on a boundary (boundarySuspects) against each other; faces
 // are removed greedily until these have no intersecting pair, the test runs again around what was
 // removed (following a crossing inwards) until a round removes nothing, and sec. 4.2 cleans up the
 // fans this leaves. A mesh grown without a free edge left (every clean closed cloud) is not
-// examined at all. build/mesh_measures counts 0 pairs after it on every noisy cloud measured.
+// examined at all.
 //
 // Holes. A boundary loop of a few edges left by noise (the G2S ball of every triangle that would
 // close it holds a point, or sec. 4.2 and the removal above took faces out) is closed by cutting
@@ -26,8 +26,8 @@
 // neighbours' (each new triangle uses the reverse of the loop's half-edges). A loop is closed whole
 // or not at all; one that cannot be closed is tried again with one of its faces taken out (in loop
 // order, the first that lets it close), when that face's third point is inside the mesh: the point
-// joins the loop and leaves it with a closed fan again. On the noisy clouds most loops that failed
-// were loops of three whose triangle met a face nearby. Last, a loop vertex with only the two faces
+// joins the loop and leaves it with a closed fan again (on noisy clouds, most loops that fail are
+// loops of three whose triangle meets a face nearby). Last, a loop vertex with only the two faces
 // on its loop edges, sharing their third point (a spike), is taken out of the mesh with both faces
 // and the loop runs through that point; a loop vertex with one face on both its loop edges (a flap)
 // goes with that face (one point left unused per spike or flap, at most kMaxSpikes per loop).
@@ -49,7 +49,7 @@ namespace g2s {
 namespace {
 bool isZero(const P3& v) { return v[0] == 0 && v[1] == 0 && v[2] == 0; }
 // The exact test runs on the faces with a vertex within this many local spacings of a boundary
-// suspect (1: the faces around it; 2 and 3 found no more pairs on the noisy clouds and the bunny).
+// suspect (1: the faces around it; a wider reach finds no more pairs on noisy clouds and merged scans).
 constexpr double kSuspectReach = 1.0;
 // Hole pass: edges longer than this many mean spacings are few (their faces are tested apart).
 constexpr double kLongEdgeSpacings = 3.0;
@@ -218,7 +218,7 @@ Mesher::SelfIntersectionStat Mesher::removeSelfIntersections() {
   if (alive_.size() != tri_.size()) assignHuge(alive_, tri_.size(), char(1));
   // The vertices that can lie on a boundary: none on a closed mesh. (Where the mesh closed, a
   // loop-closing triangle folded back over its front triangle is the one way found for two faces
-  // to cross: step 1 below finds it; measured on noisy spheres, docs/g2s-hole-pass.md.)
+  // to cross: step 1 below finds it.)
   std::vector<std::uint32_t> seeds;
   boundarySuspects(seeds);
   if (seeds.empty() && foldedEars_ == 0) return st;

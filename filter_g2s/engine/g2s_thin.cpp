@@ -1,20 +1,15 @@
-// Robust G2S: the holes left at the rims of thin closed parts (Mesher::closeRimLoops; issue 13
-// item 5, not in the paper). In a file of its own, like g2s_clumps.cpp: it runs once, after the
+// Robust G2S: the holes left at the rims of thin closed parts (Mesher::closeRimLoops; not in the
+// paper, docs/design/g2s-thin-parts.md). In a file of its own, like g2s_clumps.cpp: it runs once, after the
 // growth and only when a thin-part rule of g2s_growth.cpp acted, and keeps out of the growth's
 // inlined queries.
 //
-// Why the rims stay open (measured on the closed slab 3 spacings thick, `g2s_run --shape slab
-// --thickness 0.025 --points 30000`: 117 boundary edges in 22 loops after the growth, each
-// boundary edge's candidates classified against the final mesh): a rim is two 90-degree edges 3
-// spacings apart, where the growth leaves loops of 4-10 edges (most of 5), edges 1-6 spacings
-// long, wrapping round the corner of the material. Of the 117 edges, 64 had a loop vertex in
-// their search sphere but its G2S ball held other points of the same surface (the ball of a
-// triangle cutting across a corner holds the corner's vertices), 40 had no loop vertex in their
-// search sphere (which lies ahead of the edge in the front triangle's plane, out of the
-// material: 21 of them had no point at all within the maximum radius), and 13 were refused by the
-// topological tests (the loop's vertex already joined to the edge's end). None was refused by the
-// fold rule or the other-sheet rule, and the ear and four-edge closures only close loops of three
-// and four edges. The loops are also tangled with the growth's other leftovers there: triangles
+// Why the rims stay open: a rim of a plate 3 spacings thick is two 90-degree edges 3 spacings
+// apart, where the growth leaves loops of 4-10 edges, edges 1-6 spacings long, wrapping round the
+// corner of the material. A boundary edge there finds no candidate because the G2S ball of a
+// triangle cutting across the corner holds the corner's vertices, or because its search sphere
+// (ahead of the edge in the front triangle's plane, out of the material) holds no loop vertex, or
+// because the topological tests refuse the loop's vertex (already joined to the edge's end); the
+// ear and four-edge closures only close loops of three and four edges. The loops are also tangled with the growth's other leftovers there: triangles
 // hanging off a rim by a vertex (non-manifold, taken off by sec. 4.2 later, which opens a hole),
 // flaps (a triangle on two consecutive loop edges) and triangles folded over the hole.
 //
@@ -24,8 +19,7 @@
 // folded triangles; each closure triangle checked like a loop's (no unused point inside, no
 // existing edge twice, room at its points) and not folding back on the mesh. Where the least-area
 // closure crosses the mesh, the least-area one that crosses nothing; an unused point (or a lone
-// seed triangle's) inside the closure is joined to the loop first (docs/g2s-robustness.md, "The
-// samplings that stayed open or inside out").
+// seed triangle's) inside the closure is joined to the loop first.
 #include "g2s_apart.h"
 #include "g2s_mesher.h"
 
@@ -156,7 +150,7 @@ private:
   // has an id (its index in tri_ when the tables were made; the closures' ids follow) and curOf
   // gives its index in tri_ now, kGone once it is taken off (removeGrownTriangle moves the last
   // triangle into the freed slot). A lookup scans the few triangles at a vertex: a scan of tri_
-  // for each cost the bunny, with its thousands of loops, seconds.
+  // for each would cost seconds on a merged scan, with its thousands of loops.
   std::vector<std::uint32_t> firstAt;
   std::vector<Triangle> trianglesAt;
   std::vector<std::uint32_t> idAt, curOf, idOf;
@@ -344,7 +338,7 @@ bool Mesher::RimPass::thirdPoint(std::uint32_t from, std::uint32_t to, std::uint
 // pass: a triangle tilted by noise sees its own sheet along its normal, facing its own way; a
 // triangle flipped within the sheet sees nothing that far off its plane. (Where the growth
 // folded a noisy sheet or the layers of merged scans over themselves, the mesh has two
-// sheets facing apart, and the loops there are closed too: see docs/g2s-robustness.md.)
+// sheets facing apart, and the loops there are closed too.)
 bool Mesher::RimPass::atThinPart(const std::vector<std::uint32_t>& loop) {
   bool apart = false;
   for (size_t s = 0; s < 2 * loop.size() && !apart; ++s) {
@@ -828,8 +822,8 @@ void Mesher::RimPass::commit(const std::vector<std::uint32_t>& loop) {
   if (!clear) return;
   // Every half-edge of the closure must be free in the point-edge map as it will be once the lone
   // triangles are off, and used by one closure triangle only. The programme's checks do not
-  // always see it (the joins' edges; found by fuzz_ply, input in fuzz/regressions/ply/): such a
-  // closure is not made, and the loop stays open.
+  // always see it (the joins' edges; a case is kept in fuzz/regressions/ply/): such a closure is
+  // not made, and the loop stays open.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> freed, taken;
   for (std::uint32_t v : lonePoints) {
     std::uint32_t x, y;

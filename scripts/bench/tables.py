@@ -177,7 +177,7 @@ def headline_section(clouds, rows, level):
 
 
 def peer_section(clouds, rows, level):
-    """Robust G2S against CGAL's advancing front (issue 15: at most its holes on noisy clouds, with no
+    """Robust G2S against CGAL's advancing front (the aim: at most its holes on noisy clouds, with no
     non-manifold elements and no self-intersections, and faster), one line per cloud with both rows."""
     both = [c for c in clouds if ok_row(rows, c, "g2s") and ok_row(rows, c, AFSR)]
     if not both:

@@ -86,8 +86,8 @@ def cases():
     # The surface of a cube on the same lattice: exact ties in 3D, and sharp edges and corners.
     c["cube-lattice"] = [cube_point(i, j, k, 24) for i in range(25) for j in range(25) for k in range(25)
                          if {i, j, k} & {0, 24}]
-    # 149 rings of 300 points and the poles (44,702 points; the issue's 300 x 600 at half the
-    # resolution): 300 edges at each pole, G2S held at most 255 neighbours per point before issue 13 item 1.
+    # 149 rings of 300 points and the poles (44,702 points): 300 edges at each pole, more than 255
+    # neighbours at one point.
     c["uv-sphere"] = uv_sphere(300)
     c["far-outlier"] = base + [(1e4, 0, 0, 1, 0, 0)]
     # At 20k points the far point costs G2S today (holes, time): see the matrix's notes.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The bad-input matrix (issue 13, item 6): both filters through the real meshlabserver on every
+# The bad-input matrix: both filters through the real meshlabserver on every
 # adversarial cloud of tests/integration/bad_input_clouds.py. Each case ends as the table below
 # says, and never with a crash or a hang (a time limit per run):
 #   error:<text>  the filter refuses: meshlabserver stops the script (status 255, not a signal),
@@ -9,7 +9,7 @@
 #                 faces, its guarantee), and the input layer, saved as layer 0, is the input bit
 #                 for bit;
 #   closed        a mesh as above without boundary edges.
-# A case marked EXPECTED TO CHANGE is a shortcoming another branch fixes; the test accepts today's
+# A case marked EXPECTED TO CHANGE is a known shortcoming; the test accepts today's
 # outcome and says so, and also accepts the fixed one (then the line should be tightened):
 #   changing:<text>  today the error <text>, once fixed a closed mesh;
 #   mesh-to-closed   today a mesh with holes, once fixed a closed mesh.
@@ -48,12 +48,10 @@ nan-normal      | closed                              | error:1 of 3000 vertices
 mesh            | error:is a mesh                     | error:is a mesh
 '
 # EXPECTED TO CHANGE:
-# - far-outlier-20k, Robust G2S: a 20k-point sphere and one point 10^4 away: 61 holes instead of 0
-#   and 1.67 s instead of 0.10 s (build/g2s_run --repeat 3 on the cloud with and without the far
-#   point); branch spatial-index (issue 13 item 2). Accepted: a manifold mesh.
-# - far-outliers, Robust G2S: one small hole (6 boundary edges) where the sphere without the five
-#   far points has none; G2S's spacing is not robust to far points yet (it logs a mean spacing of
-#   8.6 instead of 0.03); branch spatial-index (issue 13 item 2). Accepted: a manifold mesh.
+# - far-outlier-20k, Robust G2S: a 20k-point sphere and one point 10^4 away may keep holes where
+#   the sphere alone has none. Accepted: a manifold mesh.
+# - far-outliers, Robust G2S: a small hole may stay where the sphere without the five far points
+#   has none. Accepted: a manifold mesh.
 
 # The cases the writer made and the table must be the same list.
 diff <(sed -n 's/^\([a-z0-9-]*\) *|.*/\1/p' <<< "$table") "$work/cases.txt" > /dev/null \

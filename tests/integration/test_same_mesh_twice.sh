@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Determinism through the plugins (issue 13, item 8): two meshlabserver runs of each filter on the
+# Determinism through the plugins: two meshlabserver runs of each filter on the
 # same noisy cloud write the same PLY, byte for byte. The second run is pinned to one CPU (taskset),
 # so the sphere packer's threads (automatic: the hardware's) are scheduled quite differently.
 # (tests/determinism_test.cpp compares the engines' meshes on 1 and 2 threads and on reruns.)

@@ -1,8 +1,7 @@
 #pragma once
 // Robust estimates of how a point cloud samples its surface: the spacing, the area each point
 // stands for, and the noise normal to the surface. Medians over a fixed-stride sample of the points,
-// so that outliers and a few far points barely move them (growth::meanSpacing, a mean, is
-// multiplied by ~90 on a 50k-point sphere by one point far away).
+// so that outliers and a few far points barely move them.
 //
 // For each sampled point p, its k nearest other points (k = SamplingOptions::neighbours):
 // - medianSpacing = median over the samples of the distance to the nearest other point. For a Poisson
@@ -71,10 +70,10 @@ Box3d robustBox(const std::vector<Vec3d>& points, size_t maxSamples = kMeanSpaci
 struct SamplingOptions {
   size_t maxSamples = 20000;     // points sampled at a fixed stride (deterministic)
   size_t maxNoiseSamples = 5000; // of those, the ones (again at a fixed stride) with a local fit:
-                                 // the median of 5000 s^2 varies by ~0.4 % in sigma (fitting all
-                                 // 20000 made the whole estimate 45 % slower)
+                                 // enough for a stable median of s^2, and the fits are the
+                                 // estimate's main cost
   int neighbours = 16;           // k: the k-th neighbour distance gives the area, p and k neighbours
-                                 // the fit (12 and 20 measured: docs/sampling-estimate.md)
+                                 // the fit (tools/sampling_estimate.cpp --k compares other values)
   // The points' normals (same size as the points; null or another size: not used). With them, a
   // neighbour q of a sample p is left out when it lies on another sheet of a thin part: its normal
   // opposes p's (n_p·n_q < 0) and it lies across p's tangent plane rather than along it

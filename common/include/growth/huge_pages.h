@@ -1,9 +1,9 @@
 #pragma once
 // Large arrays that are written once from end to end (point coordinates, edge maps, triangle
-// lists, the output mesh's vectors) pay one page fault per 4 KiB page on first touch; on the
-// virtual machines this project is measured on a fault costs about 12 µs (tools/fault_cost.cpp),
-// which for the 361k-point bunny once added up to a third of the run. Transparent huge pages cut the number of faults by
-// 512; prefault (below) makes a range resident in one call, huge pages or not.
+// lists, the output mesh's vectors) pay one page fault per 4 KiB page on first touch, which on a
+// virtual machine can be a large part of a run (tools/fault_cost.cpp measures a fault's cost).
+// Transparent huge pages cut the number of faults by 512; prefault (below) makes a range resident
+// in one call, huge pages or not.
 //
 // adviseHugePages asks Linux (madvise MADV_HUGEPAGE) to back the 2 MiB-aligned part of a range
 // with huge pages; it must be called before the range is first written. Elsewhere, or when the
@@ -42,7 +42,7 @@ inline void adviseHugePages(const void* data, size_t bytes) {
 // were not mapped on their own (its mmap threshold grows to the largest block freed, up to
 // 32 MiB, so a working state's arrays often come from the heap): after a large working state is
 // freed, a few megabytes of it stay resident and add to the next phase's peak. Costs a walk over
-// the heap's free blocks (2 ms after the bunny's working state); elsewhere it does nothing.
+// the heap's free blocks; elsewhere it does nothing.
 inline void releaseFreeHeap() {
 #if defined(__GLIBC__)
   malloc_trim(0);
@@ -68,9 +68,8 @@ inline void discardPages(const void* data, size_t bytes) {
 
 // Makes the pages of [data, data + bytes) resident at once (madvise MADV_POPULATE_WRITE, Linux
 // 5.14 and later), for memory about to be written from end to end. Faulting pages in one at a
-// time costs a trap per 4 KiB page; on the virtual machines this project is measured on a trap
-// costs about 12 µs (3.0-3.1 ms per MiB), populating the range in one call about 0.8 ms per MiB
-// (tools/fault_cost.cpp: a fresh 64 MiB mapping, fastest of 3). Below kPrefaultMinBytes the call costs more than it saves.
+// time costs a trap per 4 KiB page; populating the range in one call costs a fraction of that
+// (tools/fault_cost.cpp measures both). Below kPrefaultMinBytes the call costs more than it saves.
 // Elsewhere, or on older kernels (EINVAL), it does nothing: pages then fault in as they are written.
 // Returns whether the whole pages of the range were made resident.
 constexpr size_t kPrefaultMinBytes = size_t(32) << 10;

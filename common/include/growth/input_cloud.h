@@ -34,7 +34,7 @@ struct CloudCheck {
 
 // Coordinates beyond ±kMaxAbsCoordinate are refused: far beyond any scan (a kilometre in
 // nanometres is 1e12), and past it the engines' squared lengths, products of squared lengths and
-// float sums of lengths would overflow (a cloud 1e38 across gave a NaN search centre in G2S).
+// float sums of lengths would overflow (a cloud 1e38 across gives a NaN search centre in G2S).
 constexpr double kMaxAbsCoordinate = 1e15;
 
 // The distinct points of a layer's live vertices (taken over from `layer`); throws growth::Error

@@ -98,7 +98,7 @@ public:
 
 protected:
   // Adds n points scanned to the visit counter, if any. (Per query in the hot gathers, which sum
-  // their ranges anyway, rather than per cell: a load and a branch per cell cost 5 % of them.)
+  // their ranges anyway, rather than per cell: a load and a branch per cell would slow them.)
   __attribute__((always_inline)) void countVisited(std::uint64_t n) const {
     if (__builtin_expect(visited_ != nullptr, 0)) *visited_ += n;
   }

@@ -27,7 +27,7 @@
 // more than 4 cells long) are not listed but look up the cells their box covers, or scan all
 // boxes when their box covers more cells than there are faces; when that work would exceed 4
 // passes over the faces, the cells grow (see self_intersections.cpp). Time is linear in the faces
-// when their sizes are alike; tools/self_intersections_time measures it on a mesh.
+// when their sizes are alike; tools/self_intersections_time.cpp measures it on a mesh.
 #include <growth/manifold_cleanup.h>
 
 #include <growth/vec3.h>
