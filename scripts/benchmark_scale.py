@@ -235,8 +235,19 @@ def run_pymeshlab(args, cloud, work):
     os.makedirs(env["HOME"], exist_ok=True)
     cmd = ["/usr/bin/time", "-v", "-o", time_path, args.python, "-c", CHILD, pkg, os.path.realpath(plugins), cloud,
            row["mesh"]]
+    # The log read line by line as it comes: PyMeshLab writes each progress line at once, so the
+    # largest time between two of them is how long a user saw no progress.
+    stamps = []
     with open(row["log"], "w") as log:
-        rc = subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=env, cwd=work).returncode
+        proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env, cwd=work,
+                                universal_newlines=True, errors="replace")
+        for line in proc.stdout:
+            if re.search(r"\[ *\d+% \]", line):
+                stamps.append(time.perf_counter())
+            log.write(line)
+        rc = proc.wait()
+    if len(stamps) > 1:
+        row["progress_max_gap"] = max(b - a for a, b in zip(stamps, stamps[1:]))
     text = open(row["log"], errors="replace").read()
     seconds, rss, _ = time_v(time_path)
     row.update({"status": "ok" if rc == 0 else "failed (%d)" % rc, "wall_seconds": seconds, "peak_rss": rss})
@@ -338,9 +349,12 @@ def page(args, command, stamp, mach, cloud, rows):
     lines += ["", "Vertices per part (share of its area's share): " + "; ".join(
         "%s: %s" % (r["host"], ", ".join("%s %s (%.3f)" % (c["shape"], "{:,}".format(c["vertices"]), c["share"])
                                          for c in r["parts"])) for r in rows if "parts" in r), ""]
-    lines += ["Progress seen: " + "; ".join("%s: %d callbacks (%s)" % (r["host"], r.get("progress_callbacks", 0),
-                                                                    ", ".join(r.get("progress_phases", [])) or "none")
-                                          for r in rows), ""]
+    lines += ["Progress seen: " + "; ".join("%s: %d callbacks%s (%s)" % (
+        r["host"], r.get("progress_callbacks", 0),
+        ", at most %.1f s apart" % r["progress_max_gap"] if "progress_max_gap" in r else "",
+        ", ".join(r.get("progress_phases", [])) or "none") for r in rows) + ". meshlabserver prints each "
+              "phase's label with no percentage and no newline, so stdout's buffer shows them in bursts; "
+              "PyMeshLab logs one line per percent when the MeshSet is verbose.", ""]
     lines += ["Wall and peak RSS: /usr/bin/time -v of the host process (meshlabserver: inside xvfb-run; PyMeshLab: "
               "the Python process), loading the cloud and saving the mesh included. Filter: the filter's own "
               "time (its log; PyMeshLab: apply_filter's wall time).", ""]
