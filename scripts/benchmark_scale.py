@@ -201,7 +201,13 @@ t2 = time.perf_counter()
 ms.save_current_mesh(sys.argv[4], binary=True, save_vertex_normal=False, save_face_quality=False,
                      save_vertex_quality=False, save_vertex_color=False, save_face_color=False)
 t3 = time.perf_counter()
-print("RESULT " + json.dumps({"outputs": {k: (v if isinstance(v, (int, float, str)) else str(v)) for k, v in out.items()},
+# The shortest edge of the layer in memory (double, as the plugin wrote it), before the file's float.
+import numpy as np
+m = ms.current_mesh()
+v, f = m.vertex_matrix(), m.face_matrix()
+edge_min = min(float(np.sqrt(((v[f[:, a]] - v[f[:, (a + 1) %% 3]]) ** 2).sum(axis=1)).min()) for a in range(3)) if len(f) else None
+print("RESULT " + json.dumps({"edge_min_in_memory": edge_min,
+      "outputs": {k: (v if isinstance(v, (int, float, str)) else str(v)) for k, v in out.items()},
       "load_seconds": t1 - t0, "filter_seconds": t2 - t1, "save_seconds": t3 - t2,
       "maxrss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
       "pymeshlab": pymeshlab.__version__ if hasattr(pymeshlab, "__version__") else "?"}), flush=True)
@@ -255,7 +261,8 @@ def run_pymeshlab(args, cloud, work):
     if m:
         res = json.loads(m.group(1))
         row.update({"d": float(res["outputs"].get("sphere_diameter", "nan")), "filter_seconds": res["filter_seconds"],
-                    "load_seconds": res["load_seconds"], "outputs": res["outputs"], "rss_in_process": res["maxrss"]})
+                    "load_seconds": res["load_seconds"], "outputs": res["outputs"], "rss_in_process": res["maxrss"],
+                    "edge_min_in_memory": res["edge_min_in_memory"]})
     else:
         row["status"] = "failed (%d, no result)" % rc
     # Progress: the verbose MeshSet logs each callback as "label    [ p% ]".
@@ -265,11 +272,11 @@ def run_pymeshlab(args, cloud, work):
     return row
 
 
-def distance_tolerance(vertices, d, d_digits):
+def distance_tolerance(vertices, d, d_digits, bits=24):
     import math
     import numpy as np
     biggest = float(np.abs(vertices).max()) if len(vertices) else 0.0
-    tol = 2 * math.sqrt(3) * biggest * 2.0 ** -24
+    tol = 2 * math.sqrt(3) * biggest * 2.0 ** -bits
     if d_digits:
         tol += 0.5 * 10.0 ** (math.floor(math.log10(d)) - (d_digits - 1))
     return tol
@@ -300,6 +307,11 @@ def measure(args, row, parts):
         "no intersecting faces": m["self_intersecting_pairs"] == 0,
         "every part meshed": all(c["share"] >= PART_SHARE for c in coverage) and m["components"] >= len(parts),
     }
+    if row.get("edge_min_in_memory") is not None:
+        # PyMeshLab's double layer: only the rounding of the coordinates to doubles (the engine works
+        # on coordinates about its own origin and moves the vertices back), one ulp each.
+        row["checks"]["every edge >= d in memory (double)"] = \
+            row["edge_min_in_memory"] >= d - distance_tolerance(vertices, d, 0, bits=52)
 
 
 def gb(x):
@@ -346,6 +358,10 @@ def page(args, command, stamp, mach, cloud, rows):
             lines.append("- %s: %s" % (r["host"], "all hold" if not bad else "FAILED: " + ", ".join(bad)))
         else:
             lines.append("- %s: %s" % (r["host"], r["status"]))
+    for r in rows:
+        if r.get("edge_min_in_memory") is not None:
+            lines.append("- %s, in memory before saving (double): shortest edge %.15g = (1 %+.1e) d" % (
+                r["host"], r["edge_min_in_memory"], r["edge_min_in_memory"] / r["d"] - 1))
     lines += ["", "Vertices per part (share of its area's share): " + "; ".join(
         "%s: %s" % (r["host"], ", ".join("%s %s (%.3f)" % (c["shape"], "{:,}".format(c["vertices"]), c["share"])
                                          for c in r["parts"])) for r in rows if "parts" in r), ""]
