@@ -26,7 +26,7 @@
 #                                        (scripts/setup.sh --pymeshlab, package installed by
 #                                        scripts/test_python.sh), written to out/benchmark/pymeshlab.md
 #   scripts/benchmark.sh --scale [--points 10m] [--hosts meshlabserver,pymeshlab]   ten million points
-#                                        for real (issue 30): a scan-like cloud of make_cloud (6 parts,
+#                                        for real: a scan-like cloud of make_cloud (6 parts,
 #                                        noise, 2 % stray points, 1 % flipped normals) through
 #                                        meshlabserver and PyMeshLab (the build's plugins, nothing
 #                                        installed), one after the other, with the automatic parameters:

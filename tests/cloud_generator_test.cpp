@@ -457,7 +457,7 @@ TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
   EXPECT_EQ(growth::parseShape("slab"), Shape::Slab);
 }
 
-// The scan-like cloud of issue 30: several separate parts (the four shapes in turn, scaled,
+// The scan-like cloud (the scale benchmark's): several separate parts (the four shapes in turn, scaled,
 // turned, set apart), sampled by area, with Gaussian noise, outliers and some flipped normals.
 TEST(CloudGenerator, ScanIsSeveralSeparatePartsSampledByArea) {
   CloudSpec c = spec(Shape::Scan, 30000, 3);

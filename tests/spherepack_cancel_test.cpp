@@ -1,4 +1,4 @@
-// Cancelling the sphere packer on a scan-like cloud of 200,000 points (issue 30, item 3): the host's
+// Cancelling the sphere packer on a scan-like cloud of 200,000 points: the host's
 // callback (CallBackPos) is called often enough in every phase that a cancel is seen soon, a false
 // from it stops build() with growth::Cancelled soon after, the output is left empty and the
 // input layer as it was, and no further callback comes after the false.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The smoke test of the ten-million-point benchmark (issue 30, scripts/benchmark.sh --scale) on a
+# The smoke test of the ten-million-point benchmark (scripts/benchmark.sh --scale) on a
 # scan-like cloud of 200,000 points (6 parts, noise, 2 % stray points, 1 % flipped normals):
 # scripts/benchmark_scale.py runs it through meshlabserver 2020.09 and PyMeshLab 2025.7 (when the
 # double-precision plugins are built and the venv exists; skipped otherwise) with the automatic
