@@ -180,6 +180,8 @@ def run_meshlabserver(args, cloud, work):
     row["d"] = float(m.group(1)) if m else None
     m = re.search(r"Sphere Packing: time ([0-9.]+) s", text)
     row["filter_seconds"] = float(m.group(1)) if m else None
+    m = re.search(r"Sphere Packing: memory peak ([0-9.]+) MiB", text)
+    row["engine_peak"] = float(m.group(1)) * 2**20 if m else None  # the engine's own arrays (its log)
     # Progress: meshlabserver prints the phase's label ("Sphere packing: growing", lower-case p unlike the
     # log's "Sphere Packing:") with no newline and no percentage at each new percentage.
     labels = re.findall(r"Sphere packing: [a-z ]*?(?=Sphere packing: |[^a-z ]|$)", text)
@@ -266,7 +268,8 @@ def run_pymeshlab(args, cloud, work):
         res = json.loads(m.group(1))
         row.update({"d": float(res["outputs"].get("sphere_diameter", "nan")), "filter_seconds": res["filter_seconds"],
                     "load_seconds": res["load_seconds"], "outputs": res["outputs"], "rss_in_process": res["maxrss"],
-                    "edge_min_in_memory": res["edge_min_in_memory"]})
+                    "edge_min_in_memory": res["edge_min_in_memory"],
+                    "engine_peak": res["outputs"].get("memory_peak_bytes")})
     else:
         row["status"] = "failed (%d, no result)" % rc
     # Progress: the verbose MeshSet logs each callback as "label    [ p% ]".
@@ -335,19 +338,19 @@ def page(args, command, stamp, mach, cloud, rows):
                  100 * FLIPPED, cloud["seconds"], gb(cloud["peak_rss"])),
              "- Filter: Surface Reconstruction: Sphere Packing, every parameter automatic "
              "(scripts/mlx/spherepack.mlx; `ms.apply_filter('%s')`)" % FILTER, "",
-             "| host | status | wall | filter | peak RSS | bytes / point | d | vertices | faces | holes "
+             "| host | status | wall | filter | peak RSS | bytes / point | engine's peak | d | vertices | faces | holes "
              "| shortest edge / d | closest vertices / d | non-manifold e / v | intersecting pairs | components "
              "| parts' vertex share (min) | progress callbacks seen |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for r in rows:
         if "measures" not in r:
-            lines.append("| %s | %s |" % (r["host"], r["status"]) + " |" * 15)
+            lines.append("| %s | %s |" % (r["host"], r["status"]) + " |" * 16)
             continue
         m, d = r["measures"], r["d"]
-        lines.append("| %s | %s | %.1f s | %s | %s | %.0f | %.6g | %s | %s | %d | %.7f | %.7f | %d / %d | %d | %d | %.3f | %d |" % (
+        lines.append("| %s | %s | %.1f s | %s | %s | %.0f | %s | %.6g | %s | %s | %d | %.7f | %.7f | %d / %d | %d | %d | %.3f | %d |" % (
             r["host"], r["status"], r["wall_seconds"],
             "%.1f s" % r["filter_seconds"] if r.get("filter_seconds") is not None else "-", gb(r["peak_rss"]),
-            r["peak_rss"] / cloud["points"], d, "{:,}".format(m["vertices"]), "{:,}".format(m["faces"]),
+            r["peak_rss"] / cloud["points"], gb(r.get("engine_peak")), d, "{:,}".format(m["vertices"]), "{:,}".format(m["faces"]),
             m["boundary_loops"], m["edge_min"] / d, m["min_vertex_distance"] / d, m["non_manifold_edges"],
             m["non_manifold_vertices"], m["self_intersecting_pairs"], m["components"],
             min(c["share"] for c in r["parts"]), r.get("progress_callbacks", 0)))
@@ -377,7 +380,8 @@ def page(args, command, stamp, mach, cloud, rows):
               "phase's label with no percentage and no newline, so stdout's buffer shows them in bursts; "
               "PyMeshLab logs one line per percent when the MeshSet is verbose.", ""]
     lines += ["Wall and peak RSS: /usr/bin/time -v of the host process (meshlabserver: inside xvfb-run; PyMeshLab: "
-              "the Python process), loading the cloud and saving the mesh included. Filter: the filter's own "
+              "the Python process), loading the cloud and saving the mesh included; the engine's peak: its own "
+              "arrays at their largest (the filter's log, PyMeshLab's memory_peak_bytes). Filter: the filter's own "
               "time (its log; PyMeshLab: apply_filter's wall time).", ""]
     return "\n".join(lines)
 
