@@ -25,6 +25,14 @@
 #                                        Pivoting in one MeshSet of the venv's PyMeshLab 2025.7
 #                                        (scripts/setup.sh --pymeshlab, package installed by
 #                                        scripts/test_python.sh), written to out/benchmark/pymeshlab.md
+#   scripts/benchmark.sh --scale [--points 10m] [--hosts meshlabserver,pymeshlab]   ten million points
+#                                        for real: a scan-like cloud of make_cloud (6 parts,
+#                                        noise, 2 % stray points, 1 % flipped normals) through
+#                                        meshlabserver and PyMeshLab (the build's plugins, nothing
+#                                        installed), one after the other, with the automatic parameters:
+#                                        time, peak RSS, the mesh measures and the guarantees, written to
+#                                        out/bench/scale-10m.md (scripts/benchmark_scale.py; uses the
+#                                        build as it is; about 10 GB and minutes per host at 10M)
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
@@ -45,6 +53,20 @@ if [ "${1:-}" = "--pymeshlab" ]; then
     { echo "benchmark: growth_meshers is not installed in the venv: run scripts/test_python.sh" >&2; exit 1; }
   [ -x "$build/make_cloud" ] || cmake --build "$build" --target make_cloud >/dev/null
   exec "$venv_python" "$root/scripts/benchmark_pymeshlab.py" --build "$build" --data-dir "$data" --out "$out" "$@"
+fi
+
+if [ "${1:-}" = "--scale" ]; then
+  shift
+  for tool in make_cloud mesh_measures plugins/libfilter_spherepack.so; do
+    [ -e "$build/$tool" ] || { echo "benchmark: no $build/$tool: build first (cmake --build $build)" >&2; exit 1; }
+  done
+  for tool in /usr/bin/time xvfb-run; do
+    command -v "$tool" >/dev/null || { echo "benchmark: $tool is missing: run scripts/setup.sh" >&2; exit 1; }
+  done
+  source "$root/scripts/meshlab_env.sh"
+  make_meshlab_prefix "$build" "$root/out/bench/meshlab-prefix"
+  exec /usr/bin/python3 "$root/scripts/benchmark_scale.py" --build "$build" --prefix "$root/out/bench/meshlab-prefix" \
+    --out "$root/out/bench" --command "$command" "$@"
 fi
 
 args=()

@@ -456,3 +456,86 @@ TEST(CloudGenerator, SlabIsSampledOnAllSixFacesByArea) {
   EXPECT_DOUBLE_EQ(growth::distanceToShape(c, growth::Vec3d(0.5, 0, 0.25)), 0.2);
   EXPECT_EQ(growth::parseShape("slab"), Shape::Slab);
 }
+
+// The scan-like cloud (the scale benchmark's): several separate parts (the four shapes in turn, scaled,
+// turned, set apart), sampled by area, with Gaussian noise, outliers and some flipped normals.
+TEST(CloudGenerator, ScanIsSeveralSeparatePartsSampledByArea) {
+  CloudSpec c = spec(Shape::Scan, 30000, 3);
+  c.scanParts = 6;
+  EXPECT_EQ(growth::parseShape("scan"), Shape::Scan);
+  EXPECT_STREQ(growth::shapeName(Shape::Scan), "scan");
+  const std::vector<growth::ScanPart> parts = growth::scanParts(c);
+  ASSERT_EQ(parts.size(), 6u);
+  // The parts' balls are kScanGap apart; the shapes go round torus, genus 2, sphere, patch.
+  const Shape shapes[4] = {Shape::Torus, Shape::Genus2, Shape::Sphere, Shape::Patch};
+  double total = 0;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    total += parts[i].area;
+    EXPECT_EQ(parts[i].spec.shape, shapes[i % 4]);
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_GE((parts[i].offset - parts[j].offset).Norm() - parts[i].radius - parts[j].radius,
+                growth::kScanGap - 1e-12) << i << " " << j;
+  }
+  EXPECT_NEAR(growth::shapeArea(c), total, 1e-9 * total);
+  // Without noise: every point on its part's surface, inside its ball; counts by area.
+  const auto clean = growth::generateCloud(c);
+  ASSERT_EQ(clean.points.size(), 30000u);
+  std::vector<size_t> perPart(parts.size(), 0), label(clean.points.size());
+  for (size_t i = 0; i < clean.points.size(); ++i) {
+    double d = 0;
+    const size_t k = label[i] = growth::nearestScanPart(c, parts, clean.points[i], &d);
+    ++perPart[k];
+    ASSERT_LT(d, 1e-9) << i;
+    ASSERT_LE((clean.points[i] - parts[k].offset).Norm(), parts[k].radius + 1e-9) << i;
+    ASSERT_NEAR(clean.normals[i].Norm(), 1.0, 1e-12);
+  }
+  for (size_t k = 0; k < parts.size(); ++k) {
+    const double p = parts[k].area / total, expected = p * 30000, sd = std::sqrt(30000 * p * (1 - p));
+    EXPECT_NEAR(double(perPart[k]), expected, 5 * sd) << "part " << k;
+    EXPECT_GT(perPart[k], 0u);
+  }
+  // The sphere (part 2): normals outward from its centre.
+  for (size_t i = 0; i < clean.points.size(); ++i) {
+    if (label[i] == 2) {
+      ASSERT_NEAR((clean.normals[i] - (clean.points[i] - parts[2].offset) / (1.5 * parts[2].scale)).Norm(), 0, 1e-9);
+    }
+  }
+
+  // Scan-like: noise, outliers on top, a share of flipped normals; the same cloud for the same seed.
+  c.gaussianSigma = 0.01;
+  c.outlierFraction = 0.02;
+  c.flippedNormals = 0.05;
+  const auto scan = growth::generateCloud(c);
+  const auto again = growth::generateCloud(c);
+  EXPECT_EQ(scan.points, again.points);
+  EXPECT_EQ(scan.normals, again.normals);
+  ASSERT_EQ(scan.points.size(), 30600u);
+  size_t sphere = 0, flipped = 0;
+  for (size_t i = 0; i < 30000; ++i) {
+    double d = 0;
+    const size_t k = label[i] = growth::nearestScanPart(c, parts, scan.points[i], &d);
+    ASSERT_LT(d, 6 * c.gaussianSigma) << i;
+    if (k == 2) {
+      ++sphere;
+      flipped += scan.normals[i] * (scan.points[i] - parts[2].offset) < 0;
+    }
+  }
+  const double share = double(flipped) / double(sphere);
+  EXPECT_NEAR(share, 0.05, 5 * std::sqrt(0.05 * 0.95 / double(sphere))) << sphere << " sphere points";
+  CloudSpec other = c;
+  other.seed = 4;
+  EXPECT_NE(growth::generateCloud(other).points, scan.points);
+  // Parts of a scan are separate: no two points of different parts closer than the gap less the noise.
+  double closest = 1e300;
+  for (size_t i = 0; i < 30000; i += 7)
+    for (size_t j = 0; j < 30000; j += 5)
+      if (label[i] != label[j])
+        closest = std::min(closest, (scan.points[i] - scan.points[j]).Norm());
+  EXPECT_GT(closest, growth::kScanGap - 12 * c.gaussianSigma);
+  // The parts' count is checked.
+  c.scanParts = 0;
+  EXPECT_THROW(growth::generateCloud(c), growth::Error);
+  c.scanParts = 2;
+  c.flippedNormals = 1.5;
+  EXPECT_THROW(growth::generateCloud(c), growth::Error);
+}

@@ -1,24 +1,34 @@
 // make_cloud: writes a seeded point cloud with exact normals as binary PLY.
-//   make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S]
-//              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA] [--outliers FRACTION] [--cluster FRACTION] [--far-points N] -o out.ply
+//   make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab|scan --points N [--seed S]
+//              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA | --gauss-spacings F]
+//              [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [--flip-normals FRACTION]
+//              [--parts K (scan)] -o out.ply
+// --gauss-spacings F: Gaussian noise of sigma F * sqrt(area / N), a fraction of the sampling's
+// spacing whatever the size. A scan-like cloud of ten million points:
+//   make_cloud --shape scan --parts 6 --points 9803922 --gauss-spacings 0.1 --outliers 0.02
+//     --flip-normals 0.01 -o scan10m.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
 
 static void usage() {
   std::fprintf(stderr,
-               "usage: make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S]\n"
-               "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA]\n"
-               "                  [--outliers FRACTION] [--thickness T (slab)] -o out.ply\n");
+               "usage: make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab|scan --points N [--seed S]\n"
+               "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA | --gauss-spacings F]\n"
+               "                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N]\n"
+               "                  [--flip-normals FRACTION] [--parts K (scan)] [--thickness T (slab)] -o out.ply\n");
 }
 
 int main(int argc, char** argv) {
   growth::CloudSpec spec;
   std::string out;
+  double gaussSpacings = 0;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -37,14 +47,30 @@ int main(int argc, char** argv) {
       else if (a == "--cluster") spec.clusterFraction = std::atof(value());
       else if (a == "--far-points") spec.farPoints = std::strtoull(value(), nullptr, 10);
       else if (a == "--thickness") spec.slabThickness = std::atof(value());
+      else if (a == "--gauss-spacings") gaussSpacings = std::atof(value());
+      else if (a == "--flip-normals") spec.flippedNormals = std::atof(value());
+      else if (a == "--parts") spec.scanParts = std::atoi(value());
       else if (a == "-o") out = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else throw growth::Error("unknown argument " + a);
     }
     if (out.empty()) throw growth::Error("no output file (-o out.ply)");
+    if (gaussSpacings > 0) {
+      if (spec.gaussianSigma > 0) throw growth::Error("--gauss and --gauss-spacings exclude each other");
+      if (spec.count == 0) throw growth::Error("a cloud needs at least one point");
+      spec.gaussianSigma = gaussSpacings * std::sqrt(growth::shapeArea(spec) / double(spec.count));
+    }
     const growth::Cloud c = growth::generateCloud(spec);
     growth::writePly(out, c);
     std::printf("%s: %zu points (%s)\n", out.c_str(), c.points.size(), growth::shapeName(spec.shape));
+    if (spec.gaussianSigma > 0) std::printf("gaussian sigma: %.9g\n", spec.gaussianSigma);
+    // A scan's parts, for the checks that each is meshed: its ball (centre, radius) and area.
+    if (spec.shape == growth::Shape::Scan) {
+      const std::vector<growth::ScanPart> parts = growth::scanParts(spec);
+      for (size_t i = 0; i < parts.size(); ++i)
+        std::printf("part %zu: %s centre %.9g %.9g %.9g radius %.9g area %.9g\n", i, growth::shapeName(parts[i].spec.shape),
+                    parts[i].offset[0], parts[i].offset[1], parts[i].offset[2], parts[i].radius, parts[i].area);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "make_cloud: %s\n", e.what());
     usage();

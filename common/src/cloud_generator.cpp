@@ -192,8 +192,34 @@ Sample sampleGenus2(Random& rng) {
   }
 }
 
-Sample sampleSurface(const CloudSpec& s, Random& rng) {
+// The parts of a scan at their places; with their areas only when asked (the patch's is a
+// quadrature of 160,000 points), which sampling needs and distances do not.
+std::vector<ScanPart> scanLayout(const CloudSpec& s, bool withAreas);
+
+Sample sampleSurface(const CloudSpec& s, Random& rng, const std::vector<ScanPart>* parts = nullptr);
+
+// A sample of a scan: a part picked by area, a sample of its shape, scaled, turned and moved there.
+Sample sampleScan(Random& rng, const std::vector<ScanPart>& parts) {
+  double total = 0;
+  for (const ScanPart& part : parts) total += part.area;
+  double pick = rng.uniform() * total;
+  size_t i = 0;
+  while (i + 1 < parts.size() && pick >= parts[i].area) pick -= parts[i++].area;
+  const ScanPart& part = parts[i];
+  const Sample local = sampleSurface(part.spec, rng);
+  Sample out;
+  for (int a = 0; a < 3; ++a) {
+    out.p[a] = part.rotation[a] * local.p * part.scale + part.offset[a];
+    out.n[a] = part.rotation[a] * local.n;
+  }
+  return out;
+}
+
+Sample sampleSurface(const CloudSpec& s, Random& rng, const std::vector<ScanPart>* parts) {
   switch (s.shape) {
+  case Shape::Scan:
+    if (parts == nullptr || parts->empty()) throw Error("a scan's sample needs its parts");
+    return sampleScan(rng, *parts);
   case Shape::Sphere: {
     const Vec3d n = rng.unitVector();
     return {n * s.sphereRadius, n};
@@ -268,6 +294,13 @@ double zRange(const CloudSpec& s, double& zmin) {
   case Shape::LatLongSphere:
   case Shape::HollowBall: zmin = -s.sphereRadius; return 2 * s.sphereRadius;
   case Shape::Slab: zmin = -0.5 * s.slabThickness; return s.slabThickness;
+  case Shape::Scan: {
+    // The parts lie in balls about points of the plane z = 0.
+    double r = 0;
+    for (const ScanPart& part : scanLayout(s, false)) r = std::max(r, part.radius);
+    zmin = -r;
+    return 2 * r;
+  }
   }
   zmin = 0;
   return 1;
@@ -334,6 +367,10 @@ Cloud generateCloud(const CloudSpec& spec) {
   // Accepted with probability 1/ratio at the bottom rising linearly to 1 at the top: for the
   // default ratio 4 exactly 0.25 + 0.75 t, as before densityRatio existed (the same clouds).
   const double bottom = 1.0 / spec.densityRatio, rise = 1.0 - bottom;
+  if (!(spec.flippedNormals >= 0.0 && spec.flippedNormals <= 1.0))
+    throw Error("the fraction of flipped normals must lie in [0, 1]");
+  const std::vector<ScanPart> parts =
+      spec.shape == Shape::Scan ? scanLayout(spec, true) : std::vector<ScanPart>();
   if (spec.shape == Shape::LatLongSphere) {
     if (spec.latitudeRings < 1 || spec.longitudeSegments < 3)
       throw Error("a latitude-longitude sphere needs at least 1 ring of at least 3 points");
@@ -357,7 +394,7 @@ Cloud generateCloud(const CloudSpec& spec) {
     add(Vec3d(0, 0, -1));
   }
   while (c.points.size() < surfaceCount) {
-    Sample s = sampleSurface(spec, rng);
+    Sample s = sampleSurface(spec, rng, &parts);
     if (spec.nonUniform) {
       const double t = (s.p[2] - zmin) / zspan;
       if (rng.uniform() > bottom + rise * t) continue;
@@ -367,6 +404,8 @@ Cloud generateCloud(const CloudSpec& spec) {
       const double gz = rng.gaussian(), gy = rng.gaussian(), gx = rng.gaussian();
       s.p += Vec3d(gx, gy, gz) * spec.gaussianSigma;
     }
+    // Drawn only when asked for, so the clouds without flips are the same as before.
+    if (spec.flippedNormals > 0 && rng.uniform() < spec.flippedNormals) s.n = s.n * -1.0;
     c.points.push_back(s.p);
     c.normals.push_back(s.n);
   }
@@ -391,7 +430,7 @@ Cloud generateCloud(const CloudSpec& spec) {
     // A dense cluster on the surface: that fraction of `count` points, moved by at most a
     // hundredth of the surface's mean spacing about a surface sample (the normal of that sample).
     const size_t k = static_cast<size_t>(std::llround(spec.clusterFraction * double(surfaceCount)));
-    const Sample centre = sampleSurface(spec, rng);
+    const Sample centre = sampleSurface(spec, rng, &parts);
     const double spread = 0.01 * std::sqrt(shapeArea(spec) / double(surfaceCount));
     for (size_t i = 0; i < k; ++i) {
       c.points.push_back(centre.p + rng.inBall(spread));
@@ -444,8 +483,82 @@ double distanceToShape(const CloudSpec& s, const Vec3d& p) {
     }
     return (p - q).Norm();
   }
+  case Shape::Scan: {
+    double d = 0;
+    nearestScanPart(s, scanLayout(s, false), p, &d);
+    return d;
+  }
   }
   return 0;
+}
+
+namespace {
+// The parts' shapes and their balls' radii about the shape's origin, at scale 1.
+constexpr Shape kScanShapes[4] = {Shape::Torus, Shape::Genus2, Shape::Sphere, Shape::Patch};
+
+std::vector<ScanPart> scanLayout(const CloudSpec& s, bool withAreas) {
+  if (s.scanParts < 1 || s.scanParts > 64) throw Error("a scan has 1 to 64 parts");
+  std::vector<ScanPart> parts(size_t(s.scanParts));
+  double largest = 0;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    ScanPart& part = parts[i];
+    part.spec.shape = kScanShapes[i % 4];
+    part.spec.sphereRadius = 1.5;
+    part.spec.patchHalfSize = 2.0;
+    double radius = 0;
+    switch (part.spec.shape) {
+    case Shape::Torus: radius = part.spec.torusMajor + part.spec.torusMinor; break;
+    // |p| <= c + R + r = 3.3 on both tori (the blend fills the crease at the origin only).
+    case Shape::Genus2: radius = kGenus2Offset + kGenus2Major + kGenus2Minor + 0.05; break;
+    case Shape::Sphere: radius = part.spec.sphereRadius; break;
+    default: radius = std::sqrt(2 * part.spec.patchHalfSize * part.spec.patchHalfSize + 0.15 * 0.15); break;
+    }
+    // Each further round of the four shapes is smaller: 1, 0.8, 0.64, ...
+    part.scale = std::pow(0.8, double(i / 4));
+    part.radius = radius * part.scale;
+    largest = std::max(largest, part.radius);
+    // A turn about a random axis, from a generator of the part's own (not the cloud's seed).
+    Random turn(0x5CA4ull + i);
+    const Vec3d k = turn.unitVector();
+    const double angle = turn.uniform(0, 2 * kPi), c = std::cos(angle), sn = std::sin(angle), t = 1 - c;
+    part.rotation[0] = Vec3d(c + t * k[0] * k[0], t * k[0] * k[1] - sn * k[2], t * k[0] * k[2] + sn * k[1]);
+    part.rotation[1] = Vec3d(t * k[0] * k[1] + sn * k[2], c + t * k[1] * k[1], t * k[1] * k[2] - sn * k[0]);
+    part.rotation[2] = Vec3d(t * k[0] * k[2] - sn * k[1], t * k[1] * k[2] + sn * k[0], c + t * k[2] * k[2]);
+    if (withAreas) part.area = shapeArea(part.spec) * part.scale * part.scale;
+  }
+  // A square grid of cells of side 2 * largest + gap, centred on the origin.
+  const int columns = int(std::ceil(std::sqrt(double(parts.size()) - 0.5)));
+  const int rows = int((parts.size() + size_t(columns) - 1) / size_t(columns));
+  const double pitch = 2 * largest + kScanGap;
+  for (size_t i = 0; i < parts.size(); ++i)
+    parts[i].offset = Vec3d((double(i % size_t(columns)) - 0.5 * (columns - 1)) * pitch,
+                            (double(i / size_t(columns)) - 0.5 * (rows - 1)) * pitch, 0);
+  return parts;
+}
+} // namespace
+
+std::vector<ScanPart> scanParts(const CloudSpec& spec) { return scanLayout(spec, true); }
+
+size_t nearestScanPart(const CloudSpec& spec, const std::vector<ScanPart>& parts, const Vec3d& p,
+                       double* distance) {
+  (void)spec;
+  // The part whose ball is nearest (the balls are disjoint; a shape's own distance is not used
+  // to choose: the patch's is the vertical one to its height field, which runs on past its square).
+  size_t best = 0;
+  double bestBall = 1e300;
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const double ball = std::max(0.0, (p - parts[i].offset).Norm() - parts[i].radius);
+    if (ball < bestBall) bestBall = ball, best = i;
+  }
+  if (distance != nullptr) {
+    const ScanPart& part = parts[best];
+    const Vec3d q = p - part.offset;
+    // The rotation's transpose takes q back to the part's own frame.
+    Vec3d local(0, 0, 0);
+    for (int a = 0; a < 3; ++a) local += part.rotation[a] * q[a];
+    *distance = distanceToShape(part.spec, local / part.scale) * part.scale;
+  }
+  return best;
 }
 
 // The shape's size: the radius of a ball around the origin holding it (for the far points).
@@ -457,6 +570,11 @@ double shapeSize(const CloudSpec& s) {
   case Shape::Slab: return std::sqrt(2.0) * s.slabHalfSize + s.slabThickness;
   case Shape::Torus: return s.torusMajor + s.torusMinor;
   case Shape::Patch: return 2 * s.patchHalfSize;
+  case Shape::Scan: {
+    double r = 0;
+    for (const ScanPart& part : scanLayout(s, false)) r = std::max(r, part.offset.Norm() + part.radius);
+    return r;
+  }
   default: return 4.0; // genus 2: extent about 6.6 x 3.6 x 1.2
   }
 }
@@ -483,6 +601,11 @@ double shapeArea(const CloudSpec& s) {
     return sum * step * step / 9.0;
   }
   case Shape::Genus2: return genus2Mesh().surfaceArea;
+  case Shape::Scan: {
+    double a = 0;
+    for (const ScanPart& part : scanLayout(s, true)) a += part.area;
+    return a;
+  }
   }
   return 0;
 }
@@ -508,7 +631,8 @@ Shape parseShape(const std::string& name) {
   if (name == "latlong") return Shape::LatLongSphere;
   if (name == "hollowball") return Shape::HollowBall;
   if (name == "slab") return Shape::Slab;
-  throw Error("unknown shape '" + name + "' (sphere, torus, patch, genus2, latlong, hollowball or slab)");
+  if (name == "scan") return Shape::Scan;
+  throw Error("unknown shape '" + name + "' (sphere, torus, patch, genus2, latlong, hollowball, slab or scan)");
 }
 
 const char* shapeName(Shape s) {
@@ -520,6 +644,7 @@ const char* shapeName(Shape s) {
   case Shape::LatLongSphere: return "latlong";
   case Shape::HollowBall: return "hollowball";
   case Shape::Slab: return "slab";
+  case Shape::Scan: return "scan";
   }
   return "?";
 }
@@ -532,16 +657,22 @@ void writePly(const std::string& path, const Cloud& cloud) {
                "element vertex %zu\nproperty float x\nproperty float y\nproperty float z\n"
                "property float nx\nproperty float ny\nproperty float nz\nend_header\n",
                cloud.points.size());
-  std::vector<float> buf;
-  buf.reserve(cloud.points.size() * 6);
-  for (size_t i = 0; i < cloud.points.size(); ++i) {
-    for (int a = 0; a < 3; ++a) buf.push_back(static_cast<float>(cloud.points[i][a]));
-    for (int a = 0; a < 3; ++a) buf.push_back(static_cast<float>(cloud.normals[i][a]));
-  }
+  // In blocks of 65,536 points: a 10M-point cloud is not copied whole once more.
   static_assert(sizeof(float) == 4, "PLY float is 4 bytes");
-  // x86-64 is little-endian, which is what the header declares.
-  if (std::fwrite(buf.data(), sizeof(float), buf.size(), f.get()) != buf.size())
-    throw Error("cannot write " + path);
+  const size_t block = 65536;
+  std::vector<float> buf;
+  buf.reserve(std::min(block, cloud.points.size()) * 6);
+  for (size_t start = 0; start < cloud.points.size(); start += block) {
+    buf.clear();
+    const size_t end = std::min(cloud.points.size(), start + block);
+    for (size_t i = start; i < end; ++i) {
+      for (int a = 0; a < 3; ++a) buf.push_back(static_cast<float>(cloud.points[i][a]));
+      for (int a = 0; a < 3; ++a) buf.push_back(static_cast<float>(cloud.normals[i][a]));
+    }
+    // x86-64 is little-endian, which is what the header declares.
+    if (std::fwrite(buf.data(), sizeof(float), buf.size(), f.get()) != buf.size())
+      throw Error("cannot write " + path);
+  }
 }
 
 CloudArrays toArrays(const Cloud& cloud) {
