@@ -185,13 +185,13 @@ TEST(SpherePackCancel, TheInputLayerIsUntouchedOnCancel) {
     normals.push_back(v.cN());
     flags.push_back(v.Flags());
   }
-  // Early (call 3) and in the growth (call 50 of about 87), without the full run.
-  for (size_t k : {size_t(3), size_t(50)}) {
+  // Early (call 3) and in the growth (call 75 of about 100), without the full run.
+  for (size_t k : {size_t(3), size_t(75)}) {
     reset(k);
     CMeshO out;
     sp::Stat st;
     EXPECT_THROW(sp::build(cloud, out, sp::Params(), st, callback), growth::Cancelled) << k;
-    if (k == 50) {
+    if (k == 75) {
       EXPECT_EQ(g_calls.back().label, "Sphere packing: growing");
     }
     EXPECT_EQ(out.vn, 0);

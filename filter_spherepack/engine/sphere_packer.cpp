@@ -128,7 +128,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   Progress progress(cb);
 
   // Input and sizes; the points renumbered in a spatial order (the same mesh, faster).
-  progress.phase("Sphere packing: reading the cloud", 0, 2);
+  progress.phase("Sphere packing: reading the cloud", 0, 3);
   const bool floatStorage = cloud.floatStorage;
   InputCloud in = readInput(std::move(cloud), st);
   const Sizes sizes = chooseSizes(in, params, st);
@@ -141,26 +141,26 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   checkMemory(estimateMemory(in, nullptr, sizes), sizes, params, st); // (a lower bound: refused early)
 
   // Sec. 4.3: splat radii.
-  progress.phase("Sphere packing: splat sizes", 2, 10);
+  progress.phase("Sphere packing: splat sizes", 3, 22);
   st.secondsInput = watch.lap();
   std::vector<float> radius = splatRadii(in, sizes, params, order, st, progress);
   st.secondsSplats = watch.lap();
   checkMemory(estimateMemory(in, &radius, sizes), sizes, params, st);
 
   // Sec. 4.1: box grid.
-  progress.phase("Sphere packing: box grid", 10, 20);
+  progress.phase("Sphere packing: box grid", 22, 50);
   BoxGrid grid;
   buildBoxGrid(grid, in, radius, d, params, order, st, progress);
   st.secondsBoxGrid = watch.lap();
 
   // Sec. 3.3: start.
-  progress.phase("Sphere packing: starting vertices", 20, 21);
+  progress.phase("Sphere packing: starting vertices", 50, 51);
   const StartPair first = firstStartPair(in, radius, grid, order, d, s, params);
 
   // Sec. 3.4-3.6: growth of the front, on every part of the cloud; meanwhile the deferred box
   // normals (sec. 4.1) on another thread, those near the start first (the growth spreads from there).
   grid.startNormals(params.threads, first.s1);
-  progress.phase("Sphere packing: growing", 21, 92);
+  progress.phase("Sphere packing: growing", 51, 90);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
   growEveryPart(growth, first, in, radius, grid, order, d, st);
   const BorderGraph& g = growth.graph();
@@ -186,7 +186,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: region triangulation.
-  progress.phase("Sphere packing: triangulating the regions", 92, 97);
+  progress.phase("Sphere packing: triangulating the regions", 90, 97);
   std::vector<Triangle> faces = triangulate(g, params, floatStorage, st);
   st.secondsTriangulation = watch.lap();
 
@@ -196,6 +196,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.secondsCleanup = watch.lap();
 
   // Output and report.
+  // (The ranges follow the phases' shares of the time on large clouds with two threads.)
   progress.phase("Sphere packing: writing the mesh", 97, 100);
   writeMesh(faces, g, floatStorage, out, st);
   st.memory.faces = faces.capacity() * sizeof(Triangle);
@@ -205,6 +206,12 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   report(inputPoints, opposite, d, s, g, faces.empty(), st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();
+  try {
+    progress.update(1.0); // done: 100 %
+  } catch (const Cancelled&) {
+    out = MeshArrays(); // cancelled at the last moment: nothing is given back, as on any cancel
+    throw;
+  }
 }
 
 } // namespace spherepack
