@@ -1,6 +1,7 @@
 #include "filter_g2s.h"
 
 #include "filter_g2s_layer.h"
+#include <growth/meshlab/interrupt.h>
 
 #include <growth/error.h>
 
@@ -114,8 +115,10 @@ bool FilterG2SPlugin::applyRobustG2S(MeshDocument& md, const RichParameterList& 
   MeshModel* out = md.addNewMesh("", in->label() + " (robust G2S)", false);
   out->updateDataMask(MeshModel::MM_FACEQUALITY);
   QString failure;
+  // Ctrl-C cancels (the hosts' own callbacks never do).
+  growth::meshlab::InterruptToCancel interrupt(cb);
   try {
-    growth::g2s::build(in->cm, out->cm, p, st, cb);
+    growth::g2s::build(in->cm, out->cm, p, st, interrupt.callback());
     if (st.faces == 0)
       failure = QString("Robust G2S: ") + (st.warnings.empty() ? QString("no surface was built.")
                                                                : QString::fromStdString(st.warnings.front()));

@@ -1,6 +1,7 @@
 #include "filter_spherepack.h"
 
 #include "filter_spherepack_layer.h"
+#include <growth/meshlab/interrupt.h>
 
 #include <growth/error.h>
 
@@ -111,8 +112,10 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
 
   growth::spherepack::Stat st;
   CMeshO result;
+  // Ctrl-C cancels (the hosts' own callbacks never do).
+  growth::meshlab::InterruptToCancel interrupt(cb);
   try {
-    growth::spherepack::build(in->cm, result, p, st, cb);
+    growth::spherepack::build(in->cm, result, p, st, interrupt.callback());
   } catch (const growth::Cancelled&) {
     errorMessage = "Sphere Packing was cancelled; no layer was added.";
     return false;

@@ -8,10 +8,10 @@
 # the same mesh counts (within 1 %). Then what cancelling is in each host:
 #   meshlabserver: its callback never returns false; Ctrl-C (SIGINT) ends it at once mid-filter,
 #                  and no mesh is saved;
-#   PyMeshLab:     its callback never returns false either, and the plugin does not look at signals:
-#                  Ctrl-C during apply_filter is held until the filter returns (the mesh's layer is
-#                  added), then comes as KeyboardInterrupt. This part records that behaviour; if a
-#                  real cancel is built, it fails and must be changed.
+#   PyMeshLab:     its callback never returns false either, and Python holds a Ctrl-C until the
+#                  filter returns; the plugins turn SIGINT into a cancel (growth/meshlab/interrupt.h):
+#                  apply_filter stops within a second with the filter's "cancelled" error, no layer
+#                  is added, and the interrupt then comes as KeyboardInterrupt.
 source "$(dirname "$0")/meshlab_prefix.sh"
 venv_python="$GROWTH_SOURCE_DIR/third_party/venv/bin/python"
 with_pymeshlab=0
@@ -52,14 +52,17 @@ if len(want) == 2:
         assert abs(a - b) <= 0.01 * a, (k, a, b)
 PY
 
-# meshlabserver: Ctrl-C mid-filter (SIGINT from timeout, 1.5 s into a run of about 3 s) ends it at
-# once; no mesh is saved. (timeout catches SIGINT itself, so meshlabserver gets it at its default.)
-cloud="$work/scale-200k/cloud.ply"
-[ -f "$cloud" ] || fail "no cloud kept"
+# The cancels run on a cloud of a million points (a filter of several seconds: the signal always
+# comes mid-filter), of the same kind.
+cloud="$work/cancel-1m.ply"
+"$GROWTH_BUILD_DIR/make_cloud" --shape scan --parts 6 --points 1000000 --seed 1 --gauss-spacings 0.1 \
+  --outliers 0.02 --flip-normals 0.01 -o "$cloud" > /dev/null || fail "make_cloud"
+# meshlabserver: Ctrl-C mid-filter (SIGINT from timeout, 3 s after the start: the cloud is loaded
+# in about 1 s, the filter takes several) ends it at once; no mesh is saved.
 cp "$GROWTH_SOURCE_DIR/scripts/mlx/spherepack.mlx" "$work/cancel.mlx"
 start=$(date +%s.%N)
 set +e
-( cd "$work" && HOME="$work/scale-200k/meshlabserver/home" xvfb-run -a timeout -s INT 1.5 "$prefix/bin/meshlabserver" \
+( cd "$work" && HOME="$work/scale-200k/meshlabserver/home" xvfb-run -a timeout -s INT 3 "$prefix/bin/meshlabserver" \
     -i "$cloud" -o cancelled.ply -s cancel.mlx > cancel.log 2>&1 )
 rc=$?
 set -e
@@ -67,13 +70,14 @@ elapsed=$(python3 -c "import sys, time; print('%.2f' % (time.time() - float(sys.
 [ "$rc" -eq 124 ] || { cat "$work/cancel.log"; fail "meshlabserver was not stopped by SIGINT (exit $rc after $elapsed s)"; }
 [ ! -e "$work/cancelled.ply" ] || fail "meshlabserver saved a mesh after SIGINT"
 grep -q "Surface Reconstruction: Sphere Packing" "$work/cancel.log" || { cat "$work/cancel.log"; fail "the filter had not started"; }
-python3 -c "import sys; sys.exit(0 if float(sys.argv[1]) < 1.5 + 1.0 else 1)" "$elapsed" \
-  || fail "meshlabserver took until $elapsed s to stop after SIGINT at 1.5 s"
-echo "meshlabserver: SIGINT at 1.5 s into the filter: exited by $elapsed s, no mesh saved"
+python3 -c "import sys; sys.exit(0 if float(sys.argv[1]) < 3 + 1.0 else 1)" "$elapsed" \
+  || fail "meshlabserver took until $elapsed s to stop after SIGINT at 3 s"
+echo "meshlabserver: SIGINT 3 s after the start, in the filter: exited by $elapsed s, no mesh saved"
 
 [ $with_pymeshlab -eq 1 ] || exit 0
-# PyMeshLab: Ctrl-C (SIGINT) 0.5 s into apply_filter. What is true: the filter runs to its end
-# (adds its layer), then apply_filter raises KeyboardInterrupt.
+# PyMeshLab: Ctrl-C (SIGINT) 0.5 s into apply_filter (a run of several seconds) cancels the filter:
+# it stops within a second, with the filter's "cancelled" error, adds no layer, and the interrupt
+# comes afterwards as KeyboardInterrupt.
 QT_QPA_PLATFORM=offscreen HOME="$work/scale-200k/pymeshlab/home" "$venv_python" - "$work/scale-200k/pymeshlab/pkg" "$cloud" <<'PY' \
   || fail "PyMeshLab's handling of Ctrl-C during apply_filter"
 import signal, subprocess, sys, time
@@ -85,12 +89,20 @@ import pymeshlab, growth_meshers
 ms = pymeshlab.MeshSet()
 ms.load_new_mesh(sys.argv[2])
 print("start", flush=True)
-t0 = time.time()
+outcome, interrupted = None, False
 try:
-    ms.apply_filter("generate_surface_reconstruction_sphere_packing")
-    print("returned %.2f" % (time.time() - t0), flush=True)
-except KeyboardInterrupt:
-    print("interrupt %.2f layers %d vertices %d" % (time.time() - t0, ms.mesh_number(), ms.current_mesh().vertex_number()), flush=True)
+    try:
+        ms.apply_filter("generate_surface_reconstruction_sphere_packing")
+        outcome = "returned"
+    except pymeshlab.PyMeshLabException as e:
+        outcome = "cancelled" if "cancelled" in str(e) else "failed"
+        time.sleep(2)  # the interrupt the plugin raises again arrives at once
+except KeyboardInterrupt as k:
+    interrupted = True
+    if outcome is None:
+        ctx = k.__context__
+        outcome = "cancelled" if ctx is not None and "cancelled" in str(ctx) else "interrupted"
+print("%s %d layers %d" % (outcome, interrupted, ms.mesh_number()), flush=True)
 '''
 p = subprocess.Popen([sys.executable, "-c", child, sys.argv[1], sys.argv[2]], stdout=subprocess.PIPE, universal_newlines=True)
 assert p.stdout.readline().strip() == "start"
@@ -98,10 +110,11 @@ time.sleep(0.5)
 t = time.time()
 p.send_signal(signal.SIGINT)
 line = p.stdout.readline().split()
-p.wait()
 after = time.time() - t
+p.wait()
 print("PyMeshLab: SIGINT 0.5 s into apply_filter:", " ".join(line), "(%.2f s after the signal)" % after)
-assert line and line[0] == "interrupt", line       # KeyboardInterrupt, from apply_filter ...
-assert float(line[1]) > 1.0, line                   # ... only once the filter had finished (about 2.5 s),
-assert int(line[3]) == 2 and int(line[5]) > 50000, line  # with its mesh's layer added
+assert line and line[0] == "cancelled", line  # the filter's own "cancelled" error ...
+assert line[1] == "1", line                   # ... then KeyboardInterrupt
+assert int(line[3]) == 1, line                # no layer added
+assert after < 1.0, after                     # within a second
 PY
