@@ -651,7 +651,10 @@ void BoxGrid::Builder::countReferences() {
       for (auto& c : count) c.push_back(0);
     return id;
   };
-  g_.hash_.reset(n / 8 + 16); // grows as needed: boxes are far fewer than points unless d is tiny
+  // Sized for five boxes per own box (3-6 on scans and generated clouds at the usual d, more where
+  // splats reach far): growing the table moves every box to a random slot again, which on large
+  // clouds costs more than the counting itself.
+  g_.hash_.reset(5 * (ownCoord_.size() / 3) + 16);
   for (int part = 0; part < fillParts_; ++part) {
     std::vector<std::uint32_t>& cnt = count[size_t(part)];
     for (size_t t = partBegin(n, fillParts_, part), e = partBegin(n, fillParts_, part + 1); t < e; ++t) {
