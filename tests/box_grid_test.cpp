@@ -540,3 +540,26 @@ TEST(SphereSampling, DirectionsAreCodedInTwoBytesBitForBit) {
   EXPECT_EQ(s.decode(SphereSampling::kUpCode), Point3d(0, 0, 1));
   EXPECT_THROW(s.code(Point3d(0.6, 0.8, 0)), std::logic_error);
 }
+
+// The box index in blocks of 4 x 4 x 4 gives the same answers as a hash of the box keys: the same
+// value for every key inserted (the first one given), -1 for the others, the same count.
+TEST(BoxIdIndex, SameAnswersAsAHashOfTheKeys) {
+  growth::BoxIdIndex blocks;
+  growth::KeyHash flat;
+  blocks.reset(16);
+  std::uint64_t s = 12345;
+  auto next = [&] { s = s * 6364136223846793005ull + 1442695040888963407ull; return s >> 33; };
+  for (int i = 0; i < 20000; ++i) {
+    // Clustered coordinates (a surface's boxes) and a few far ones, near the 21-bit limits too.
+    const std::int64_t base = (i % 97 == 0) ? growth::BoxIndexer::kMax - 8 : 1000;
+    const auto key = growth::BoxIndexer::pack(base + std::int64_t(next() % 40), base + std::int64_t(next() % 40),
+                                              std::int64_t(next() % 9));
+    ASSERT_EQ(blocks.findOrInsert(key, i), flat.findOrInsert(key, i)) << i;
+  }
+  EXPECT_EQ(blocks.size(), flat.size());
+  for (int i = 0; i < 20000; ++i) {
+    const auto key = growth::BoxIndexer::pack(std::int64_t(next() % 1100), std::int64_t(next() % 1100),
+                                              std::int64_t(next() % 12));
+    ASSERT_EQ(blocks.find(key), flat.find(key)) << i;
+  }
+}

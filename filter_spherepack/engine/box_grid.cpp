@@ -388,7 +388,7 @@ size_t BoxGrid::memoryBytes() const {
 
 void BoxGrid::release() {
   stopNormals();
-  hash_ = KeyHash();
+  hash_ = BoxIdIndex();
   std::vector<std::uint32_t>().swap(start_);
   HugeVector<std::uint32_t>().swap(points_);
   std::vector<std::int32_t>().swap(twin_);

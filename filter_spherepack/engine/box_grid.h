@@ -165,6 +165,49 @@ private:
   double side_ = 1, inv_ = 1;
 };
 
+// Box id by box key (BoxIndexer::pack), in blocks of 4 x 4 x 4 boxes: a hash from the block's key
+// to the block, and each block's 64 ids side by side. Neighbouring boxes then share a block (one
+// or a few cache lines), and the hash has a fraction of the keys: the box grid's look-ups, which
+// come in a spatial order, hit the cache instead of a random slot of a table the size of the
+// boxes. The same answers as a KeyHash of the box keys.
+class BoxIdIndex {
+public:
+  using Key = KeyHash::Key;
+  void reset(size_t expectedBoxes) {
+    blocks_.reset(expectedBoxes / 16 + 16);
+    HugeVector<std::int32_t>().swap(ids_);
+    size_ = 0;
+  }
+  size_t size() const { return size_; }
+  size_t memoryBytes() const { return blocks_.memoryBytes() + ids_.capacity() * sizeof(std::int32_t); }
+  // Value stored for k, or -1.
+  int find(Key k) const {
+    const int b = blocks_.find(blockOf(k));
+    return b < 0 ? -1 : ids_[size_t(b) * 64 + localOf(k)];
+  }
+  // Value stored for k; when absent, stores `value` and returns it.
+  int findOrInsert(Key k, int value) {
+    const int blocks = int(ids_.size() / 64);
+    const int b = blocks_.findOrInsert(blockOf(k), blocks);
+    if (b == blocks) ids_.resize(ids_.size() + 64, -1);
+    std::int32_t& id = ids_[size_t(b) * 64 + localOf(k)];
+    if (id < 0) {
+      id = value;
+      ++size_;
+    }
+    return id;
+  }
+
+private:
+  // Keys are x << 42 | y << 21 | z (21 bits each): the block drops the two low bits of each.
+  static constexpr Key kLow = (Key(1) << 21) - 1;
+  static Key blockOf(Key k) { return ((k >> 44) << 38) | (((k >> 23) & (kLow >> 2)) << 19) | ((k & kLow) >> 2); }
+  static size_t localOf(Key k) { return size_t(((k >> 42) & 3) << 4 | ((k >> 21) & 3) << 2 | (k & 3)); }
+  KeyHash blocks_;
+  HugeVector<std::int32_t> ids_;
+  size_t size_ = 0;
+};
+
 // The fixed finite sampling S_F of the unit sphere used for box normals (sec. 4.1): the cell
 // centres of a cube map with 2^level × 2^level cells per face, 6·4^level directions (level 6:
 // 24,576 directions, about 1.4° apart). The paper leaves S_F open; the cube map's quadtree lets
@@ -362,7 +405,7 @@ private:
   static constexpr int kSpan = 16; // boxes per axis within the largest reach (2·7 + 2)
   class Builder; // build()'s passes and working arrays (box_grid.cpp)
   BoxIndexer index_;
-  KeyHash hash_;
+  BoxIdIndex hash_;
   std::vector<std::uint32_t> start_;   // CSR offsets, boxCount()+1
   HugeVector<std::uint32_t> points_;   // point indices per box (about 21 per point: huge pages)
   // Box normal states: not computed, being computed (by the other thread), done.
