@@ -24,6 +24,8 @@ public:
     host_() = host;
     interrupted_().store(false);
 #ifdef GROWTH_HAVE_SIGACTION
+    // A host that ignores SIGINT (a background job) keeps ignoring it.
+    if (sigaction(SIGINT, nullptr, &previous_) != 0 || previous_.sa_handler == SIG_IGN) return;
     struct sigaction sa {};
     sa.sa_handler = &onInterrupt;
     sigemptyset(&sa.sa_mask);
