@@ -42,7 +42,7 @@ MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* ra
     rhoSum = n;
   } else {
     for (float r : *radius) {
-      const double rho = r > kLargeSplatPerD * d ? 1 + std::min(double(r) / d, BoxGrid::kMaxExtraReach) : 1.0;
+      const double rho = r > kLargeSplatPerD * d ? 1 + std::min(double(r) / d, double(BoxGrid::kMaxExtraReach)) : 1.0;
       refs += boxesWithin(rho);
       rhoSum += rho;
     }
