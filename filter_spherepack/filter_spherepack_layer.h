@@ -4,29 +4,15 @@
 #include "sphere_packer.h"
 
 #include <growth/meshlab/layer.h>
-#include <growth/stopwatch.h>
 
 namespace growth {
 namespace spherepack {
 
 inline Params suggestParams(const CMeshO& cloud) { return suggestParams(meshlab::readLayer(cloud)); }
 
-// build() on the live vertices (with normals) of `cloud`, into `out` (cleared first; empty on a throw), with the
-// bounding box and normals MeshLab expects; the times of reading and writing the layers count in
-// the Stat.
+// build() on the live vertices of `cloud`, into `out` (growth/meshlab/layer.h, buildOnLayers).
 inline void build(const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat, CallBackPos* cb = nullptr) {
-  out.Clear();
-  Stopwatch watch;
-  CloudArrays arrays = meshlab::readLayer(cloud);
-  const double read = watch.lap();
-  MeshArrays mesh;
-  build(std::move(arrays), mesh, params, stat, cb);
-  watch.lap();
-  meshlab::writeLayer(std::move(mesh), out);
-  const double write = watch.lap();
-  stat.secondsInput += read;
-  stat.secondsOutput += write;
-  stat.seconds += read + write;
+  meshlab::buildOnLayers<Params, Stat>(&build, &Stat::secondsInput, cloud, out, params, stat, cb);
 }
 
 } // namespace spherepack

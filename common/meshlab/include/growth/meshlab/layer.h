@@ -6,6 +6,8 @@
 #include <growth/input_cloud.h>
 #include <growth/mesh_arrays.h>
 #include <growth/mesh_measures.h>
+#include <growth/progress.h>
+#include <growth/stopwatch.h>
 
 #include <common/ml_mesh_type.h>
 
@@ -22,6 +24,28 @@ void writeLayer(MeshArrays mesh, CMeshO& out);
 
 // The live vertices of `mesh` renumbered 0..n-1 and its live faces (a deleted vertex as ~0u).
 MeshArrays meshArrays(const CMeshO& mesh);
+
+// An engine's build(CloudArrays, MeshArrays&, params, stat, cb) on layers: the live vertices of
+// `cloud` in, `out` (cleared first; empty on a throw) out, with the bounding box and normals MeshLab
+// expects. Reading the layer counts in stat.*readSeconds, writing it in stat.secondsOutput, both in
+// stat.seconds.
+template <class Params, class Stat>
+void buildOnLayers(void (*engine)(CloudArrays, MeshArrays&, const Params&, Stat&, CallBackPos*),
+                   double Stat::*readSeconds, const CMeshO& cloud, CMeshO& out, const Params& params, Stat& stat,
+                   CallBackPos* cb) {
+  out.Clear();
+  Stopwatch watch;
+  CloudArrays arrays = readLayer(cloud);
+  const double read = watch.lap();
+  MeshArrays mesh;
+  engine(std::move(arrays), mesh, params, stat, cb);
+  watch.lap();
+  writeLayer(std::move(mesh), out);
+  const double write = watch.lap();
+  stat.*readSeconds += read;
+  stat.secondsOutput += write;
+  stat.seconds += read + write;
+}
 
 } // namespace meshlab
 
