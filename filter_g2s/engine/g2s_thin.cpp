@@ -574,6 +574,19 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
   };
   std::vector<double> best(k * k, 0.0);
   std::vector<size_t> split(k * k, 0);
+  // The triangles (i, m, j) of the closure that `split` gives, from the whole chain down.
+  auto forEachTriangle = [&](auto&& f) {
+    std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
+    while (!stack.empty()) {
+      const size_t i = stack.back().first, j = stack.back().second;
+      stack.pop_back();
+      if (j < i + 2) continue;
+      const size_t m = split[i * k + j];
+      f(i, m, j);
+      stack.emplace_back(i, m);
+      stack.emplace_back(m, j);
+    }
+  };
   // For each sub-chain (i, j): the split m of least total cost, the first such m on ties. With
   // `avoid`, a triangle that crosses the mesh costs infinity. That test is the expensive part, so
   // it is made lazily: the programme runs over the triangles not known to cross, the triangles of
@@ -603,32 +616,16 @@ bool Mesher::RimPass::triangulate(const std::vector<std::uint32_t>& loop, bool a
       }
     if (!avoid || !(best[k - 1] < inf)) break;
     bool ruledOut = false;
-    std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
-    while (!stack.empty()) {
-      const size_t i = stack.back().first, j = stack.back().second;
-      stack.pop_back();
-      if (j < i + 2) continue;
-      const size_t m = split[i * k + j];
+    forEachTriangle([&](size_t i, size_t m, size_t j) {
       signed char& x = crossing[(i * k + m) * k + j];
       if (x < 0) x = crossesActive(Triangle{q[i], q[m], q[j]}) ? 1 : 0;
       ruledOut = ruledOut || x == 1;
-      stack.emplace_back(i, m);
-      stack.emplace_back(m, j);
-    }
+    });
     if (!ruledOut) break;
   }
   closure.clear();
   if (!(best[k - 1] < inf)) return false;
-  std::vector<std::pair<size_t, size_t>> stack{{0, k - 1}};
-  while (!stack.empty()) {
-    const size_t i = stack.back().first, j = stack.back().second;
-    stack.pop_back();
-    if (j < i + 2) continue;
-    const size_t m = split[i * k + j];
-    closure.push_back({q[i], q[m], q[j]});
-    stack.emplace_back(i, m);
-    stack.emplace_back(m, j);
-  }
+  forEachTriangle([&](size_t i, size_t m, size_t j) { closure.push_back({q[i], q[m], q[j]}); });
   closure.insert(closure.end(), joins.begin(), joins.end());
   return true;
 }
