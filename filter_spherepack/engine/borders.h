@@ -97,8 +97,6 @@ public:
 private:
   struct Rotation {
     std::uint32_t nb[kMaxDegree];
-    double angle[kMaxDegree];   // angleAt(v, position(nb[k])): positions and normals never change,
-                                // so gapOf() reads them instead of recomputing them
     std::uint8_t degree = 0;
   };
   int slotOf(std::uint32_t v, std::uint32_t u) const {
