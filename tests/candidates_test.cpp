@@ -108,6 +108,20 @@ TEST(SplatVertexLists, NewestFirst) {
   l.forEach(0, [&](std::uint32_t v) { got.push_back(v); });
   EXPECT_TRUE(got.empty());
   EXPECT_EQ(l.entries(), 3u);
+  // Across chunks, interleaved with other splats: still newest first, each entry once.
+  std::vector<std::uint32_t> want0, want2;
+  for (std::uint32_t v = 100; v < 140; ++v) {
+    l.add(v % 3 == 0 ? 0 : 2, v);
+    (v % 3 == 0 ? want0 : want2).insert((v % 3 == 0 ? want0 : want2).begin(), v);
+  }
+  want2.push_back(12);
+  got.clear();
+  l.forEach(0, [&](std::uint32_t v) { got.push_back(v); });
+  EXPECT_EQ(got, want0);
+  got.clear();
+  l.forEach(2, [&](std::uint32_t v) { got.push_back(v); });
+  EXPECT_EQ(got, want2);
+  EXPECT_EQ(l.entries(), 43u);
 }
 
 TEST(EnumerateCandidates, MatchesBruteForceOverAllSplats) {

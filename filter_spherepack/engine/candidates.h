@@ -103,56 +103,74 @@ inline int circleSplatIntersections(const ParentCircle& c, const Vec3d& p, const
   return k;
 }
 
-// Sec. 4.4: for every splat, the vertices within distance d of it, as linked entries (8 bytes per
-// entry, 4 per splat; no per-splat vector) in fixed-size blocks, so growing never copies nor
-// doubles the pool. Iteration visits the newest first.
-// The entries are written in order: the pages of a block are made resident a chunk of 64 KiB
-// ahead of the writes (one call per chunk instead of a fault per 4 KiB page, huge_pages.h), so at
-// most one chunk is resident unused.
+// Sec. 4.4: for every splat, the vertices within distance d of it, as linked chunks of three
+// vertices (16 bytes per chunk, about 5.5 bytes per entry, 4 per splat for its head; no per-splat
+// vector) in fixed-size blocks, so growing never copies nor doubles the pool. A chunk is filled
+// from its first slot on, the unused slots hold kEmpty; iteration visits the newest first.
+// The chunks are written in order: the pages of a block are made resident a run of 64 KiB ahead
+// of the writes (one call per run instead of a fault per 4 KiB page, huge_pages.h), so at most
+// one run is resident unused.
 class SplatVertexLists {
 public:
   void reset(size_t splats) {
     assignHuge(head_, splats, std::int32_t(-1));
     blocks_.clear();
-    size_ = 0;
+    chunks_ = 0;
+    entries_ = 0;
   }
   void add(std::uint32_t splat, std::uint32_t vertex) {
-    if ((size_ & kChunkMask) == 0) {
-      if ((size_ & kBlockMask) == 0) blocks_.emplace_back(new Entry[kBlockSize]);
-      // The chunk and the page after it (a block need not start on a page: the chunk's last,
-      // partial page is then covered here too), within the block.
-      const size_t left = kBlockSize - (size_ & kBlockMask);
-      prefault(&entry(size_), std::min(kChunkSize + kPageEntries, left) * sizeof(Entry));
+    ++entries_;
+    const std::int32_t h = head_[splat];
+    if (h >= 0) {
+      Chunk& c = chunk(size_t(h));
+      for (int k = 1; k < kSlots; ++k)
+        if (c.vertex[k] == kEmpty) {
+          c.vertex[k] = vertex;
+          return;
+        }
     }
-    entry(size_) = Entry{vertex, head_[splat]};
-    head_[splat] = static_cast<std::int32_t>(size_);
-    ++size_;
+    if ((chunks_ & kRunMask) == 0) {
+      if ((chunks_ & kBlockMask) == 0) blocks_.emplace_back(new Chunk[kBlockSize]);
+      // The run and the page after it (a block need not start on a page: the run's last,
+      // partial page is then covered here too), within the block.
+      const size_t left = kBlockSize - (chunks_ & kBlockMask);
+      prefault(&chunk(chunks_), std::min(kRunSize + kPageChunks, left) * sizeof(Chunk));
+    }
+    Chunk& c = chunk(chunks_);
+    c.vertex[0] = vertex;
+    for (int k = 1; k < kSlots; ++k) c.vertex[k] = kEmpty;
+    c.next = h;
+    head_[splat] = static_cast<std::int32_t>(chunks_);
+    ++chunks_;
   }
   template <class F>
   void forEach(std::uint32_t splat, F&& f) const {
     for (std::int32_t e = head_[splat]; e >= 0;) {
-      const Entry& x = entry(size_t(e));
-      f(x.vertex);
-      e = x.next;
+      const Chunk& c = chunk(size_t(e));
+      for (int k = kSlots - 1; k >= 0; --k)
+        if (c.vertex[k] != kEmpty) f(c.vertex[k]);
+      e = c.next;
     }
   }
   bool empty(std::uint32_t splat) const { return head_[splat] < 0; }
-  size_t entries() const { return size_; }
-  size_t memoryBytes() const { return head_.capacity() * 4 + blocks_.size() * kBlockSize * sizeof(Entry); }
+  size_t entries() const { return entries_; }
+  size_t memoryBytes() const { return head_.capacity() * 4 + blocks_.size() * kBlockSize * sizeof(Chunk); }
 
 private:
-  struct Entry {
-    std::uint32_t vertex;
+  static constexpr int kSlots = 3;
+  static constexpr std::uint32_t kEmpty = 0xffffffffu; // never a vertex id (Growth::kNoVertex)
+  struct Chunk {
+    std::uint32_t vertex[kSlots];
     std::int32_t next;
   };
-  static constexpr size_t kBlockBits = 16, kBlockSize = size_t(1) << kBlockBits, kBlockMask = kBlockSize - 1;
-  static constexpr size_t kChunkSize = size_t(8192), kChunkMask = kChunkSize - 1; // 64 KiB of entries
-  static constexpr size_t kPageEntries = 4096 / sizeof(Entry);
-  Entry& entry(size_t i) { return blocks_[i >> kBlockBits][i & kBlockMask]; }
-  const Entry& entry(size_t i) const { return blocks_[i >> kBlockBits][i & kBlockMask]; }
+  static constexpr size_t kBlockBits = 15, kBlockSize = size_t(1) << kBlockBits, kBlockMask = kBlockSize - 1;
+  static constexpr size_t kRunSize = size_t(4096), kRunMask = kRunSize - 1; // 64 KiB of chunks
+  static constexpr size_t kPageChunks = 4096 / sizeof(Chunk);
+  Chunk& chunk(size_t i) { return blocks_[i >> kBlockBits][i & kBlockMask]; }
+  const Chunk& chunk(size_t i) const { return blocks_[i >> kBlockBits][i & kBlockMask]; }
   std::vector<std::int32_t> head_;
-  std::vector<std::unique_ptr<Entry[]>> blocks_;
-  size_t size_ = 0;
+  std::vector<std::unique_ptr<Chunk[]>> blocks_;
+  size_t chunks_ = 0, entries_ = 0;
 };
 
 // The splats: centres, unit normals, radii.
