@@ -563,3 +563,59 @@ TEST(BoxIdIndex, SameAnswersAsAHashOfTheKeys) {
     ASSERT_EQ(blocks.find(key), flat.find(key)) << i;
   }
 }
+
+// A lazy grid (build()'s splatRadius) builds only the boxes the splats' disks meet and gathers the
+// others on first use: every box, built or gathered, has the same points in the same order, the
+// same layers, box normal, minimum and flags as in the full grid, anywhere near the cloud or far
+// from it. On a curved, noisy cloud with flipped normals, a thin two-sided plate, splats larger
+// than d and a list order that is not the index order.
+TEST(BoxGrid, LazyGridGivesTheSameBoxesAsTheFullGrid) {
+  growth::Random rnd(21);
+  std::vector<Point3d> p, n;
+  std::vector<float> radius, extra;
+  const double d = 0.05;
+  for (int i = 0; i < 6000; ++i) { // a noisy sphere of radius 0.5, one normal in 20 flipped
+    const Point3d u = rnd.unitVector();
+    p.push_back(u * (0.5 + 0.004 * rnd.uniform(-1, 1)));
+    n.push_back(i % 20 == 0 ? u * -1.0 : u);
+  }
+  for (int i = 0; i < 3000; ++i) { // a plate 0.02 thick beside it, both sides sampled
+    const bool top = i % 2 == 0;
+    p.emplace_back(1 + rnd.uniform(0, 0.5), rnd.uniform(0, 0.5), top ? 0.01 : -0.01);
+    n.emplace_back(0, 0, top ? 1 : -1);
+  }
+  for (size_t i = 0; i < p.size(); ++i) {
+    radius.push_back(float(d * (i % 13 == 0 ? rnd.uniform(1.0, 3.0) : rnd.uniform(0.2, 1.0))));
+    extra.push_back(radius.back() > d ? radius.back() : 0.0f);
+  }
+  std::vector<std::uint32_t> order = iota(p.size());
+  for (size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[size_t(rnd.uniform(0, double(i) - 1e-9))]);
+  BoxGrid full, lazy;
+  full.build(p, n, d, nullptr, 2, false, &order, &extra);
+  lazy.build(p, n, d, nullptr, 2, false, &order, &extra, &radius);
+  EXPECT_LT(lazy.boxCount(), full.boxCount() / 2);
+  EXPECT_LT(lazy.references(), full.references());
+  EXPECT_GT(full.twoSidedBoxes(), 0u);
+  auto same = [&](const Point3d& q, const Point3d& side) {
+    const int a = full.boxOf(q, side), b = lazy.boxOf(q, side);
+    ASSERT_EQ(a < 0, b < 0) << q[0] << " " << q[1] << " " << q[2];
+    if (a < 0) return;
+    ASSERT_EQ(std::vector<std::uint32_t>(full.pointsBegin(a), full.pointsEnd(a)),
+              std::vector<std::uint32_t>(lazy.pointsBegin(b), lazy.pointsEnd(b)));
+    const Point3d na = full.boxNormal(a), nb = lazy.boxNormal(b);
+    EXPECT_TRUE(na[0] == nb[0] && na[1] == nb[1] && na[2] == nb[2]);
+    EXPECT_EQ(full.boxMinDot(a), lazy.boxMinDot(b));
+    EXPECT_EQ(full.dTooLarge(a), lazy.dTooLarge(b));
+  };
+  size_t queries = 0;
+  for (size_t i = 0; i < p.size(); i += 3)
+    for (const double reach : {0.0, 0.5 * d, 1.5 * d, 3 * d, 9 * d}) {
+      const Point3d q = p[i] + rnd.unitVector() * (reach * rnd.uniform(0.5, 1.0));
+      for (const Point3d& side : {n[i], n[i] * -1.0, Point3d(0, 0, 0)}) same(q, side);
+      ++queries;
+    }
+  EXPECT_GT(queries, 10000u);
+  EXPECT_GT(lazy.gatheredBoxes(), 100u);
+  // Far from every point: no box in either.
+  EXPECT_EQ(lazy.boxOf(Point3d(5, 5, 5)), -1);
+}

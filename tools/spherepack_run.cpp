@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
     std::printf("vertices: %zu\nfaces: %zu\nholes: %zu\nlongest_border: %zu\nmean_border_length: %.3f\nsmallest_edge: %.8g\nq_avg: %.5f\n",
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
     std::printf("boxes_two_sided: %zu\n", st.boxesTwoSided);
+    std::printf("box_references: %zu\n", st.boxReferences);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
                 "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,

@@ -383,7 +383,10 @@ size_t BoxGrid::memoryBytes() const {
          points_.capacity() * sizeof(std::uint32_t) + normalCode_.capacity() * sizeof(std::uint16_t) +
          minDot_.capacity() * sizeof(float) + normalCode_.size() * sizeof(std::atomic<std::uint8_t>) + pending_.capacity() * sizeof(std::uint32_t) +
          twin_.capacity() * sizeof(std::int32_t) + split_.capacity() * sizeof(Vec3d) +
-         pendingCorner_.capacity() * sizeof(Vec3d) + flags_.capacity();
+         pendingCorner_.capacity() * sizeof(Vec3d) + flags_.capacity() +
+         ownStart_.capacity() * sizeof(std::uint32_t) + ownPoints_.capacity() * sizeof(std::uint32_t) +
+         far_.capacity() * sizeof(far_[0]) +
+         gatheredIds_.memoryBytes() + gathered_.capacity() * sizeof(Gathered) + gatheredReferences_ * sizeof(std::uint32_t);
 }
 
 void BoxGrid::release() {
@@ -400,6 +403,85 @@ void BoxGrid::release() {
   std::vector<std::uint8_t>().swap(flags_);
   std::vector<std::uint32_t>().swap(pending_);
   std::vector<Vec3d>().swap(pendingCorner_);
+  std::vector<std::uint32_t>().swap(ownStart_);
+  HugeVector<std::uint32_t>().swap(ownPoints_);
+  listOrder_ = nullptr;
+  std::vector<std::pair<std::uint32_t, double>>().swap(far_);
+  gatheredIds_ = KeyHash();
+  std::vector<Gathered>().swap(gathered_);
+  gatheredReferences_ = 0;
+  built_ = 0;
+  lazy_ = false;
+}
+
+bool BoxGrid::refers(const Vec3d& p, double reach, std::int64_t x, std::int64_t y, std::int64_t z) const {
+  const double side = index_.side(), r2 = reach == side ? side * side : reach * reach;
+  const std::int64_t c[3] = {x, y, z};
+  double sq[3];
+  for (int a = 0; a < 3; ++a) {
+    const std::int64_t lo = index_.coord(p[a] - reach, a);
+    const std::int64_t hi = std::min(index_.coord(p[a] + reach, a), lo + kSpan - 1);
+    if (c[a] < lo || c[a] > hi) return false;
+    const double l = index_.origin()[a] + double(c[a]) * side;
+    const double v = p[a] < l ? l - p[a] : (p[a] > l + side ? p[a] - l - side : 0.0);
+    sq[a] = v * v;
+  }
+  const double sxy = sq[0] + sq[1];
+  return !(sxy > r2) && !(sxy + sq[2] > r2);
+}
+
+int BoxGrid::gatheredBox(KeyHash::Key k) const {
+  const int known = gatheredIds_.find(k);
+  if (known >= 0) return known == kNoBox ? -1 : known;
+  const std::int64_t mask = BoxIndexer::kMax;
+  const std::int64_t x = std::int64_t(k >> (2 * BoxIndexer::kBits)) & mask,
+                     y = std::int64_t(k >> BoxIndexer::kBits) & mask, z = std::int64_t(k) & mask;
+  // The points that refer to the box: those of reach `side` lie in the own boxes within two of it
+  // (one, but for rounding at the faces), those of a larger reach are tried one by one.
+  std::vector<std::uint32_t> found; // list positions
+  auto pointAt = [&](std::uint32_t t) { return listOrder_ != nullptr ? (*listOrder_)[t] : t; };
+  for (std::int64_t ox = x - 2; ox <= x + 2; ++ox)
+    for (std::int64_t oy = y - 2; oy <= y + 2; ++oy)
+      for (std::int64_t oz = z - 2; oz <= z + 2; ++oz) {
+        if (!BoxIndexer::valid(ox, oy, oz)) continue;
+        const int o = hash_.find(BoxIndexer::pack(ox, oy, oz));
+        if (o < 0 || size_t(o) + 1 >= ownStart_.size()) continue;
+        for (std::uint32_t j = ownStart_[size_t(o)]; j < ownStart_[size_t(o) + 1]; ++j)
+          if (refers((*points3_)[pointAt(ownPoints_[j])], index_.side(), x, y, z)) found.push_back(ownPoints_[j]);
+      }
+  for (const auto& f : far_)
+    if (refers((*points3_)[pointAt(f.first)], f.second, x, y, z)) found.push_back(f.first);
+  if (found.empty()) {
+    gatheredIds_.findOrInsert(k, kNoBox);
+    return -1;
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<std::uint32_t> idx(found.size()), scratch;
+  for (size_t j = 0; j < found.size(); ++j) idx[j] = pointAt(found[j]);
+  // Sec. 4.1 as build() does it: the filter or the two layers, each layer's normal.
+  const BoxLayers layers = filterOrSplitBox(*normals_, idx.data(), idx.size(), scratch);
+  const int id = int(built_ + gathered_.size());
+  auto addLayer = [&](size_t begin, size_t end) {
+    Gathered g;
+    g.points.assign(idx.begin() + std::ptrdiff_t(begin), idx.begin() + std::ptrdiff_t(end));
+    double minDot = 0;
+    const Vec3d n = sampling_.maxMinDirection(*normals_, g.points.data(), g.points.size(), &minDot);
+    g.normalCode = sampling_.code(n);
+    g.minDot = float(minDot);
+    if (minDot < 0 && !(g.minDot < 0)) g.minDot = -std::numeric_limits<float>::denorm_min();
+    g.flags = layers.twoSided && begin == 0 ? kOpposed : 0; // as build(): the first layer only
+    gatheredReferences_ += g.points.size();
+    gathered_.push_back(std::move(g));
+  };
+  addLayer(0, layers.firstEnd);
+  if (layers.twoSided) {
+    addLayer(layers.firstEnd, idx.size());
+    gathered_[size_t(id) - built_].twin = id + 1;
+    gathered_[size_t(id) + 1 - built_].twin = id;
+    gathered_[size_t(id) + 1 - built_].split = layers.split;
+  }
+  gatheredIds_.findOrInsert(k, id);
+  return id;
 }
 
 void BoxGrid::storeNormal(size_t b, const Vec3d& normal, double minDot) const {
@@ -469,19 +551,24 @@ void BoxGrid::finishNormals() {
 // build()'s passes over the points and the boxes, with their working arrays.
 class BoxGrid::Builder {
 public:
-  Builder(BoxGrid& g, const std::vector<Vec3d>& pts, double side, Progress* progress, int threads,
-          const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach)
-      : g_(g), pts_(pts), side_(side), d2_(side * side), n_(pts.size()), progress_(progress), threads_(threads),
-        listOrder_(listOrder), extraReach_(extraReach) {}
+  Builder(BoxGrid& g, const std::vector<Vec3d>& pts, const std::vector<Vec3d>& normals, double side,
+          Progress* progress, int threads, const std::vector<std::uint32_t>* listOrder,
+          const std::vector<float>* extraReach, const std::vector<float>* splatRadius)
+      : g_(g), pts_(pts), normals_(normals), side_(side), d2_(side * side), n_(pts.size()), progress_(progress),
+        threads_(threads), listOrder_(listOrder), extraReach_(extraReach), splatRadius_(splatRadius) {}
   // The index's origin and box side, checked against the cloud's extent.
   void placeIndex();
   // The own box of every point, with its coordinates.
   void ownBoxes();
   // Pass 0: the boxes within reach of each point, as a mask of its own box's 27 neighbours.
   void reachMasks();
-  // Pass 1: box ids in order of first appearance, references counted per part, CSR offsets.
+  // Pass 1: the ids of the boxes built, in order of first appearance.
+  void assignIds();
+  // Pass 2: references to them counted per part, CSR offsets.
   void countReferences();
-  // Pass 2: the references filled in, points in list order inside each box.
+  // The index of the points by their own boxes, for the boxes gathered later (lazy grids).
+  void keepOwnIndex();
+  // Pass 3: the references filled in, points in list order inside each box.
   void fillReferences();
   // Sec. 4.1: the normal filter and the box normals, per box; then the lists compacted.
   void filterAndNormals(const std::vector<Vec3d>& normals, bool deferNormals);
@@ -526,16 +613,39 @@ private:
       }
   }
   size_t listed(size_t t) const { return listOrder_ != nullptr ? size_t((*listOrder_)[t]) : t; }
+  // Whether point i's splat (its disk) meets box (x, y, z): the box within the splat's radius of
+  // the point and across its plane, with a margin for rounding (a box a disk only grazes may be
+  // built or gathered: the same either way). Every box when the grid is not lazy.
+  bool touches(size_t i, std::int64_t x, std::int64_t y, std::int64_t z) const {
+    if (splatRadius_ == nullptr) return true;
+    const double r = std::min(double((*splatRadius_)[i]), reachOf(i));
+    const Vec3d lo = g_.index_.corner(x, y, z);
+    if (squaredDistanceToBox(pts_[i], lo, side_) > r * r * (1 + 1e-9) + kTouchMargin * side_ * side_) return false;
+    const Vec3d& n = normals_[i];
+    // The disk's bounding box: r·sqrt(1 − n_a²) from p along axis a.
+    for (int a = 0; a < 3; ++a) {
+      const double e = r * std::sqrt(std::max(0.0, 1 - n[a] * n[a])) * (1 + 1e-9) + kTouchMargin * side_;
+      if (lo[a] > pts_[i][a] + e || lo[a] + side_ < pts_[i][a] - e) return false;
+    }
+    const Vec3d c = lo + Vec3d(0.5 * side_, 0.5 * side_, 0.5 * side_);
+    const double h = std::abs((c - pts_[i]) * n);
+    return h <= 0.5 * side_ * (std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2])) * (1 + 1e-9) + kTouchMargin * side_;
+  }
+  static constexpr double kTouchMargin = 1e-7;
+  static constexpr std::int32_t kNotBuilt = -2; // a near_ slot of a box within reach not built
 
   BoxGrid& g_;
   const std::vector<Vec3d>& pts_;
+  const std::vector<Vec3d>& normals_;
   const double side_, d2_;
   const size_t n_;
   Progress* const progress_;
   const int threads_;
   const std::vector<std::uint32_t>* const listOrder_;
   const std::vector<float>* const extraReach_;
+  const std::vector<float>* const splatRadius_;
   std::vector<std::uint32_t> ownOf_;  // own box of each point (by list position after pass 0)
+  HugeVector<std::uint32_t> touch_;   // pass 0's masks of the boxes the splats meet (lazy grids)
   std::vector<std::int64_t> ownCoord_; // 3 per own box
   std::vector<std::int32_t> near_;     // box ids of the 27 neighbours of each own box, lazily
   HugeVector<std::uint32_t> mask_;    // pass 0's masks, by list position
@@ -592,6 +702,7 @@ void BoxGrid::Builder::reachMasks() {
   const size_t n = n_;
   const std::vector<std::uint32_t>* listOrder = listOrder_;
   mask_.resize(n);
+  if (splatRadius_ != nullptr) touch_.resize(n);
   HugeVector<std::uint32_t> listPos;
   if (listOrder != nullptr) {
     listPos.resize(n);
@@ -617,44 +728,101 @@ void BoxGrid::Builder::reachMasks() {
         mask_[at] = kBeyond;
         continue;
       }
-      std::uint32_t m = 0;
+      std::uint32_t m = 0, touched = 0;
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
           const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
           if (sxy > d2_) continue;
           const int base = int((x - oc[0] + 1) * 9 + (y - oc[1] + 1) * 3 - oc[2] + 1);
           for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-            if (!(sxy + sq[2][z - lo[2]] > d2_)) m |= std::uint32_t(1) << (base + int(z));
+            if (!(sxy + sq[2][z - lo[2]] > d2_)) {
+              m |= std::uint32_t(1) << (base + int(z));
+              if (splatRadius_ != nullptr && touches(i, x, y, z)) touched |= std::uint32_t(1) << (base + int(z));
+            }
         }
       mask_[at] = m;
+      if (splatRadius_ != nullptr) touch_[at] = touched;
     }
   });
   if (listOrder != nullptr) {
     ownOf_.swap(ownAt);
     std::vector<std::uint32_t>().swap(ownAt);
-    HugeVector<std::uint32_t>().swap(listPos);
   }
 }
 
-// In list order: box ids in order of first appearance (deterministic), reference counts per part
-// of the points of pass 2. The ids of the 27 boxes around an own box are kept (near_), so the hash
-// is asked once per own box and offset, not once per point.
+// In list order: the ids of the boxes built (all boxes within reach of a point, or of a lazy grid
+// those a splat meets) in order of first appearance (deterministic). The ids of the 27 boxes around
+// an own box are kept (near_), so the hash is asked once per own box and offset, not once per point.
+void BoxGrid::Builder::assignIds() {
+  const size_t n = n_;
+  for (size_t i = 0; i < n; ++i) g_.facePoints_ += (mask_[i] & kBeyond) ? 1 : 0;
+  int boxes = 0;
+  auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const int id = g_.hash_.findOrInsert(BoxIndexer::pack(x, y, z), boxes);
+    if (id == boxes) ++boxes;
+    return id;
+  };
+  // Sized for five boxes per own box (3-6 on scans and generated clouds at the usual d, more where
+  // splats reach far; about two where only the boxes the splats meet are built): growing the table
+  // moves every box to a random slot again, which on large clouds costs more than the counting.
+  g_.hash_.reset((splatRadius_ != nullptr ? 2 : 5) * (ownCoord_.size() / 3) + 16);
+  for (size_t t = 0; t < n; ++t) {
+    const std::uint32_t o = ownOf_[t];
+    const std::int64_t* oc = &ownCoord_[size_t(o) * 3];
+    std::int32_t* slots = &near_[size_t(o) * 27];
+    if (mask_[t] & kBeyond) {
+      const size_t i = listed(t);
+      forBoxesWithin(i, [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+        if (!touches(i, x, y, z)) return;
+        const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
+        std::int32_t* slot = nullptr;
+        if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
+          slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
+        if (slot == nullptr || *slot < 0) {
+          const int id = newId(x, y, z);
+          if (slot != nullptr) *slot = id;
+        }
+      });
+    } else {
+      for (std::uint32_t m = splatRadius_ != nullptr ? touch_[t] : mask_[t]; m != 0; m &= m - 1) {
+        const int bit = __builtin_ctz(m);
+        if (slots[bit] < 0) slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
+      }
+    }
+    if (progress_ != nullptr && (t & 16383) == 0) progress_->advanceTo(0.15 * double(t) / double(n));
+  }
+  boxes_ = size_t(boxes);
+  HugeVector<std::uint32_t>().swap(touch_);
+}
+
+void BoxGrid::Builder::keepOwnIndex() {
+  if (splatRadius_ == nullptr) return;
+  g_.lazy_ = true;
+  g_.points3_ = &pts_;
+  g_.listOrder_ = listOrder_;
+  // By the id of each own box (a point's own box is always built: its splat meets it), the list
+  // positions of its points of reach `side`; the others (and any point whose own box was not
+  // built) are tried one by one.
+  const size_t n = n_;
+  auto ownId = [&](size_t t) { return near_[size_t(ownOf_[t]) * 27 + 13]; };
+  auto general = [&](size_t t) { return reachOf(listed(t)) != side_ || ownId(t) < 0; };
+  g_.ownStart_.assign(boxes_ + 1, 0);
+  for (size_t t = 0; t < n; ++t)
+    if (general(t)) g_.far_.emplace_back(std::uint32_t(t), reachOf(listed(t)));
+    else ++g_.ownStart_[size_t(ownId(t)) + 1];
+  for (size_t b = 0; b < boxes_; ++b) g_.ownStart_[b + 1] += g_.ownStart_[b];
+  g_.ownPoints_.resize(g_.ownStart_[boxes_]);
+  std::vector<std::uint32_t> at(g_.ownStart_.begin(), g_.ownStart_.end() - 1);
+  for (size_t t = 0; t < n; ++t)
+    if (!general(t)) g_.ownPoints_[at[size_t(ownId(t))]++] = std::uint32_t(t);
+}
+
+// In list order, per part of the points of pass 3: the references to the boxes built counted.
 void BoxGrid::Builder::countReferences() {
   const size_t n = n_;
   fillParts_ = parallelParts(n, threads_, 8192);
   auto& count = count_;
-  count.resize(static_cast<size_t>(fillParts_));
-  for (size_t i = 0; i < n; ++i) g_.facePoints_ += (mask_[i] & kBeyond) ? 1 : 0;
-  auto newId = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const int id = g_.hash_.findOrInsert(BoxIndexer::pack(x, y, z), static_cast<int>(count[0].size()));
-    if (size_t(id) == count[0].size())
-      for (auto& c : count) c.push_back(0);
-    return id;
-  };
-  // Sized for five boxes per own box (3-6 on scans and generated clouds at the usual d, more where
-  // splats reach far): growing the table moves every box to a random slot again, which on large
-  // clouds costs more than the counting itself.
-  g_.hash_.reset(5 * (ownCoord_.size() / 3) + 16);
+  count.assign(static_cast<size_t>(fillParts_), std::vector<std::uint32_t>(boxes_, 0));
   for (int part = 0; part < fillParts_; ++part) {
     std::vector<std::uint32_t>& cnt = count[size_t(part)];
     for (size_t t = partBegin(n, fillParts_, part), e = partBegin(n, fillParts_, part + 1); t < e; ++t) {
@@ -668,21 +836,25 @@ void BoxGrid::Builder::countReferences() {
           if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
             slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
           int id = slot != nullptr ? *slot : -1;
-          if (id < 0) {
-            id = newId(x, y, z);
+          if (id == -1) {
+            id = g_.hash_.find(BoxIndexer::pack(x, y, z));
+            if (id < 0) id = kNotBuilt;
             if (slot != nullptr) *slot = id;
           }
-          ++count[size_t(part)][size_t(id)];
+          if (id >= 0) ++cnt[size_t(id)];
         });
       } else {
         for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) {
           const int bit = __builtin_ctz(m);
           int id = slots[bit];
-          if (id < 0) id = slots[bit] = newId(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1);
-          ++cnt[size_t(id)];
+          if (id == -1) {
+            id = g_.hash_.find(BoxIndexer::pack(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1));
+            slots[bit] = id = id < 0 ? kNotBuilt : id;
+          }
+          if (id >= 0) ++cnt[size_t(id)];
         }
       }
-      if (progress_ != nullptr && (t & 16383) == 0) progress_->advanceTo(0.3 * double(t) / double(n));
+      if (progress_ != nullptr && (t & 16383) == 0) progress_->advanceTo(0.15 + 0.15 * double(t) / double(n));
     }
   }
   boxes_ = count[0].size();
@@ -716,15 +888,19 @@ void BoxGrid::Builder::fillReferences() {
           const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
                              ? slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)]
                              : g_.hash_.find(BoxIndexer::pack(x, y, z));
-          g_.points_[at[size_t(id)]++] = value;
+          if (id >= 0) g_.points_[at[size_t(id)]++] = value;
         });
       } else {
-        for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) g_.points_[at[size_t(slots[__builtin_ctz(m)])]++] = value;
+        for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) {
+          const int id = slots[__builtin_ctz(m)];
+          if (id >= 0) g_.points_[at[size_t(id)]++] = value;
+        }
       }
       if (part == 0 && progress_ != nullptr && ((t - t0) & 16383) == 0)
         progress_->advanceTo(0.3 + 0.3 * double(t - t0) / double(t1 - t0));
     }
   });
+  keepOwnIndex();
   std::vector<std::uint32_t>().swap(ownOf_);
   HugeVector<std::uint32_t>().swap(mask_);
   std::vector<std::vector<std::uint32_t>>().swap(count_);
@@ -876,8 +1052,9 @@ void BoxGrid::Builder::deferOwnBoxes() {
 
 void BoxGrid::build(const std::vector<Vec3d>& pts, const std::vector<Vec3d>& normals, double side,
                     Progress* progress, int threads, bool deferNormals,
-                    const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach) {
-  stopNormals();
+                    const std::vector<std::uint32_t>* listOrder, const std::vector<float>* extraReach,
+                    const std::vector<float>* splatRadius) {
+  release();
   start_.assign(1, 0);
   points_.clear();
   normalCode_.clear();
@@ -894,19 +1071,22 @@ void BoxGrid::build(const std::vector<Vec3d>& pts, const std::vector<Vec3d>& nor
   dropped_ = facePoints_ = 0;
   hash_.reset(16);
   if (pts.empty() || !(side > 0) || !std::isfinite(side)) return;
-  Builder b(*this, pts, side, progress, threads, listOrder, extraReach);
+  Builder b(*this, pts, normals, side, progress, threads, listOrder, extraReach, splatRadius);
   // The index's origin, below the points by the farthest reach.
   b.placeIndex();
   // The own box of each point.
   b.ownBoxes();
   // Pass 0: the boxes within reach of each point.
   b.reachMasks();
-  // Pass 1: box ids and reference counts.
+  // Pass 1: box ids.
+  b.assignIds();
+  // Pass 2: reference counts.
   b.countReferences();
-  // Pass 2: the references.
+  // Pass 3: the references.
   b.fillReferences();
   // Sec. 4.1: the normal filter and the box normals.
   b.filterAndNormals(normals, deferNormals);
+  built_ = normalCode_.size();
   // The box normals left for startNormals() / finishNormals().
   if (deferNormals) b.deferOwnBoxes();
 }

@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <memory>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace growth {
@@ -324,9 +325,16 @@ public:
   // The largest extent of the points (per axis) that build() can index with boxes of this side:
   // 2^21 − 1 boxes per axis (BoxIndexer), less the margins of the farthest reach on both sides.
   static double maxExtent(double side) { return (double(BoxIndexer::kMax) - 2 * (kMaxExtraReach + 4) - 1) * side; }
+  // splatRadius (optional, one value per point, with `normals` the splats' disks): only the boxes
+  // that some splat's disk meets are built (their lists, normals and flags, as above); the others,
+  // which no vertex can lie in (the vertices lie on the splats), are gathered from an index of the
+  // points by their own boxes when first asked for, with the same lists, layers and normals. On a
+  // surface sampled at d of a few spacings the disks meet a tenth of the boxes within d of a point,
+  // and those hold half the references. `points` and `listOrder` must then outlive the grid too.
   void build(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals, double side,
              Progress* progress = nullptr, int threads = 0, bool deferNormals = false,
-             const std::vector<std::uint32_t>* listOrder = nullptr, const std::vector<float>* extraReach = nullptr);
+             const std::vector<std::uint32_t>* listOrder = nullptr, const std::vector<float>* extraReach = nullptr,
+             const std::vector<float>* splatRadius = nullptr);
 
   BoxGrid() = default;
   BoxGrid(const BoxGrid&) = delete;
@@ -354,7 +362,9 @@ public:
   // layer of the points whose normals the paper's filter keeps.
   int boxOf(const Vec3d& p) const {
     KeyHash::Key k;
-    return index_.keyOf(p, k) ? hash_.find(k) : -1;
+    if (!index_.keyOf(p, k)) return -1;
+    const int b = hash_.find(k);
+    return b >= 0 || !lazy_ ? b : gatheredBox(k);
   }
   // The same, but in a two-sided box the layer of the side `normal` faces (the normal of the
   // splat or vertex that asks; a zero normal gets the first layer). Its points, box normal and
@@ -362,24 +372,36 @@ public:
   // meshed (the paper's filter drops one of them).
   int boxOf(const Vec3d& p, const Vec3d& normal) const {
     const int b = boxOf(p);
-    if (b < 0 || twin_.empty() || twin_[size_t(b)] < 0) return b;
+    if (size_t(b) >= built_) { // -1, or a gathered box
+      if (b < 0 || gathered_[size_t(b) - built_].twin < 0) return b;
+      const int second = gathered_[size_t(b) - built_].twin;
+      return normal * gathered_[size_t(second) - built_].split < 0 ? second : b;
+    }
+    if (twin_.empty() || twin_[size_t(b)] < 0) return b;
     const int second = twin_[size_t(b)];
     return normal * split_[size_t(second) - layerBoxes_] < 0 ? second : b;
   }
   // Points of a box (after the normal filter), in increasing index order (or build()'s listOrder).
-  const std::uint32_t* pointsBegin(int box) const { return points_.data() + start_[size_t(box)]; }
-  const std::uint32_t* pointsEnd(int box) const { return points_.data() + start_[size_t(box) + 1]; }
-  size_t pointCount(int box) const { return start_[size_t(box) + 1] - start_[size_t(box)]; }
+  const std::uint32_t* pointsBegin(int box) const {
+    return size_t(box) < built_ ? points_.data() + start_[size_t(box)] : gathered_[size_t(box) - built_].points.data();
+  }
+  const std::uint32_t* pointsEnd(int box) const { return pointsBegin(box) + pointCount(box); }
+  size_t pointCount(int box) const {
+    return size_t(box) < built_ ? start_[size_t(box) + 1] - start_[size_t(box)]
+                                : gathered_[size_t(box) - built_].points.size();
+  }
   // The box normal (sec. 4.1). Computed by build() (or startNormals()) for most boxes, on first
   // use for the others: the same value either way, but a first use writes to the grid, so these
   // accessors must not be called from several threads at once.
   Vec3d boxNormal(int box) const {
+    if (size_t(box) >= built_) return sampling_.decode(gathered_[size_t(box) - built_].normalCode);
     if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
     return sampling_.decode(normalCode_[size_t(box)]);
   }
   // max over S_F of min_p <n_p, n>, rounded to float (keeping its sign): negative means d looked
   // too large in this box.
   double boxMinDot(int box) const {
+    if (size_t(box) >= built_) return double(gathered_[size_t(box) - built_].minDot);
     if (state_[size_t(box)].load(std::memory_order_acquire) != kDone) ensureNormal(box);
     return double(minDot_[size_t(box)]);
   }
@@ -390,13 +412,18 @@ public:
   // points (and at least four): thin plates with 2:1 point counts on their sides give a third, a
   // box across a fold up to a half; scattered flipped normals (1 in 17 in the tests) stay below.
   static constexpr double kOpposedShare = 0.25;
-  bool dTooLarge(int box) const { return (flags_[size_t(box)] & kOpposed) != 0 || boxMinDot(box) < 0; }
+  bool dTooLarge(int box) const {
+    const std::uint8_t f = size_t(box) < built_ ? flags_[size_t(box)] : gathered_[size_t(box) - built_].flags;
+    return (f & kOpposed) != 0 || boxMinDot(box) < 0;
+  }
   size_t dTooLargeCount() const { return dTooLargeCount_.load(); }
   size_t droppedByFilter() const { return dropped_; } // point references removed by the filter
   // Points whose boxes in reach were not all among the 27 around their own box (rounding at a box
   // face); build() takes a slower path for them.
   size_t pointsAtBoxFaces() const { return facePoints_; }
   size_t references() const { return points_.size(); }
+  // Boxes (layers) gathered on first use so far (build()'s splatRadius).
+  size_t gatheredBoxes() const { return gathered_.size(); }
   size_t memoryBytes() const;
   // Frees the grid (after finishNormals()); the counts stay. The grid is empty afterwards.
   void release();
@@ -433,6 +460,33 @@ private:
   std::vector<std::uint32_t> pending_; // deferred boxes, for startNormals()/finishNormals()
   std::vector<Vec3d> pendingCorner_; // their lower corners, until startNormals() orders them
   mutable SphereSampling sampling_{0}; // for the box normals computed on first use
+  // The boxes not built (build()'s splatRadius), gathered on first use by the thread that asks
+  // (the one that may call boxNormal(); the other thread only computes normals of built boxes).
+  // Layers of built boxes have ids below built_, gathered layers from built_ on.
+  size_t built_ = 0;
+  bool lazy_ = false;
+  const std::vector<Vec3d>* points3_ = nullptr;
+  const std::vector<std::uint32_t>* listOrder_ = nullptr; // build()'s (null: the identity)
+  std::vector<std::uint32_t> ownStart_; // CSR offsets of ownPoints_, by the id of the points' own box
+  HugeVector<std::uint32_t> ownPoints_; // the points of reach `side` in each own box (list positions)
+  std::vector<std::pair<std::uint32_t, double>> far_; // the other points (list positions), with their reach
+  struct Gathered {
+    std::vector<std::uint32_t> points;
+    std::uint16_t normalCode = SphereSampling::kUpCode;
+    float minDot = 0;
+    std::uint8_t flags = 0;
+    std::int32_t twin = -1;
+    Vec3d split{0, 0, 0};
+  };
+  static constexpr int kNoBox = 0x7fffffff;       // gatheredIds_: no point within reach
+  mutable KeyHash gatheredIds_{16};              // box key -> first gathered layer id, or kNoBox
+  mutable std::vector<Gathered> gathered_;
+  mutable size_t gatheredReferences_ = 0;
+  // Id of the box with key k gathered (the first layer), or -1 when no point reaches it.
+  int gatheredBox(KeyHash::Key k) const;
+  // Whether a point at p with reach `reach` refers to box (x, y, z): the slabs and the test of
+  // build() (Builder::forBoxesWithin), to the last bit.
+  bool refers(const Vec3d& p, double reach, std::int64_t x, std::int64_t y, std::int64_t z) const;
   const std::vector<Vec3d>* normals_ = nullptr;
   mutable std::atomic<size_t> dTooLargeCount_{0};
   size_t dropped_ = 0, facePoints_ = 0;

@@ -48,6 +48,8 @@ public:
   }
 
   const BorderGraph& graph() const { return graph_; }
+  // Frees the graph G too (after the output is written).
+  void releaseGraph() { graph_ = BorderGraph(); }
   bool anyVertexCloserThan(const Vec3d& x, double r) const {
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNoVertex, kNoVertex);
   }

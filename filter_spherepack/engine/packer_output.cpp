@@ -89,7 +89,6 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool fl
       minEdge = std::min(minEdge, std::sqrt(std::min((sb - sa).SquaredNorm(),
                                                      std::min((sc - sb).SquaredNorm(), (sa - sc).SquaredNorm()))));
     }
-    const MeshTopology topo = measureTopology(out);
     st.qualityAvg = qsum / double(faces.size());
     st.smallestEdge = minEdge;
     const double d = st.sphereDiameter;
@@ -111,12 +110,17 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool fl
           "or use a double-precision build (MeshLab 2025.07d, PyMeshLab): moved back to these coordinates in "
           "float, the mesh is rounded the same way.");
     }
-    st.nonManifoldVertices = topo.nonManifoldVertices;
-    st.nonManifoldEdges = topo.nonManifoldEdges;
-    st.boundaryLoops = topo.boundaryLoops;
   }
   st.vertices = used.size();
   st.faces = faces.size();
+}
+
+void checkTopology(const MeshArrays& out, Stat& st) {
+  if (out.faces.empty()) return;
+  const MeshTopology topo = measureTopology(out);
+  st.nonManifoldVertices = topo.nonManifoldVertices;
+  st.nonManifoldEdges = topo.nonManifoldEdges;
+  st.boundaryLoops = topo.boundaryLoops;
 }
 
 // The report: warnings on what the cloud made the method do (unoriented normals, d too large for
@@ -128,7 +132,7 @@ double oppositeNormalShare(const InputCloud& in, const CloudScale& scale, const 
              : 0.0;
 }
 
-void report(size_t inputPoints, double opposite, double d, double s, const BorderGraph& g, bool noFaces, Stat& st) {
+void report(size_t inputPoints, double opposite, double d, double s, size_t graphVertices, bool noFaces, Stat& st) {
   if (opposite >= kOppositeNeighbourShare)
     st.warnings.push_back("The normals look unoriented: for " + fmt(100 * opposite) + " % of the points the "
                           "nearest point's normal points to the other side, and in " +
@@ -162,7 +166,7 @@ void report(size_t inputPoints, double opposite, double d, double s, const Borde
                           "triangle of side d (a growth was started on every part that could), or the growth "
                           "was stopped by a defect there.");
   if (noFaces)
-    throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
+    throw Error("No triangle could be built: the growth stopped after " + std::to_string(graphVertices) +
                 " vertices. d = " + fmt(d) + " and s = " + fmt(s) + " do not fit this cloud: the splats must cover "
                 "the surface, and the noise must stay below d/2 (paper, section 5.3). Try the defaults, or a larger d.");
 }

@@ -25,37 +25,40 @@ std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params
 }
 
 namespace {
-// The mean number of boxes of side 1 within distance rho of a point placed at random: the volume of
-// the unit cube grown by rho (Steiner's formula).
-double boxesWithin(double rho) {
+// The boxes of side 1 that a surface crosses within distance rho of one of its points, per box a
+// plane crosses: the unit square grown by rho (Steiner's formula in the plane).
+double sheetBoxesWithin(double rho) {
   const double pi = 3.14159265358979323846;
-  return 1 + 6 * rho + 3 * pi * rho * rho + 4 * pi / 3 * rho * rho * rho;
+  return 1 + 4 * rho + pi * rho * rho;
 }
 } // namespace
 
 MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z) {
   MemoryEstimate e;
+  const double pi = 3.14159265358979323846;
   const double n = double(in.points.size()), d = z.d;
-  double refs = 0, rhoSum = 0;
+  double refs = 0, radiusSum = 0;
   if (radius == nullptr) {
-    refs = n * boxesWithin(1.0);
-    rhoSum = n;
+    refs = n * kSheetBoxesPerArea * sheetBoxesWithin(1.0);
   } else {
     for (float r : *radius) {
       const double rho = r > kLargeSplatPerD * d ? 1 + std::min(double(r) / d, double(BoxGrid::kMaxExtraReach)) : 1.0;
-      refs += boxesWithin(rho);
-      rhoSum += rho;
+      refs += kSheetBoxesPerArea * sheetBoxesWithin(rho);
+      radiusSum += double(r);
     }
   }
-  // Boxes: the surface's area in boxes of side d, times the boxes across it within the mean reach
-  // on both sides.
-  const double rho = n > 0 ? rhoSum / n : 1.0;
-  const double boxes = std::min(refs, z.scale.area / (d * d) * (2 * rho + 1));
+  // The boxes built are those the surface (its splats) crosses; the point lists, the index of the
+  // points by their own boxes (4 bytes a point).
+  const double boxes = kSheetBoxesPerArea * z.scale.area / (d * d);
   e.input = size_t(n * (2 * sizeof(Vec3d) + sizeof(float) + 2 * sizeof(std::uint32_t)));
-  e.boxGrid = size_t(4 * refs + boxes * kBoxBytes);
-  e.growth = size_t(z.expected * kGrowthBytesPerVertex + 4 * n);
-  // Fixed sizes (tables at their smallest, the queue) weigh on small clouds: a tenth more.
-  e.peak = size_t(1.1 * double(e.input + e.boxGrid + e.growth));
+  e.boxGrid = size_t(4 * refs + boxes * kBoxBytes + 4 * n);
+  // The growth: the graph per vertex, and per splat the vertices within d of its disk (an area of
+  // π(r + d)², at (√3/2)·d² per vertex), in the lists' chunks. Without the radii, r = 0.
+  const double meanRadius = n > 0 ? radiusSum / n : 0.0;
+  const double listed = pi * (1 + meanRadius / d) * (1 + meanRadius / d) / kTriangleAreaFactor;
+  e.growth = size_t(z.expected * kGrowthBytesPerVertex + n * (4 + kListBytesPerEntry * listed));
+  // Fixed sizes (tables at their smallest, the queue's levels): 2 MB more.
+  e.peak = e.input + e.boxGrid + e.growth + (size_t(2) << 20);
   return e;
 }
 
@@ -101,9 +104,10 @@ void buildBoxGrid(BoxGrid& grid, const InputCloud& in, const std::vector<float>&
     }
   }
   grid.build(in.points, in.normals, d, &progress, params.threads, /*deferNormals=*/true,
-             order.rank.empty() ? nullptr : &order.rank, extraReach.empty() ? nullptr : &extraReach);
+             order.rank.empty() ? nullptr : &order.rank, extraReach.empty() ? nullptr : &extraReach, &radius);
   std::vector<float>().swap(extraReach);
   st.boxes = grid.boxCount();
+  st.boxReferences = grid.references();
 }
 
 } // namespace detail

@@ -91,10 +91,16 @@ std::vector<float> splatRadii(const InputCloud& in, const Sizes& z, const Params
 struct MemoryEstimate {
   size_t input = 0, boxGrid = 0, growth = 0, peak = 0;
 };
-// Bytes per box (hash slot at 3/4 load, CSR offset, normal code, minimum, state and flags) and per
-// vertex of the growth (graph G with its reserve, splat vertex lists, vertex grid), as allocated.
-constexpr double kBoxBytes = 12.0 / 0.75 + 4 + 2 + 4 + 2;
-constexpr double kGrowthBytesPerVertex = 300;
+// Boxes a surface crosses per d² of its area (a plane at a random orientation: 1.5; measured 1.63
+// on the generated torus, more on noisy scans), also per box of the plane in reach of a point.
+constexpr double kSheetBoxesPerArea = 1.8;
+// Bytes per box built (its ids' share of the 4 × 4 × 4 blocks a surface crosses, CSR offsets of its
+// list and own points, normal code, minimum, state and flags: 40–43 measured), per vertex of the
+// growth (graph G: position, normal, rotation; vertex grid; queue) and per entry of the splat
+// vertex lists (chunks of three: 16 bytes, about 5.5 an entry), as allocated.
+constexpr double kBoxBytes = 42;
+constexpr double kGrowthBytesPerVertex = 110;
+constexpr double kListBytesPerEntry = 5.5;
 // Without the radii (null), every splat is taken as small (reach d): a lower bound, checked before
 // the splat radii are computed.
 MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z);
@@ -162,14 +168,17 @@ void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Para
                   Stat& st);
 void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
 
-// packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, and the report.
+// packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, its topology checked (on
+// the output alone, once the graph and the faces are freed: the check's arrays, about 100 bytes a
+// face, then stay below the growth's peak), and the report.
 void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, MeshArrays& out,
                Stat& st);
 // The share of the points whose nearest point's normal points to the other side, asked for when
 // many boxes see normals that disagree (Stat::boxesDTooLarge); 0 otherwise.
 double oppositeNormalShare(const InputCloud& in, const CloudScale& scale, const Stat& st);
 // `opposite`: oppositeNormalShare, taken before the input was freed.
-void report(size_t inputPoints, double opposite, double d, double s, const BorderGraph& g, bool noFaces, Stat& st);
+void checkTopology(const MeshArrays& out, Stat& st);
+void report(size_t inputPoints, double opposite, double d, double s, size_t graphVertices, bool noFaces, Stat& st);
 
 } // namespace detail
 } // namespace spherepack

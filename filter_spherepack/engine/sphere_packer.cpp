@@ -182,6 +182,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   in = InputCloud();
   order = Renumbering();
   std::vector<float>().swap(radius);
+  releaseFreeHeap();
   const size_t held = growth.memoryBytes(); // the graph G
   st.secondsGrowth = watch.lap();
 
@@ -203,7 +204,12 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.memory.output = out.vertices.capacity() * sizeof(Vec3d) + out.faces.capacity() * sizeof(out.faces[0]) +
                      out.faceQuality.capacity() * sizeof(double);
   st.memory.peak = std::max(st.memory.peak, held + st.memory.faces + st.memory.output);
-  report(inputPoints, opposite, d, s, g, faces.empty(), st);
+  const size_t graphVertices = g.vertexCount();
+  const bool noFaces = faces.empty();
+  std::vector<Triangle>().swap(faces);
+  growth.releaseGraph();
+  checkTopology(out, st);
+  report(inputPoints, opposite, d, s, graphVertices, noFaces, st);
   st.secondsOutput = watch.lap();
   st.seconds = watch.total();
   try {

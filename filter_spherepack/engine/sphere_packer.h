@@ -129,7 +129,8 @@ struct Stat {
                                  // lie (nearly) on a line: an angle above 179° (region_triangulation.h)
   size_t longestBorder = 0;      // border edges of the longest region
   double meanBorderLength = 0;   // mean border length of the regions (about 4, sec. 3.7)
-  size_t boxes = 0;
+  size_t boxes = 0;              // boxes built: those the splats' disks meet (BoxGrid::build)
+  size_t boxReferences = 0;      // their references to the points within d (sec. 4.1)
   size_t boxesDTooLarge = 0;     // boxes whose box normal has a negative product with a point normal
   size_t boxesTwoSided = 0;      // of those, the boxes that see two sides and keep both, as two
                                  // layers (BoxGrid, filterOrSplitBox; the paper drops one)
