@@ -181,10 +181,15 @@ MeshArrays prismMesh(const Prism& p, double h, double jitter, Random& rng) {
 
 // --- Cylinder ---
 
-// Triangles between two closed loops around the z axis, each in increasing angle: a zipper that
-// always advances on the loop whose next vertex comes first in angle.
-void stitch(Builder& b, const std::vector<std::uint32_t>& inner, const std::vector<std::uint32_t>& outer, const Vec3d& outward) {
-  auto angle = [&](std::uint32_t v) { return std::atan2(b.mesh.vertices[v][1], b.mesh.vertices[v][0]); };
+// Triangles between two closed loops around the z axis in a plane z = const, each in increasing
+// angle, `inner` nearer the axis: a zipper that advances on the loop whose next vertex comes first in
+// angle, unless only the other choice gives a triangle turned the right way (the moves of the rings'
+// vertices can put a vertex behind its neighbour of the other ring). Seen from +z, (inner_i,
+// outer_j, inner_i+1) and (inner_i, outer_j, outer_j+1) turn counter-clockwise; `up` < 0 (the
+// bottom cap) turns them over.
+void stitch(Builder& b, const std::vector<std::uint32_t>& inner, const std::vector<std::uint32_t>& outer, double up) {
+  const std::vector<Vec3d>& v = b.mesh.vertices;
+  auto angle = [&](std::uint32_t i) { return std::atan2(v[i][1], v[i][0]); };
   auto unwrap = [&](const std::vector<std::uint32_t>& loop, size_t start, double from) {
     std::vector<double> a;
     for (size_t s = 0; s <= loop.size(); ++s) {
@@ -195,6 +200,13 @@ void stitch(Builder& b, const std::vector<std::uint32_t>& inner, const std::vect
     }
     a.back() = a.front() + 2 * kPi;
     return a;
+  };
+  auto counterClockwise = [&](std::uint32_t p, std::uint32_t q, std::uint32_t r) {
+    return (v[q][0] - v[p][0]) * (v[r][1] - v[p][1]) - (v[q][1] - v[p][1]) * (v[r][0] - v[p][0]) > 0;
+  };
+  auto emit = [&](std::uint32_t p, std::uint32_t q, std::uint32_t r) {
+    if (up > 0) b.mesh.faces.push_back({p, q, r});
+    else b.mesh.faces.push_back({p, r, q});
   };
   const std::vector<double> ai = unwrap(inner, 0, angle(inner[0]));
   const double a0 = ai[0];
@@ -209,12 +221,17 @@ void stitch(Builder& b, const std::vector<std::uint32_t>& inner, const std::vect
   size_t i = 0, j = 0;
   const size_t ni = inner.size(), no = outer.size();
   while (i < ni || j < no) {
-    const std::uint32_t vi = inner[i % ni], vo = outer[(start + j) % no];
-    if (j == no || (i < ni && ai[i + 1] < ao[j + 1])) {
-      b.triangle(vi, inner[(i + 1) % ni], vo, outward);
+    const std::uint32_t p = inner[i % ni], p1 = inner[(i + 1) % ni], q = outer[(start + j) % no], q1 = outer[(start + j + 1) % no];
+    bool advanceInner = j == no;
+    if (i < ni && j < no) {
+      const bool innerTurns = counterClockwise(p, q, p1), outerTurns = counterClockwise(p, q, q1);
+      advanceInner = innerTurns != outerTurns ? innerTurns : ai[i + 1] < ao[j + 1];
+    }
+    if (advanceInner) {
+      emit(p, q, p1);
       ++i;
     } else {
-      b.triangle(vi, outer[(start + j + 1) % no], vo, outward);
+      emit(p, q, q1);
       ++j;
     }
   }
@@ -242,8 +259,9 @@ MeshArrays cylinderMesh(double h, double jitter, Random& rng) {
       const Vec3d mid = (b.mesh.vertices[rows[k][j]] + b.mesh.vertices[rows[k + 1][j1]]) * 0.5;
       b.quad({rows[k][j], rows[k][j1], rows[k + 1][j1], rows[k + 1][j]}, Vec3d(mid[0], mid[1], 0), rng);
     }
-  // The caps: rings at radius R·m / rings (m = 1 .. rings − 1) of about 2πr / h vertices each, the
-  // centre, the rim; consecutive rings zipped together.
+  // The caps: rings at radius R·m / rings (m = 1 .. rings − 1) of about 2πr / h vertices each, moved
+  // by up to jitter × their angular spacing and jitter / 2 × the ring spacing; the centre, the rim;
+  // consecutive rings zipped together.
   const size_t rings = std::max<size_t>(1, size_t(std::lround(radius / h)));
   for (int cap = 0; cap < 2; ++cap) {
     const double z = cap == 0 ? 0.0 : height;
@@ -260,7 +278,7 @@ MeshArrays cylinderMesh(double h, double jitter, Random& rng) {
         const double ringPhase = rng.uniform(0, 2 * kPi);
         for (size_t j = 0; j < count; ++j) {
           const double t = ringPhase + 2 * kPi * (double(j) + jitter * rng.uniform(-1.0, 1.0)) / double(count);
-          const double r = r0 + jitter * (radius / double(rings)) * rng.uniform(-1.0, 1.0);
+          const double r = r0 + 0.5 * jitter * (radius / double(rings)) * rng.uniform(-1.0, 1.0);
           ring.push_back(std::uint32_t(b.mesh.vertices.size()));
           b.mesh.vertices.push_back(Vec3d(r * std::cos(t), r * std::sin(t), z));
         }
@@ -272,7 +290,7 @@ MeshArrays cylinderMesh(double h, double jitter, Random& rng) {
       if (previous.size() == 1)
         for (size_t j = 0; j < ring.size(); ++j) b.triangle(centre, ring[j], ring[(j + 1) % ring.size()], outward);
       else
-        stitch(b, previous, ring, outward);
+        stitch(b, previous, ring, outward[2]);
       previous = ring;
     }
   }
