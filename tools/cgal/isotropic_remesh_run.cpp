@@ -24,6 +24,7 @@
 //   remesh_seconds   wall clock of the isotropic_remeshing call alone
 //   cpu_seconds      process CPU time of the same calls as `seconds`
 //   seconds_total    wall clock of the whole run: reading, remeshing, writing
+//   load_rss_mib     the peak resident set size once the input is read and built (before the method)
 //   peak_rss_mib     the process's peak resident set size (getrusage), reading and writing included
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
@@ -156,6 +157,7 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  const double loadRssMiB = double(peakRssKiB()) / 1024.0;
   const double c0 = cpuSeconds();
   const Clock::time_point t0 = Clock::now();
   auto constrained = mesh.add_property_map<Mesh::Edge_index, bool>("e:is_constrained", false).first;
@@ -185,6 +187,7 @@ int main(int argc, char** argv) {
   std::printf("remesh_seconds: %.4f\n", remeshSeconds);
   std::printf("cpu_seconds: %.4f\n", cpu);
   std::printf("seconds_total: %.4f\n", since(start));
+  std::printf("load_rss_mib: %.1f\n", loadRssMiB);
   std::printf("peak_rss_mib: %.1f\n", double(peakRssKiB()) / 1024.0);
   std::printf("cgal_version: %s\n", CGAL_VERSION_STR);
   if (!out.empty()) std::printf("saved: %s\n", out.c_str());
