@@ -18,7 +18,8 @@ The target length L is F (--target-scale, 1 by default) times the input's mean e
   cgal  build/isotropic_remesh_run --target L: CGAL 5.5 isotropic_remeshing, number_of_iterations(3),
         edges sharper than 30 degrees constrained (as IER's featuredeg 30)
   ours  the filter meshing_sphere_packing_remeshing of our plugin in PyMeshLab 2025.7, with d = L
-        (skipped, with the reason, when the plugin has no such filter)
+        (skipped, with the reason, when the plugin has no such filter); the plugin is --plugin, else
+        BUILD/meshlab-2025.07d/plugins/libfilter_spherepack.so when built, else the installed package's
 Each method runs in a process of its own (scripts/bench/remesh_pymeshlab.py for the PyMeshLab rows);
 the time is the wall time of the library call alone, the memory that process's peak RSS, also given
 over its RSS with the input loaded. The output is measured by build/mesh_measures --reference INPUT
@@ -332,7 +333,8 @@ def main(argv=None):
     ap.add_argument("--meshes", default="small")
     ap.add_argument("--methods", default="ier,cgal,ours")
     ap.add_argument("--target-scale", type=float, default=1.0, help="L = this × the input's mean edge length")
-    ap.add_argument("--plugin", help="our libfilter_spherepack.so for PyMeshLab 2025.7 (default: the installed growth_meshers)")
+    ap.add_argument("--plugin", help="our libfilter_spherepack.so for PyMeshLab 2025.7 (default: BUILD/meshlab-2025.07d/plugins/"
+                    "libfilter_spherepack.so when built, else the installed growth_meshers package's)")
     ap.add_argument("--our-filter", default="meshing_sphere_packing_remeshing")
     ap.add_argument("--timeout", type=int, default=900, help="seconds per run")
     ap.add_argument("--fresh", action="store_true", help="forget the rows of earlier runs")
@@ -340,6 +342,11 @@ def main(argv=None):
     a.root = os.path.dirname(os.path.dirname(HERE))
     a.build, a.out = os.path.abspath(a.build), os.path.abspath(a.out)
     a.methods = [m.strip() for m in a.methods.split(",") if m.strip()]
+    # Our plugin: the build's PyMeshLab 2025.7 one when it was built (-DGROWTH_MESHLAB_2025D=ON), else
+    # the installed growth_meshers package's.
+    built = os.path.join(a.build, "meshlab-2025.07d", "plugins", "libfilter_spherepack.so")
+    if not a.plugin and os.path.exists(built):
+        a.plugin = built
     for m in a.methods:
         if m not in METHODS:
             raise SystemExit("remesh benchmark: unknown method %r (%s)" % (m, ", ".join(METHODS)))
