@@ -65,6 +65,15 @@ for method in ("ier", "cgal"):
     assert m["hausdorff"] < 1e-5 * rows[("holedbox-2k", method)]["target"], (method, m["hausdorff"])
 PY
 
+# The plumbing of our row (plugin, filter, parameters, saved layer, measures, verdicts), with one of
+# PyMeshLab's own filters standing in for ours: it runs, is measured and gets the three verdicts.
+"$GROWTH_SOURCE_DIR/scripts/benchmark.sh" --remesh --build "$GROWTH_BUILD_DIR" --out "$work/stand-in" --meshes box-1k \
+  --methods ier,ours --our-filter meshing_remove_duplicate_vertices --fresh > "$work/stand-in.log" 2>&1 \
+  || { cat "$work/stand-in.log"; fail "benchmark with a stand-in filter failed"; }
+grep -q '^| box-1k | [a-zA-Z/]* (.*) | NO (shortest 0\.[0-9]* d, [0-9]* edges shorter than d) | n/a (.* input faces < 100k) |$' \
+  "$work/stand-in/remesh.md" || { cat "$work/stand-in/remesh.md"; fail "no verdicts for the stand-in row"; }
+grep -q '^Targets for ours: mean Q_t >= IER' "$work/stand-in/remesh.md" || fail "no targets line for the stand-in row"
+
 # The targets' verdicts on made-up rows: ours better than IER everywhere, then worse on each.
 PYTHONPATH="$GROWTH_SOURCE_DIR/scripts/bench" python3 - <<'PY' || fail "wrong verdicts"
 import copy
