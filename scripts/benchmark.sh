@@ -34,7 +34,7 @@
 #                                        out/bench/scale-10m.md (scripts/benchmark_scale.py; uses the
 #                                        build as it is; about 10 GB and minutes per host at 10M)
 #   scripts/benchmark.sh --remesh [--meshes small|organic|medium|large|all|NAME,..] [--methods ier,cgal,ours]
-#                                        [--plugin LIB.so] [--target-scale F]   the remeshing benchmark
+#                                        [--plugin LIB.so] [--target-scale F] [--report-only]   the remeshing benchmark
 #                                        (scripts/bench/remesh.py): MeshLab's Isotropic Explicit Remeshing
 #                                        (PyMeshLab 2025.7, 3 iterations), CGAL's isotropic_remeshing
 #                                        (build/isotropic_remesh_run, 3 iterations) and our Sphere Packing

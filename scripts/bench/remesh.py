@@ -3,7 +3,7 @@
 absolute target length, each measured against its input.
 
     benchmark.sh --remesh [--meshes small|organic|medium|large|all|NAME,...] [--methods ier,cgal,ours]
-                          [--target-scale F] [--plugin LIB.so] [--our-filter NAME] [--fresh]
+                          [--target-scale F] [--plugin LIB.so] [--our-filter NAME] [--fresh] [--report-only]
 
 Meshes (made once, kept in OUT/remesh/inputs/):
   SHAPE-SIZE     build/make_mesh --shape SHAPE --faces SIZE --seed 1 (box, cylinder, lprism, holedbox,
@@ -279,7 +279,8 @@ def write_report(a, rows, commands):
     versions = sorted({"PyMeshLab " + r["detail"]["pymeshlab"] for r in rows if r.get("detail", {}).get("pymeshlab")} |
                       {"CGAL " + r["detail"]["cgal_version"] for r in rows if r.get("detail", {}).get("cgal_version")})
     lines = ["# Remeshing benchmark", "",
-             "Commands: " + "; ".join("`%s`" % c for c in commands), "",
+             "Commands (rows merged by mesh and method; each row's run in remesh.jsonl): " +
+             "; ".join("`%s` (%s)" % (c, d) for c, d in commands.items()), "",
              "Date: %s. Machine: %s. %s." % (datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
                                               machine(), ", ".join(versions) or "no peer versions recorded"), "",
              "d = the target length L given to every method (the input's mean edge length × the target scale). "
@@ -338,6 +339,7 @@ def main(argv=None):
     ap.add_argument("--our-filter", default="meshing_sphere_packing_remeshing")
     ap.add_argument("--timeout", type=int, default=900, help="seconds per run")
     ap.add_argument("--fresh", action="store_true", help="forget the rows of earlier runs")
+    ap.add_argument("--report-only", action="store_true", help="write remesh.md again from remesh.jsonl, running nothing")
     a = ap.parse_args(argv)
     a.root = os.path.dirname(os.path.dirname(HERE))
     a.build, a.out = os.path.abspath(a.build), os.path.abspath(a.out)
@@ -361,9 +363,8 @@ def main(argv=None):
     if os.path.exists(jsonl) and not a.fresh:
         with open(jsonl) as f:
             old = [json.loads(l) for l in f if l.strip()]
-    commands = list(dict.fromkeys([r.get("command", "") for r in old if r.get("command")]))
     new = []
-    for name in mesh_names(a.meshes):
+    for name in [] if a.report_only else mesh_names(a.meshes):
         for r in bench_mesh(name, a):
             r["command"] = a.command
             new.append(r)
@@ -372,7 +373,10 @@ def main(argv=None):
     with open(jsonl, "w") as f:
         for r in rows:
             f.write(json.dumps(r) + "\n")
-    commands = list(dict.fromkeys([r["command"] for r in rows]))
+    # Each command with the date of its first row: rows merged from several runs say which run made them.
+    commands = {}
+    for r in rows:
+        commands.setdefault(r["command"], r["date"])
     print("wrote", write_report(a, rows, commands))
     return 0
 

@@ -29,7 +29,7 @@ grep -q "positive length" "$work/err.txt" || fail "no clear error for a negative
   --meshes holedbox-2k,sheet-2k --fresh > "$work/bench.log" 2>&1 || { cat "$work/bench.log"; fail "benchmark failed"; }
 md="$work/out/remesh.md"
 [ -s "$md" ] || fail "no remesh.md"
-for text in '^Commands: `scripts/benchmark.sh --remesh' '^Date: .*Machine: .*CGAL 5\.5.*PyMeshLab 2025\.7' \
+for text in '^Commands (.*): `scripts/benchmark.sh --remesh' '^Date: .*Machine: .*CGAL 5\.5.*PyMeshLab 2025\.7' \
             '^## holedbox-2k — [0-9,]* faces, CAD, creases' '^## sheet-2k — [0-9,]* faces, open, holes' \
             '^| MeshLab IER (3 iterations) | [0-9.]* |' '^| CGAL isotropic_remeshing (3 iterations) | [0-9.]* |' \
             '^| Sphere Packing remeshing (ours) |' '^Targets for ours: '; do
