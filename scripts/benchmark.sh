@@ -33,6 +33,16 @@
 #                                        time, peak RSS, the mesh measures and the guarantees, written to
 #                                        out/bench/scale-10m.md (scripts/benchmark_scale.py; uses the
 #                                        build as it is; about 10 GB and minutes per host at 10M)
+#   scripts/benchmark.sh --remesh [--meshes small|organic|medium|large|all|NAME,..] [--methods ier,cgal,ours]
+#                                        [--plugin LIB.so] [--target-scale F] [--report-only]   the remeshing benchmark
+#                                        (scripts/bench/remesh.py): MeshLab's Isotropic Explicit Remeshing
+#                                        (PyMeshLab 2025.7, 3 iterations), CGAL's isotropic_remeshing
+#                                        (build/isotropic_remesh_run, 3 iterations) and our Sphere Packing
+#                                        remeshing (when the plugin has it) at the input's mean edge length,
+#                                        measured against the input: out/benchmark/remesh.md and remesh.jsonl.
+#                                        Uses the build as it is (make_mesh, mesh_measures, g2s_run,
+#                                        make_cloud, isotropic_remesh_run); small: six generated 20k-face
+#                                        meshes, seconds; large: 1M+ faces, many minutes
 #   scripts/benchmark.sh --help          all options
 #
 # Options of this wrapper: --build DIR (default $GROWTH_BUILD_DIR or build/), --out DIR (default
@@ -53,6 +63,29 @@ if [ "${1:-}" = "--pymeshlab" ]; then
     { echo "benchmark: growth_meshers is not installed in the venv: run scripts/test_python.sh" >&2; exit 1; }
   [ -x "$build/make_cloud" ] || cmake --build "$build" --target make_cloud >/dev/null
   exec "$venv_python" "$root/scripts/benchmark_pymeshlab.py" --build "$build" --data-dir "$data" --out "$out" "$@"
+fi
+
+if [ "${1:-}" = "--remesh" ]; then
+  shift
+  rargs=()
+  while [ $# -gt 0 ]; do
+    case $1 in
+      --build) build=$2; shift 2 ;;
+      --out) out=$2; shift 2 ;;
+      --data-dir) data=$2; shift 2 ;;
+      --no-build) shift ;;   # the remeshing benchmark always uses the build as it is
+      *) rargs+=("$1"); shift ;;
+    esac
+  done
+  for tool in make_mesh mesh_measures; do
+    [ -x "$build/$tool" ] || { echo "benchmark: no $build/$tool: build first (cmake --build $build --target $tool)" >&2; exit 1; }
+  done
+  # The PyMeshLab rows (IER, ours) need the venv; without it they are skipped with that reason.
+  venv_python=$root/third_party/venv/bin/python
+  py=()
+  if [ -x "$venv_python" ] && "$venv_python" -c 'import pymeshlab' 2>/dev/null; then py=(--python "$venv_python"); fi
+  exec /usr/bin/python3 "$root/scripts/bench/remesh.py" --build "$build" --out "$out" --data-dir "$data" \
+    --command "$command" ${py[@]+"${py[@]}"} ${rargs[@]+"${rargs[@]}"}
 fi
 
 if [ "${1:-}" = "--scale" ]; then

@@ -54,8 +54,8 @@ if [ $with_tests -eq 1 ]; then
     clang-14 libclang-rt-14-dev               # sanitizer build and fuzzers (scripts/sanitize.sh, fuzz.sh)
     time                                      # /usr/bin/time -v: peak memory in the benchmark
     python3 python3-numpy python3-matplotlib  # benchmark tables and plots, README pictures (scripts/render.py)
-    libcgal-dev                               # CGAL 5.5 (header-only): tools/cgal/afsr_run, the benchmark's
-                                              # cgal-afsr row only (about 16 s of apt, 45 MB of headers)
+    libcgal-dev                               # CGAL 5.5 (header-only): tools/cgal/afsr_run and isotropic_remesh_run, the benchmark's
+                                              # cgal-afsr and --remesh CGAL rows only (about 16 s of apt, 45 MB of headers)
   )
 fi
 if [ $with_pymeshlab -eq 1 ]; then

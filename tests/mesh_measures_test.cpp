@@ -578,3 +578,193 @@ TEST(MeshMeasures, InterpolatingMeshHasZeroDistance) {
   EXPECT_NEAR(r.distanceMax, 0.0, 1e-12);
   EXPECT_NEAR(r.muDPercent, 0.0, 1e-9);
 }
+
+// --- Per-component topology and the distance between two surfaces (the remeshing benchmark's) ---
+
+namespace {
+
+using growth::MeshArrays;
+
+// Appends `add` to `mesh` (its vertices renumbered after mesh's).
+void append(MeshArrays& mesh, const MeshArrays& add) {
+  const std::uint32_t base = std::uint32_t(mesh.vertices.size());
+  mesh.vertices.insert(mesh.vertices.end(), add.vertices.begin(), add.vertices.end());
+  for (auto f : add.faces) mesh.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+}
+
+MeshArrays torusArrays(int n, int k, Point3d offset) {
+  MeshArrays m;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < k; ++j) {
+      const double u = 2 * M_PI * i / n, w = 2 * M_PI * j / k;
+      m.vertices.push_back(Point3d((2 + std::cos(w)) * std::cos(u), (2 + std::cos(w)) * std::sin(u), std::sin(w)) + offset);
+    }
+  auto id = [&](int i, int j) { return std::uint32_t(((i + n) % n) * k + (j + k) % k); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < k; ++j) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// A disk of `rings` rings of 6·r vertices around a centre (a triangulated hexagon), in the plane z.
+MeshArrays diskArrays(int rings, Point3d offset) {
+  MeshArrays m;
+  m.vertices.push_back(offset);
+  std::vector<std::vector<std::uint32_t>> ring{{0}};
+  for (int r = 1; r <= rings; ++r) {
+    ring.emplace_back();
+    for (int j = 0; j < 6 * r; ++j) {
+      const double t = 2 * M_PI * j / (6 * r);
+      ring.back().push_back(std::uint32_t(m.vertices.size()));
+      m.vertices.push_back(offset + Point3d(r * std::cos(t), r * std::sin(t), 0));
+    }
+  }
+  // Between rings r−1 and r: each of the 6 sectors has r outer and r−1 inner vertices (plus the
+  // next sector's first): a strip of 2r − 1 triangles.
+  for (int r = 1; r <= rings; ++r) {
+    const auto& in = ring[size_t(r - 1)];
+    const auto& out = ring[size_t(r)];
+    for (int s = 0; s < 6; ++s)
+      for (int j = 0; j < r; ++j) {
+        const std::uint32_t o0 = out[size_t(s * r + j)], o1 = out[size_t((s * r + j + 1) % (6 * r))];
+        const std::uint32_t i0 = r == 1 ? in[0] : in[size_t((s * (r - 1) + j) % (6 * (r - 1)))];
+        m.faces.push_back({i0, o0, o1});
+        if (j + 1 < r) {
+          const std::uint32_t i1 = in[size_t((s * (r - 1) + j + 1) % (6 * (r - 1)))];
+          m.faces.push_back({i0, o1, i1});
+        }
+      }
+  }
+  return m;
+}
+
+MeshArrays squareArrays(int n, double width, double z) {
+  MeshArrays m;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) m.vertices.push_back(Point3d(width * i / n, double(j) / n, z));
+  auto id = [&](int i, int j) { return std::uint32_t(i * (n + 1) + j); };
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+} // namespace
+
+TEST(ComponentTopology, TorusDiskAndTetrahedronEachHaveTheirOwnGenusAndLoops) {
+  const MeshArrays disk = diskArrays(5, Point3d(20, 0, 0));
+  {
+    const std::vector<growth::ComponentTopology> c = growth::componentTopology(disk);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].faces, 150u);             // 6·r² triangles
+    EXPECT_EQ(c[0].vertices, 91u);           // 1 + 3·r·(r + 1)
+    EXPECT_EQ(c[0].eulerCharacteristic, 1);
+    EXPECT_EQ(c[0].boundaryLoops, 1u);
+    EXPECT_EQ(c[0].genus, 0);
+  }
+  MeshArrays all = torusArrays(30, 12, Point3d(0, 0, 0));   // 720 faces
+  append(all, disk);                                        // 150 faces
+  MeshArrays tet;
+  tet.vertices = {Point3d(1, 1, 1), Point3d(1, -1, -1), Point3d(-1, 1, -1), Point3d(-1, -1, 1)};
+  for (auto& p : tet.vertices) p = p + Point3d(0, 20, 0);
+  tet.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+  append(all, tet);
+  const std::vector<growth::ComponentTopology> c = growth::componentTopology(all);
+  ASSERT_EQ(c.size(), 3u);   // largest first
+  EXPECT_EQ(c[0].faces, 720u);
+  EXPECT_EQ(c[0].genus, 1);
+  EXPECT_EQ(c[0].boundaryLoops, 0u);
+  EXPECT_EQ(c[0].eulerCharacteristic, 0);
+  EXPECT_EQ(c[1].faces, 150u);
+  EXPECT_EQ(c[1].genus, 0);
+  EXPECT_EQ(c[1].boundaryLoops, 1u);
+  EXPECT_EQ(c[2].faces, 4u);
+  EXPECT_EQ(c[2].genus, 0);
+  EXPECT_EQ(c[2].eulerCharacteristic, 2);
+  const MeshMeasures m = growth::measure(all);
+  EXPECT_EQ(m.genus, 1);     // the sum
+  EXPECT_EQ(m.boundaryLoops, 1u);
+  ASSERT_EQ(m.perComponent.size(), 3u);
+  EXPECT_NE(m.toJson().find("\"genus_per_component\": [1, 0, 0]"), std::string::npos) << m.toJson();
+  EXPECT_NE(m.toJson().find("\"boundary_loops_per_component\": [0, 1, 0]"), std::string::npos);
+}
+
+TEST(ComponentTopology, AnnulusAndTwoHandledTorusPairs) {
+  // Two tori: genus 1 each, summed 2; a disk with its centre fan removed is an annulus: 2 loops.
+  MeshArrays two = torusArrays(20, 10, Point3d(0, 0, 0));
+  append(two, torusArrays(24, 10, Point3d(10, 0, 0)));
+  MeshArrays annulus = diskArrays(4, Point3d(0, 20, 0));
+  annulus.faces.erase(annulus.faces.begin(), annulus.faces.begin() + 6);   // the six around the centre
+  append(two, annulus);
+  const std::vector<growth::ComponentTopology> c = growth::componentTopology(two);
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0].faces, 480u);
+  EXPECT_EQ(c[0].genus, 1);
+  EXPECT_EQ(c[1].faces, 400u);
+  EXPECT_EQ(c[1].genus, 1);
+  EXPECT_EQ(c[2].boundaryLoops, 2u);
+  EXPECT_EQ(c[2].genus, 0);
+  EXPECT_EQ(growth::measure(two).genus, 2);
+}
+
+TEST(ComponentTopology, NoGenusWithoutASurface) {
+  // Three triangles on one edge: not a surface, so no component has a genus.
+  MeshArrays m;
+  m.vertices = {Point3d(0, 0, 0), Point3d(1, 0, 0), Point3d(0, 1, 0), Point3d(0, -1, 0), Point3d(0, 0, 1)};
+  m.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  const std::vector<growth::ComponentTopology> c = growth::componentTopology(m);
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_EQ(c[0].genus, -1);
+  EXPECT_TRUE(growth::componentTopology(MeshArrays()).empty());
+}
+
+TEST(SurfaceDistance, ParallelSquaresAreTheirGapApartBothWays) {
+  const MeshArrays a = squareArrays(10, 1, 0), b = squareArrays(7, 1, 0.25);
+  for (const auto& s : {growth::surfaceDistance(a, b), growth::surfaceDistance(b, a)}) {
+    EXPECT_NEAR(s.mean, 0.25, 1e-12);
+    EXPECT_NEAR(s.max, 0.25, 1e-12);
+    EXPECT_NEAR(s.vertexMax, 0.25, 1e-12);
+  }
+  const growth::SurfaceDistance s = growth::surfaceDistance(a, b);
+  EXPECT_EQ(s.vertexSamples, 121u);
+  EXPECT_EQ(s.samples, 121u + 200u);   // the vertices and one point per face
+}
+
+TEST(SurfaceDistance, LongerSquareIsFartherFromTheShorterThanTheOtherWay) {
+  // [0,2]×[0,1] against [0,1]² in one plane: the shorter lies on the longer (distance 0); from the
+  // longer, a point at x is max(0, x − 1) away: mean 1/4 over its area, max 1 (its far edge).
+  const MeshArrays shortSquare = squareArrays(20, 1, 0), longSquare = squareArrays(40, 2, 0);
+  const growth::SurfaceDistance in = growth::surfaceDistance(shortSquare, longSquare);
+  EXPECT_NEAR(in.max, 0, 1e-12);
+  EXPECT_NEAR(in.mean, 0, 1e-12);
+  const growth::SurfaceDistance out = growth::surfaceDistance(longSquare, shortSquare);
+  EXPECT_NEAR(out.max, 1, 1e-12);
+  EXPECT_NEAR(out.vertexMax, 1, 1e-12);
+  EXPECT_NEAR(out.mean, 0.25, 0.02);   // vertices (mean 0.25 on this grid) and 3,200 random points
+}
+
+TEST(SurfaceDistance, SamplesLieOnTheSurfaceByAreaAndRepeatWithTheSeed) {
+  // Two triangles of areas 1/2 and 3/2 side by side: a quarter of the random points in the first.
+  MeshArrays m;
+  m.vertices = {Point3d(0, 0, 0), Point3d(1, 0, 0), Point3d(0, 1, 0), Point3d(1, 3, 0), Point3d(0, 4, 0)};
+  m.faces = {{0, 1, 2}, {1, 3, 2}};
+  m.vertices.push_back(Point3d(9, 9, 9));   // used by no face: not a sample
+  size_t vertexSamples = 0;
+  const std::vector<Point3d> s = growth::sampleSurface(m, 8000, 7, &vertexSamples);
+  ASSERT_EQ(vertexSamples, 4u);
+  ASSERT_EQ(s.size(), 8004u);
+  size_t first = 0;
+  const growth::MeshDistance index(m);
+  for (size_t i = vertexSamples; i < s.size(); ++i) {
+    EXPECT_LT(index.distance(s[i]), 1e-12);
+    if (s[i][0] + s[i][1] <= 1) ++first;
+  }
+  EXPECT_NEAR(double(first) / 8000, 0.25, 0.02);
+  EXPECT_EQ(growth::sampleSurface(m, 100, 7), growth::sampleSurface(m, 100, 7));
+  EXPECT_NE(growth::sampleSurface(m, 100, 7), growth::sampleSurface(m, 100, 8));
+  EXPECT_TRUE(std::isnan(growth::surfaceDistance(m, MeshArrays()).max));
+}

@@ -1,6 +1,13 @@
 // mesh_measures: prints the quality measures of a mesh (growth/mesh_measures.h) as JSON.
-//   mesh_measures mesh.ply [--cloud cloud.ply] [--histograms PREFIX] [--edge-max L]
-//                 [--no-min-vertex-distance]
+//   mesh_measures mesh.ply [--cloud cloud.ply] [--reference input.ply] [--target D] [--histograms PREFIX]
+//                 [--edge-max L] [--no-min-vertex-distance]
+// --reference (a remeshed mesh against its input) adds the distance between the two surfaces both
+// ways (growth::surfaceDistance: each surface sampled at its vertices and at as many area-weighted
+// random points, seed 1, as it has faces; exact distance to the other's nearest triangle):
+// "to_reference_*" from this mesh to the input, "from_reference_*" from the input to this mesh
+// ("from_reference_vertex_max": the input's vertices alone), and "hausdorff" the larger maximum.
+// --target D adds "shortest_edge_over_d" (E_min / D) and "edges_below_d", the edges shorter than
+// D·(1 − 1e-5) (the margin is float storage of the coordinates).
 // --cloud adds the distance of the cloud's points to the mesh and μd %; --histograms writes
 // PREFIX_angles.csv (degrees), PREFIX_edges.csv and PREFIX_quality.csv (Q_t) as "lo,hi,count";
 // --edge-max fixes the edge histogram's range to [0, L] (default 3·E_avg) so that several meshes
@@ -11,7 +18,9 @@
 #include <common/ml_mesh_type.h>
 #include <wrap/io_trimesh/import_ply.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +48,14 @@ bool load(const std::string& path, CMeshO& m) {
   return true;
 }
 
+std::string number(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
 bool writeHistogram(const std::string& path, const growth::Histogram& h) {
   std::ofstream out(path);
   if (!out) return false;
@@ -58,7 +75,8 @@ std::string histogramJson(const char* name, const growth::Histogram& h) {
 } // namespace
 
 int main(int argc, char** argv) {
-  std::string meshPath, cloudPath, histPrefix;
+  std::string meshPath, cloudPath, histPrefix, referencePath;
+  double target = 0;
   growth::MeasureOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -72,6 +90,8 @@ int main(int argc, char** argv) {
     };
     if (a == "--cloud") cloudPath = value();
     else if (a == "--histograms") histPrefix = value();
+    else if (a == "--reference") referencePath = value();
+    else if (a == "--target") target = std::atof(value());
     else if (a == "--edge-max") options.edgeHistogramMax = std::atof(value());
     else if (a == "--no-min-vertex-distance") options.minVertexDistance = false;
     else if (a == "-h" || a == "--help") {
@@ -109,6 +129,33 @@ int main(int argc, char** argv) {
 
   const auto t0 = std::chrono::steady_clock::now();
   const growth::MeshMeasures m = growth::measure(mesh, cloudPath.empty() ? nullptr : &cloud, options);
+  std::ostringstream remesh;
+  if (target > 0) {
+    const growth::MeshArrays arrays = growth::meshlab::meshArrays(mesh);
+    // The unique edges shorter than D, each counted once whatever the faces' orientation.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> shortEdges;
+    for (const auto& f : arrays.faces)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = f[k], b = f[(k + 1) % 3];
+        if (a != b && (arrays.vertices[a] - arrays.vertices[b]).Norm() < target * (1 - 1e-5))
+          shortEdges.push_back({std::min(a, b), std::max(a, b)});
+      }
+    std::sort(shortEdges.begin(), shortEdges.end());
+    const size_t below = size_t(std::unique(shortEdges.begin(), shortEdges.end()) - shortEdges.begin());
+    remesh << "  \"target\": " << number(target) << ",\n  \"shortest_edge_over_d\": " << number(m.edgeMin / target) << ",\n";
+    remesh << "  \"edges_below_d\": " << below << ",\n";
+  }
+  if (!referencePath.empty()) {
+    CMeshO reference;
+    if (!load(referencePath, reference)) return 1;
+    const growth::MeshArrays in = growth::meshlab::meshArrays(reference), out = growth::meshlab::meshArrays(mesh);
+    const growth::SurfaceDistance to = growth::surfaceDistance(out, in), from = growth::surfaceDistance(in, out);
+    remesh << "  \"to_reference_mean\": " << number(to.mean) << ",\n  \"to_reference_max\": " << number(to.max)
+           << ",\n  \"to_reference_samples\": " << to.samples << ",\n  \"from_reference_mean\": " << number(from.mean)
+           << ",\n  \"from_reference_max\": " << number(from.max) << ",\n  \"from_reference_vertex_max\": "
+           << number(from.vertexMax) << ",\n  \"from_reference_samples\": " << from.samples << ",\n  \"hausdorff\": "
+           << number(std::max(to.max, from.max)) << ",\n";
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   if (!histPrefix.empty()) {
@@ -125,7 +172,7 @@ int main(int argc, char** argv) {
   std::string json = m.toJson();
   const size_t close = json.rfind('}');
   std::ostringstream extra;
-  extra << ",\n" << histogramJson("angles", m.angleHistogram) << histogramJson("edges", m.edgeHistogram)
+  extra << ",\n" << remesh.str() << histogramJson("angles", m.angleHistogram) << histogramJson("edges", m.edgeHistogram)
         << histogramJson("quality", m.qualityHistogram) << "  \"measure_seconds\": " << seconds << ",\n  \"mesh\": \"";
   for (char ch : meshPath) {
     if (ch == '"' || ch == '\\') extra << '\\';

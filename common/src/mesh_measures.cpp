@@ -1,3 +1,4 @@
+#include <growth/cloud_generator.h>
 #include <growth/huge_pages.h>
 #include <growth/input_cloud.h>
 #include <growth/mesh_measures.h>
@@ -149,8 +150,45 @@ int otherEdgeAt(const Compact& c, const Edges& e, size_t f, int v, int edge) {
   return in == edge ? out : in;
 }
 
-MeshTopology topology(const Compact& c, const Edges& e) {
+// The components' faces, vertices, edges, boundary loops, Euler characteristic and genus, largest
+// (most faces) first. `faces` holds the edge-connected face sets.
+void componentCounts(const Compact& c, const Edges& e, const MeshTopology& t, DisjointSets& faces,
+                     const std::vector<std::uint32_t>& loopFaces, std::vector<ComponentTopology>& out) {
+  out.clear();
+  std::vector<std::uint32_t> slot;   // face set root -> component index, in the order of first face
+  assignHuge(slot, c.face.size(), UINT32_MAX);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> cornerPairs;   // (component, vertex)
+  reserveHuge(cornerPairs, 3 * c.face.size(), /*populate=*/true);
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    if (!c.proper[f]) continue;
+    std::uint32_t& s = slot[faces.find(std::uint32_t(f))];
+    if (s == UINT32_MAX) {
+      s = std::uint32_t(out.size());
+      out.emplace_back();
+    }
+    ++out[s].faces;
+    for (int k = 0; k < 3; ++k) cornerPairs.push_back({s, std::uint32_t(c.face[f][k])});
+  }
+  std::sort(cornerPairs.begin(), cornerPairs.end());
+  for (size_t i = 0; i < cornerPairs.size(); ++i)
+    if (i == 0 || cornerPairs[i] != cornerPairs[i - 1]) ++out[cornerPairs[i].first].vertices;
+  for (size_t ei = 0; ei < e.ends.size(); ++ei) ++out[slot[faces.find(std::uint32_t(e.he[size_t(e.start[ei])] / 3))]].edges;
+  for (std::uint32_t f : loopFaces) ++out[slot[faces.find(f)]].boundaryLoops;
+  // The genus is defined on orientable manifolds: the same conditions as MeshMeasures::genus.
+  const bool surface = t.nonManifoldEdges == 0 && t.nonManifoldVertices == 0 && t.inconsistentEdges == 0 && t.duplicateFaces == 0 &&
+                       std::all_of(c.proper.begin(), c.proper.end(), [](char p) { return p != 0; });
+  for (ComponentTopology& k : out) {
+    k.eulerCharacteristic = int(k.vertices) - int(k.edges) + int(k.faces);
+    const long twiceGenus = 2 - long(k.eulerCharacteristic) - long(k.boundaryLoops);
+    k.genus = surface && twiceGenus >= 0 && twiceGenus % 2 == 0 ? int(twiceGenus / 2) : -1;
+  }
+  std::stable_sort(out.begin(), out.end(), [](const ComponentTopology& a, const ComponentTopology& b) { return a.faces > b.faces; });
+}
+
+// `perComponent` (optional): the components' own counts, largest first (see componentTopology).
+MeshTopology topology(const Compact& c, const Edges& e, std::vector<ComponentTopology>* perComponent = nullptr) {
   MeshTopology t;
+  std::vector<std::uint32_t> loopFaces;   // a face of each boundary loop (for perComponent)
   t.edges = e.ends.size();
   const size_t nf = c.face.size();
 
@@ -216,6 +254,7 @@ MeshTopology topology(const Compact& c, const Edges& e) {
     if (e.faceCount(int(e0)) != 1 || visited[e0]) continue;
     ++t.boundaryLoops;
     visited[e0] = 1;
+    loopFaces.push_back(std::uint32_t(e.he[size_t(e.start[e0])] / 3));
     int edge = int(e0);
     const int h0 = e.he[size_t(e.start[e0])];
     int v = heTo(c, h0);   // walk along the orientation of the boundary face
@@ -242,6 +281,7 @@ MeshTopology topology(const Compact& c, const Edges& e) {
       v = e.ends[size_t(next)][0] == v ? e.ends[size_t(next)][1] : e.ends[size_t(next)][0];
     }
   }
+  if (perComponent) componentCounts(c, e, t, faces, loopFaces, *perComponent);
   return t;
 }
 
@@ -317,6 +357,13 @@ double triangleQF(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
 MeshTopology measureTopology(const MeshArrays& mesh) {
   const Compact c = compact(mesh);
   return topology(c, buildEdges(c));
+}
+
+std::vector<ComponentTopology> componentTopology(const MeshArrays& mesh) {
+  const Compact c = compact(mesh);
+  std::vector<ComponentTopology> out;
+  topology(c, buildEdges(c), &out);
+  return out;
 }
 
 size_t countBoundaryEdges(const MeshArrays& m) { return measureTopology(m).boundaryEdges; }
@@ -495,6 +542,28 @@ double MeshDistance::distance(const Vec3d& p, int* hint) const {
   return std::sqrt(best);
 }
 
+namespace {
+// Distance of every point to the index's mesh, in the points' order. The queries run in Morton order,
+// each starting from the previous answer (a near triangle bounds the search from the start).
+std::vector<double> distancesTo(const MeshDistance& index, const std::vector<Vec3d>& points) {
+  Box3d box;
+  for (const auto& p : points) box.Add(p);
+  const Vec3d dim = box.Dim();
+  const double scale = double((1 << 21) - 1) / std::max({dim[0], dim[1], dim[2], 1e-300});
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Vec3d q = (points[i] - box.min) * scale;
+    auto cell = [](double v) { return std::uint64_t(std::isfinite(v) ? std::min(std::max(v, 0.0), double((1 << 21) - 1)) : 0.0); };
+    order[i] = {mortonCode(cell(q[0]), cell(q[1]), cell(q[2])), std::uint32_t(i)};
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<double> dist(points.size());
+  int hint = -1;
+  for (const auto& o : order) dist[o.second] = index.distance(points[o.second], &hint);
+  return dist;
+}
+} // namespace
+
 void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out) {
   out.hasCloud = true;
   out.cloudPoints = cloud.size();
@@ -505,22 +574,8 @@ void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& clou
     out.distanceMean = out.distanceMax = out.muDPercent = MeshMeasures::kNaN;
     return;
   }
-  // Queries in Morton order, each starting from the previous answer. The sum is taken in the
-  // cloud's own order afterwards so the result does not depend on the visiting order.
-  Box3d box;
-  for (const auto& p : cloud) box.Add(p);
-  const Vec3d dim = box.Dim();
-  const double scale = double((1 << 21) - 1) / std::max({dim[0], dim[1], dim[2], 1e-300});
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(cloud.size());
-  for (size_t i = 0; i < cloud.size(); ++i) {
-    const Vec3d q = (cloud[i] - box.min) * scale;
-    auto cell = [](double v) { return std::uint64_t(std::isfinite(v) ? std::min(std::max(v, 0.0), double((1 << 21) - 1)) : 0.0); };
-    order[i] = {mortonCode(cell(q[0]), cell(q[1]), cell(q[2])), std::uint32_t(i)};
-  }
-  std::sort(order.begin(), order.end());
-  std::vector<double> dist(cloud.size());
-  int hint = -1;
-  for (const auto& o : order) dist[o.second] = index.distance(cloud[o.second], &hint);
+  // The sum is taken in the cloud's own order, so the result does not depend on the visiting order.
+  const std::vector<double> dist = distancesTo(index, cloud);
   double sum = 0, maxDist = 0;
   for (double d : dist) {
     sum += d;
@@ -532,13 +587,65 @@ void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& clou
   out.muDPercent = out.cloudSpacing > 0 ? 100.0 * out.distanceMean / out.cloudSpacing : MeshMeasures::kNaN;
 }
 
+// --- Distance between two surfaces ---
+
+std::vector<Vec3d> sampleSurface(const MeshArrays& mesh, size_t extra, std::uint64_t seed, size_t* vertexSamples) {
+  const Compact c = compact(mesh);
+  std::vector<char> used(c.vert.size(), 0);
+  std::vector<double> cumulative;   // running sum of the proper faces' areas
+  std::vector<size_t> faceOf;
+  double total = 0;
+  for (size_t f = 0; f < c.face.size(); ++f) {
+    if (!c.proper[f]) continue;
+    for (int k = 0; k < 3; ++k) used[size_t(c.face[f][k])] = 1;
+    const Vec3d& a = c.vert[size_t(c.face[f][0])];
+    total += 0.5 * ((c.vert[size_t(c.face[f][1])] - a) ^ (c.vert[size_t(c.face[f][2])] - a)).Norm();
+    cumulative.push_back(total);
+    faceOf.push_back(f);
+  }
+  std::vector<Vec3d> out;
+  for (size_t v = 0; v < c.vert.size(); ++v)
+    if (used[v]) out.push_back(c.vert[v]);
+  if (vertexSamples) *vertexSamples = out.size();
+  if (!(total > 0)) return out;
+  Random rng(seed);
+  out.reserve(out.size() + extra);
+  for (size_t i = 0; i < extra; ++i) {
+    const double at = rng.uniform() * total;
+    const size_t j = std::min(size_t(std::upper_bound(cumulative.begin(), cumulative.end(), at) - cumulative.begin()), faceOf.size() - 1);
+    const auto& t = c.face[faceOf[j]];
+    // Uniform in the triangle: barycentric (1 − √r1, √r1 (1 − r2), √r1 r2).
+    const double r1 = std::sqrt(rng.uniform()), r2 = rng.uniform();
+    out.push_back(c.vert[size_t(t[0])] * (1 - r1) + c.vert[size_t(t[1])] * (r1 * (1 - r2)) + c.vert[size_t(t[2])] * (r1 * r2));
+  }
+  return out;
+}
+
+SurfaceDistance surfaceDistance(const MeshArrays& from, const MeshArrays& to, std::uint64_t seed) {
+  SurfaceDistance s;
+  const MeshDistance index(to);
+  const std::vector<Vec3d> samples = sampleSurface(from, from.faces.size(), seed, &s.vertexSamples);
+  s.samples = samples.size();
+  if (index.empty() || samples.empty()) return s;
+  const std::vector<double> dist = distancesTo(index, samples);
+  double sum = 0;
+  s.max = s.vertexMax = 0;
+  for (size_t i = 0; i < dist.size(); ++i) {
+    sum += dist[i];
+    s.max = std::max(s.max, dist[i]);
+    if (i < s.vertexSamples) s.vertexMax = std::max(s.vertexMax, dist[i]);
+  }
+  s.mean = sum / double(dist.size());
+  return s;
+}
+
 // --- Everything ---
 
 MeshMeasures measure(const MeshArrays& mesh, const std::vector<Vec3d>* cloud, const MeasureOptions& options) {
   MeshMeasures m;
   const Compact c = compact(mesh);
   const Edges e = buildEdges(c);
-  const MeshTopology t = topology(c, e);
+  const MeshTopology t = topology(c, e, &m.perComponent);
   m.vertices = c.vert.size();
   m.faces = c.face.size();
   if (!c.vert.empty()) {
@@ -682,6 +789,16 @@ std::string MeshMeasures::toJson() const {
   field("self_intersecting_pairs", count(selfIntersectingPairs));
   field("euler_characteristic", std::to_string(eulerCharacteristic));
   field("genus", std::to_string(genus));
+  {
+    // The largest components' genus and boundary loops (at most 20 of each; the sum is above).
+    std::string g = "[", b = "[";
+    for (size_t i = 0; i < perComponent.size() && i < 20; ++i) {
+      g += (i ? ", " : "") + std::to_string(perComponent[i].genus);
+      b += (i ? ", " : "") + std::to_string(perComponent[i].boundaryLoops);
+    }
+    field("genus_per_component", g + "]");
+    field("boundary_loops_per_component", b + "]");
+  }
   if (hasCloud) {
     field("cloud_points", count(cloudPoints));
     field("cloud_spacing", number(cloudSpacing));

@@ -68,6 +68,14 @@ struct MeasureOptions {
   bool minVertexDistance = true; // compute the smallest distance between two vertices
 };
 
+// One edge-connected component: its own counts. The genus is (2 − χ − boundaryLoops) / 2, defined
+// (otherwise −1) under the same conditions as MeshMeasures::genus, which is the sum of these.
+struct ComponentTopology {
+  size_t faces = 0, vertices = 0, edges = 0, boundaryLoops = 0;
+  int eulerCharacteristic = 0;   // V − E + F of the component
+  int genus = -1;
+};
+
 struct MeshMeasures {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -102,6 +110,7 @@ struct MeshMeasures {
   size_t duplicateFaces = 0;        // same vertex set as an earlier face
   size_t selfIntersectingPairs = 0; // face pairs meeting beyond their shared vertices and edge
   int eulerCharacteristic = 0;      // V − E + F over the referenced vertices and proper faces
+  std::vector<ComponentTopology> perComponent; // largest (most faces) first
   int genus = -1;                   // handles, summed over components: (2·components − χ − boundaryLoops) / 2;
                                     // −1 unless manifold, consistently oriented, without duplicate faces or faces with a
                                     // repeated vertex (zero-area faces count: they are faces of the surface)
@@ -139,6 +148,8 @@ struct MeshTopology {
          unreferencedVertices = 0, edges = 0;
 };
 MeshTopology measureTopology(const MeshArrays& mesh);
+
+std::vector<ComponentTopology> componentTopology(const MeshArrays& mesh); // largest first
 
 size_t countBoundaryEdges(const MeshArrays& mesh);
 size_t countNonManifoldEdges(const MeshArrays& mesh);
@@ -184,5 +195,22 @@ private:
 // Distance statistics of `cloud` to `mesh` (fields hasCloud … pointsFartherThanSpacing of
 // MeshMeasures are filled).
 void measureCloudDistance(const MeshArrays& mesh, const std::vector<Vec3d>& cloud, MeshMeasures& out);
+
+// --- Distance between two surfaces (a remeshed mesh and its input) ---
+// Points on a mesh's surface: every vertex some proper face uses (their count in *vertexSamples),
+// then `extra` points drawn with growth::Random(seed), each on a face taken with probability
+// proportional to its area and uniform in it.
+std::vector<Vec3d> sampleSurface(const MeshArrays& mesh, size_t extra, std::uint64_t seed, size_t* vertexSamples = nullptr);
+
+// Distance from the surface of `from` to the faces of `to`: from's vertices and as many area-weighted
+// points as from has faces (sampleSurface), each measured exactly to the nearest triangle of `to`
+// (MeshDistance). `max` is a lower bound of the one-sided Hausdorff distance, reached where the
+// farthest point of `from` is a vertex or a sample. NaN when either mesh has no face.
+struct SurfaceDistance {
+  size_t samples = 0, vertexSamples = 0;
+  double mean = MeshMeasures::kNaN, max = MeshMeasures::kNaN;
+  double vertexMax = MeshMeasures::kNaN;   // the largest over from's vertices alone
+};
+SurfaceDistance surfaceDistance(const MeshArrays& from, const MeshArrays& to, std::uint64_t seed = 1);
 
 } // namespace growth
