@@ -728,17 +728,40 @@ void BoxGrid::Builder::reachMasks() {
         mask_[at] = kBeyond;
         continue;
       }
+      // The disk test of touches(), by axis: the box's slab against the disk's bounding box, its
+      // share of the centre's height over the plane, and the distance terms above.
+      bool ok[3][3] = {{true, true, true}, {true, true, true}, {true, true, true}};
+      double hterm[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+      double r2 = 0, hb = 0;
+      if (splatRadius_ != nullptr) {
+        const double r = std::min(double((*splatRadius_)[i]), side_);
+        const Vec3d& nn = normals_[i];
+        r2 = r * r * (1 + 1e-9) + kTouchMargin * side_ * side_;
+        hb = 0.5 * side_ * (std::abs(nn[0]) + std::abs(nn[1]) + std::abs(nn[2])) * (1 + 1e-9) + kTouchMargin * side_;
+        for (int a = 0; a < 3; ++a) {
+          const double e = r * std::sqrt(std::max(0.0, 1 - nn[a] * nn[a])) * (1 + 1e-9) + kTouchMargin * side_;
+          for (std::int64_t k = lo[a]; k <= hi[a]; ++k) {
+            const double l = g_.index_.origin()[a] + double(k) * side_;
+            ok[a][k - lo[a]] = !(l > pts_[i][a] + e || l + side_ < pts_[i][a] - e);
+            hterm[a][k - lo[a]] = nn[a] * (l + 0.5 * side_ - pts_[i][a]);
+          }
+        }
+      }
       std::uint32_t m = 0, touched = 0;
       for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
         for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
           const double sxy = sq[0][x - lo[0]] + sq[1][y - lo[1]];
           if (sxy > d2_) continue;
           const int base = int((x - oc[0] + 1) * 9 + (y - oc[1] + 1) * 3 - oc[2] + 1);
-          for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
-            if (!(sxy + sq[2][z - lo[2]] > d2_)) {
-              m |= std::uint32_t(1) << (base + int(z));
-              if (splatRadius_ != nullptr && touches(i, x, y, z)) touched |= std::uint32_t(1) << (base + int(z));
-            }
+          const bool okxy = ok[0][x - lo[0]] && ok[1][y - lo[1]];
+          const double hxy = hterm[0][x - lo[0]] + hterm[1][y - lo[1]];
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+            const double s = sxy + sq[2][z - lo[2]];
+            if (s > d2_) continue;
+            m |= std::uint32_t(1) << (base + int(z));
+            if (splatRadius_ != nullptr && okxy && ok[2][z - lo[2]] && s <= r2 && std::abs(hxy + hterm[2][z - lo[2]]) <= hb)
+              touched |= std::uint32_t(1) << (base + int(z));
+          }
         }
       mask_[at] = m;
       if (splatRadius_ != nullptr) touch_[at] = touched;
