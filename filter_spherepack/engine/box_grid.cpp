@@ -816,6 +816,20 @@ void BoxGrid::Builder::assignIds() {
   }
   boxes_ = size_t(boxes);
   HugeVector<std::uint32_t>().swap(touch_);
+  // The other slots around each own box: the id of the box when it is built, else kNotBuilt (the
+  // passes after this one then only read the slots, and run on threads).
+  const size_t owns = ownCoord_.size() / 3;
+  parallelChunks(owns, parallelParts(owns, threads_, 4096), 1024, [&](size_t o0, size_t o1, int) {
+    for (size_t o = o0; o < o1; ++o) {
+      const std::int64_t* oc = &ownCoord_[o * 3];
+      std::int32_t* slots = &near_[o * 27];
+      for (int bit = 0; bit < 27; ++bit)
+        if (slots[bit] == -1) {
+          const int id = g_.hash_.find(BoxIndexer::pack(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1));
+          slots[bit] = id < 0 ? kNotBuilt : id;
+        }
+    }
+  });
 }
 
 void BoxGrid::Builder::keepOwnIndex() {
@@ -840,46 +854,37 @@ void BoxGrid::Builder::keepOwnIndex() {
     if (!general(t)) g_.ownPoints_[at[size_t(ownId(t))]++] = std::uint32_t(t);
 }
 
-// In list order, per part of the points of pass 3: the references to the boxes built counted.
+// Per part of the points of pass 3 (in list order), on threads: the references to the boxes built
+// counted.
 void BoxGrid::Builder::countReferences() {
   const size_t n = n_;
   fillParts_ = parallelParts(n, threads_, 8192);
   auto& count = count_;
   count.assign(static_cast<size_t>(fillParts_), std::vector<std::uint32_t>(boxes_, 0));
-  for (int part = 0; part < fillParts_; ++part) {
+  parallelFor(n, fillParts_, [&](size_t t0, size_t t1, int part) {
     std::vector<std::uint32_t>& cnt = count[size_t(part)];
-    for (size_t t = partBegin(n, fillParts_, part), e = partBegin(n, fillParts_, part + 1); t < e; ++t) {
+    for (size_t t = t0; t < t1; ++t) {
       const std::uint32_t o = ownOf_[t];
-      const std::int64_t* oc = &ownCoord_[size_t(o) * 3];
-      std::int32_t* slots = &near_[size_t(o) * 27];
+      const std::int32_t* slots = &near_[size_t(o) * 27];
       if (mask_[t] & kBeyond) {
+        const std::int64_t* oc = &ownCoord_[size_t(o) * 3];
         forBoxesWithin(listed(t), [&](std::int64_t x, std::int64_t y, std::int64_t z) {
           const std::int64_t dx = x - oc[0], dy = y - oc[1], dz = z - oc[2];
-          std::int32_t* slot = nullptr;
-          if (dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1)
-            slot = &slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)];
-          int id = slot != nullptr ? *slot : -1;
-          if (id == -1) {
-            id = g_.hash_.find(BoxIndexer::pack(x, y, z));
-            if (id < 0) id = kNotBuilt;
-            if (slot != nullptr) *slot = id;
-          }
+          const int id = dx >= -1 && dx <= 1 && dy >= -1 && dy <= 1 && dz >= -1 && dz <= 1
+                             ? slots[(dx + 1) * 9 + (dy + 1) * 3 + (dz + 1)]
+                             : g_.hash_.find(BoxIndexer::pack(x, y, z));
           if (id >= 0) ++cnt[size_t(id)];
         });
       } else {
         for (std::uint32_t m = mask_[t]; m != 0; m &= m - 1) {
-          const int bit = __builtin_ctz(m);
-          int id = slots[bit];
-          if (id == -1) {
-            id = g_.hash_.find(BoxIndexer::pack(oc[0] + bit / 9 - 1, oc[1] + (bit / 3) % 3 - 1, oc[2] + bit % 3 - 1));
-            slots[bit] = id = id < 0 ? kNotBuilt : id;
-          }
+          const int id = slots[__builtin_ctz(m)];
           if (id >= 0) ++cnt[size_t(id)];
         }
       }
-      if (progress_ != nullptr && (t & 16383) == 0) progress_->advanceTo(0.15 + 0.15 * double(t) / double(n));
+      if (part == 0 && progress_ != nullptr && ((t - t0) & 16383) == 0)
+        progress_->advanceTo(0.15 + 0.15 * double(t - t0) / double(t1 - t0));
     }
-  }
+  });
   boxes_ = count[0].size();
   // CSR offsets; count[part][b] becomes where part `part` writes its first reference in box b.
   assignHuge(g_.start_, boxes_ + 1, 0u);
