@@ -1,0 +1,798 @@
+// The sphere-packing remesher (remesher.h): the input mesh checked and indexed, the growth on its
+// triangles, the regions with the input's boundary kept open, and the reconstruction's clean-up
+// and output (packer_steps.h).
+#include "remesher.h"
+
+#include "candidates.h"
+#include "crossing.h"
+#include "packer_steps.h"
+#include "region_triangulation.h"
+#include "splats.h"
+#include "stored_positions.h"
+#include "vertex_grid.h"
+
+#include <growth/bucket_queue.h>
+#include <growth/error.h>
+#include <growth/stopwatch.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <utility>
+
+namespace growth {
+namespace spherepack {
+
+using namespace detail;
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+// Triangles whose normal makes an angle of more than 120° with a vertex's normal take no part in
+// its candidates: the other side of a part thinner than d, not the surface around the vertex (a
+// crease of up to 120° still joins its two sides).
+constexpr double kMinFacingDot = -0.5;
+
+std::string vecText(const Vec3d& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
+
+// An input triangle: its corners, unit normal and what the inside test needs.
+struct InputTriangle {
+  Vec3d a, e0, e1, n;     // corner a, edges e0 = b − a and e1 = c − a, unit normal
+  double d00, d01, d11, inv; // Gram matrix of e0, e1 and the inverse of its determinant
+  double area;
+  // Barycentric coordinates (u, v, w) of x (projected onto the plane): x ≈ a + v·e0 + w·e1.
+  void barycentric(const Vec3d& x, double& u, double& v, double& w) const {
+    const Vec3d p = x - a;
+    const double d20 = p * e0, d21 = p * e1;
+    v = (d11 * d20 - d01 * d21) * inv;
+    w = (d00 * d21 - d01 * d20) * inv;
+    u = 1 - v - w;
+  }
+  // The smallest barycentric coordinate: >= 0 inside.
+  double insideness(const Vec3d& x) const {
+    double u, v, w;
+    barycentric(x, u, v, w);
+    return std::min(u, std::min(v, w));
+  }
+};
+
+// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5), and its
+// feature: 0 the interior, 1 + e the edge e (0: a–b, 1: b–c, 2: c–a), 4 + k the corner k.
+Vec3d closestOnTriangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c, int& feature) {
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab * ap, d2 = ac * ap;
+  if (d1 <= 0 && d2 <= 0) { feature = 4; return a; }
+  const Vec3d bp = p - b;
+  const double d3 = ab * bp, d4 = ac * bp;
+  if (d3 >= 0 && d4 <= d3) { feature = 5; return b; }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) { feature = 1; return a + ab * (d1 / (d1 - d3)); }
+  const Vec3d cp = p - c;
+  const double d5 = ab * cp, d6 = ac * cp;
+  if (d6 >= 0 && d5 <= d6) { feature = 6; return c; }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) { feature = 3; return a + ac * (d2 / (d2 - d6)); }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    feature = 2;
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  feature = 0;
+  const double denom = 1 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+// The input mesh, checked: triangles, which corners and edges lie on its boundary, its components.
+struct InputMesh {
+  std::vector<Vec3d> vertices;
+  std::vector<Triangle> faces;
+  std::vector<InputTriangle> tri;
+  std::vector<std::uint8_t> boundaryEdges; // per face: bit e set when its edge e has no other face
+  std::vector<char> boundaryVertex;
+  size_t components = 0, boundaryEdgeCount = 0;
+  double meanEdge = 0, area = 0;
+  Box3d box;
+};
+
+struct EdgeRef {
+  std::uint32_t lo, hi, face;
+  std::uint8_t e;
+  bool operator<(const EdgeRef& o) const {
+    return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : face < o.face;
+  }
+};
+
+std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+InputMesh readMesh(const MeshArrays& mesh) {
+  InputMesh in;
+  if (mesh.faces.empty())
+    throw Error("The layer has no faces: Remeshing: Sphere Packing needs a triangle mesh. For a point cloud "
+                "(with normals) use Surface Reconstruction: Sphere Packing.");
+  const size_t nv = mesh.vertices.size();
+  for (size_t i = 0; i < nv; ++i) {
+    const Vec3d& p = mesh.vertices[i];
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw Error("Vertex " + std::to_string(i) + " has a coordinate that is not a finite number.");
+  }
+  in.vertices = mesh.vertices;
+  in.faces.reserve(mesh.faces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    const auto& t = mesh.faces[f];
+    for (std::uint32_t v : t)
+      if (v >= nv) throw Error("Face " + std::to_string(f) + " refers to a deleted or missing vertex.");
+    in.faces.push_back(Triangle{t[0], t[1], t[2]});
+  }
+  // Triangles; a face of (nearly) zero area has no plane to place vertices on.
+  in.tri.resize(in.faces.size());
+  double edgeSum = 0;
+  size_t edgeCount = 0;
+  for (size_t f = 0; f < in.faces.size(); ++f) {
+    const Triangle& t = in.faces[f];
+    const Vec3d &a = in.vertices[t[0]], &b = in.vertices[t[1]], &c = in.vertices[t[2]];
+    InputTriangle& T = in.tri[f];
+    T.a = a;
+    T.e0 = b - a;
+    T.e1 = c - a;
+    const Vec3d cr = T.e0 ^ T.e1;
+    const double len2 = std::max(T.e0.SquaredNorm(), std::max(T.e1.SquaredNorm(), (c - b).SquaredNorm()));
+    const double twiceArea = cr.Norm();
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(twiceArea > 1e-12 * len2))
+      throw Error("Face " + std::to_string(f) + " (vertices " + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
+                  ", " + std::to_string(t[2]) + ", near " + vecText(a) + ") has zero area. Remove such faces first "
+                  "(Filters > Cleaning and Repairing > Remove Zero Area Faces, and Remove Duplicate Vertices).");
+    T.n = cr / twiceArea;
+    T.area = 0.5 * twiceArea;
+    T.d00 = T.e0 * T.e0;
+    T.d01 = T.e0 * T.e1;
+    T.d11 = T.e1 * T.e1;
+    T.inv = 1 / (T.d00 * T.d11 - T.d01 * T.d01);
+    in.area += T.area;
+    for (int k = 0; k < 3; ++k) in.box.Add(in.vertices[t[k]]);
+  }
+  // Edges: each with one face (boundary) or two; more is a non-manifold edge.
+  std::vector<EdgeRef> edges;
+  edges.reserve(3 * in.faces.size());
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t u = in.faces[f][e], v = in.faces[f][(e + 1) % 3];
+      edges.push_back(EdgeRef{std::min(u, v), std::max(u, v), f, std::uint8_t(e)});
+    }
+  std::sort(edges.begin(), edges.end());
+  in.boundaryEdges.assign(in.faces.size(), 0);
+  in.boundaryVertex.assign(nv, 0);
+  std::vector<std::uint32_t> parent(in.faces.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i;
+    while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
+    const EdgeRef& r = edges[i];
+    if (j - i > 2)
+      throw Error("The mesh is not manifold: the edge between vertices " + std::to_string(r.lo) + " and " +
+                  std::to_string(r.hi) + " (at " + vecText((in.vertices[r.lo] + in.vertices[r.hi]) * 0.5) +
+                  ") has " + std::to_string(j - i) + " faces. Repair it first (Filters > Cleaning and Repairing > "
+                  "Repair non Manifold Edges).");
+    edgeSum += (in.vertices[r.lo] - in.vertices[r.hi]).Norm();
+    ++edgeCount;
+    if (j - i == 1) {
+      in.boundaryEdges[r.face] |= std::uint8_t(1u << r.e);
+      in.boundaryVertex[r.lo] = in.boundaryVertex[r.hi] = 1;
+      ++in.boundaryEdgeCount;
+    } else {
+      const std::uint32_t x = findRoot(parent, edges[i].face), y = findRoot(parent, edges[i + 1].face);
+      if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+    i = j;
+  }
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f) in.components += findRoot(parent, f) == f ? 1 : 0;
+  in.meanEdge = edgeCount > 0 ? edgeSum / double(edgeCount) : 0;
+  // Vertices: the faces around each must form one fan (joined through the vertex's edges with two faces).
+  std::vector<std::uint32_t> start(nv + 1, 0), around(3 * in.faces.size());
+  for (const Triangle& t : in.faces)
+    for (std::uint32_t v : t) ++start[v + 1];
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  {
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t f = 0; f < in.faces.size(); ++f)
+      for (std::uint32_t v : in.faces[f]) around[fill[v]++] = f;
+  }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> spokes; // (other end of an edge at v, face)
+  std::vector<std::uint32_t> fan;
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    const std::uint32_t b = start[v], e = start[v + 1];
+    if (e - b < 2) continue;
+    spokes.clear();
+    for (std::uint32_t k = b; k < e; ++k) {
+      const Triangle& t = in.faces[around[k]];
+      for (int c = 0; c < 3; ++c)
+        if (t[c] == v) {
+          spokes.emplace_back(t[(c + 1) % 3], k - b);
+          spokes.emplace_back(t[(c + 2) % 3], k - b);
+        }
+    }
+    std::sort(spokes.begin(), spokes.end());
+    fan.resize(e - b);
+    std::iota(fan.begin(), fan.end(), 0u);
+    for (size_t i = 0; i + 1 < spokes.size(); ++i)
+      if (spokes[i].first == spokes[i + 1].first) {
+        const std::uint32_t x = findRoot(fan, spokes[i].second), y = findRoot(fan, spokes[i + 1].second);
+        if (x != y) fan[std::max(x, y)] = std::min(x, y);
+      }
+    size_t fans = 0;
+    for (std::uint32_t k = 0; k < fan.size(); ++k) fans += findRoot(fan, k) == k ? 1 : 0;
+    if (fans > 1)
+      throw Error("The mesh is not manifold: vertex " + std::to_string(v) + " (at " + vecText(in.vertices[v]) +
+                  ") joins " + std::to_string(fans) + " separate fans of faces. Repair it first (Filters > "
+                  "Cleaning and Repairing > Repair non Manifold Vertices by splitting).");
+  }
+  return in;
+}
+
+// Hash grid of cells of side d over the input triangles: a cell lists the triangles that meet the
+// ball circumscribing it (radius √3/2·d around its centre), in triangle order. Every point of a
+// triangle lies in a cell that lists it, so the triangles within d of x are all listed by the
+// 3 × 3 × 3 cells around x's cell.
+class TriangleGrid {
+public:
+  void build(const InputMesh& in, double d) {
+    const Vec3d origin = in.box.min - Vec3d(d, d, d) * 2.0;
+    index_ = BoxIndexer(origin, d);
+    const double reach = 0.8660254037844386 * d * (1 + 1e-9);
+    std::vector<std::pair<KeyHash::Key, std::uint32_t>> refs;
+    refs.reserve(in.tri.size() * 8);
+    for (std::uint32_t f = 0; f < in.tri.size(); ++f) {
+      const Triangle& t = in.faces[f];
+      const Vec3d &a = in.vertices[t[0]], &b = in.vertices[t[1]], &c = in.vertices[t[2]];
+      std::int64_t lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) {
+        const double mn = std::min(a[k], std::min(b[k], c[k])), mx = std::max(a[k], std::max(b[k], c[k]));
+        lo[k] = index_.coord(mn - reach, k);
+        hi[k] = index_.coord(mx + reach, k);
+      }
+      for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+        for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+          for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+            if (!BoxIndexer::valid(x, y, z)) continue;
+            const Vec3d centre = index_.corner(x, y, z) + Vec3d(d, d, d) * 0.5;
+            int feature = 0;
+            if ((closestOnTriangle(centre, a, b, c, feature) - centre).SquaredNorm() <= reach * reach)
+              refs.emplace_back(BoxIndexer::pack(x, y, z), f);
+          }
+    }
+    std::sort(refs.begin(), refs.end());
+    hash_.reset(refs.size() / 4 + 16);
+    offsets_.clear();
+    list_.resize(refs.size());
+    for (size_t i = 0; i < refs.size(); ++i) {
+      if (i == 0 || refs[i].first != refs[i - 1].first) {
+        hash_.findOrInsert(refs[i].first, int(offsets_.size()));
+        offsets_.push_back(std::uint32_t(i));
+      }
+      list_[i] = refs[i].second;
+    }
+    offsets_.push_back(std::uint32_t(refs.size()));
+    stamp_.assign(in.tri.size(), 0);
+    round_ = 0;
+  }
+
+  // Calls f(t) once for every triangle listed by the 3 × 3 × 3 cells around x's cell (a superset of
+  // the triangles within d of x), in a fixed order.
+  template <class F>
+  void forEachNear(const Vec3d& x, F&& f) const {
+    if (++round_ == 0) {
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      round_ = 1;
+    }
+    const std::int64_t cx = index_.coord(x[0], 0), cy = index_.coord(x[1], 1), cz = index_.coord(x[2], 2);
+    for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
+      for (std::int64_t j = cy - 1; j <= cy + 1; ++j)
+        for (std::int64_t k = cz - 1; k <= cz + 1; ++k) {
+          if (!BoxIndexer::valid(i, j, k)) continue;
+          const int cell = hash_.find(BoxIndexer::pack(i, j, k));
+          if (cell < 0) continue;
+          for (std::uint32_t r = offsets_[size_t(cell)]; r < offsets_[size_t(cell) + 1]; ++r) {
+            const std::uint32_t t = list_[r];
+            if (stamp_[t] == round_) continue;
+            stamp_[t] = round_;
+            f(t);
+          }
+        }
+  }
+  const BoxIndexer& indexer() const { return index_; }
+  size_t references() const { return list_.size(); }
+
+private:
+  BoxIndexer index_;
+  KeyHash hash_;
+  std::vector<std::uint32_t> offsets_, list_;
+  mutable std::vector<std::uint32_t> stamp_;
+  mutable std::uint32_t round_ = 0;
+};
+
+// The input surface near a point: distances, closest points, normals.
+class Surface {
+public:
+  Surface(const InputMesh& in, const TriangleGrid& grid, double d) : in_(in), grid_(grid), d_(d) {}
+
+  double squaredDistance(const Vec3d& x, std::uint32_t t, int* feature = nullptr) const {
+    const Triangle& f = in_.faces[t];
+    int ft = 0;
+    const Vec3d q = closestOnTriangle(x, in_.vertices[f[0]], in_.vertices[f[1]], in_.vertices[f[2]], ft);
+    if (feature != nullptr) *feature = ft;
+    return (q - x).SquaredNorm();
+  }
+  Vec3d closest(const Vec3d& x, std::uint32_t t, int& feature) const {
+    const Triangle& f = in_.faces[t];
+    return closestOnTriangle(x, in_.vertices[f[0]], in_.vertices[f[1]], in_.vertices[f[2]], feature);
+  }
+
+  // The mean normal of the triangles within d/2 of x that face the side of `side` (weights: their
+  // area, at most d²/4), unit; `side` itself where there is none.
+  Vec3d normalAt(const Vec3d& x, const Vec3d& side) const {
+    Vec3d sum(0, 0, 0);
+    const double r2 = 0.25 * d_ * d_, cap = 0.25 * d_ * d_;
+    grid_.forEachNear(x, [&](std::uint32_t t) {
+      const InputTriangle& T = in_.tri[t];
+      if (T.n * side <= 0) return;
+      if (squaredDistance(x, t) > r2) return;
+      sum += T.n * std::min(T.area, cap);
+    });
+    const double len = sum.Norm();
+    return len > 0 ? sum / len : side;
+  }
+
+  // The closest point to x on the triangles within d of it that face the side of `side`; false when
+  // there is none.
+  bool project(const Vec3d& x, const Vec3d& side, Vec3d& out, std::uint32_t& tri) const {
+    double best = d_ * d_;
+    bool found = false;
+    grid_.forEachNear(x, [&](std::uint32_t t) {
+      if (in_.tri[t].n * side <= 0) return;
+      int feature = 0;
+      const Vec3d q = closest(x, t, feature);
+      const double d2 = (q - x).SquaredNorm();
+      if (d2 < best || (d2 == best && found && t < tri)) {
+        best = d2;
+        out = q;
+        tri = t;
+        found = true;
+      }
+    });
+    return found;
+  }
+
+  // Whether x lies beyond the input's boundary: its closest input point (any side) is on a boundary
+  // edge or corner and farther than kOutsideTolerancePerD·d, or no triangle is within d.
+  bool beyondBoundary(const Vec3d& x) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::uint32_t bestT = kNone;
+    int bestFeature = 0;
+    grid_.forEachNear(x, [&](std::uint32_t t) {
+      int feature = 0;
+      const double d2 = squaredDistance(x, t, &feature);
+      if (d2 < best || (d2 == best && t < bestT)) {
+        best = d2;
+        bestT = t;
+        bestFeature = feature;
+      }
+    });
+    if (bestT == kNone || best > d_ * d_) return true;
+    const double tol = kOutsideTolerancePerD * d_;
+    if (best <= tol * tol) return false;
+    if (bestFeature == 0) return false;
+    if (bestFeature <= 3) return (in_.boundaryEdges[bestT] >> (bestFeature - 1)) & 1u;
+    return in_.boundaryVertex[in_.faces[bestT][bestFeature - 4]] != 0;
+  }
+
+private:
+  const InputMesh& in_;
+  const TriangleGrid& grid_;
+  const double d_;
+};
+
+struct Candidate {
+  std::uint32_t a, b, tri;
+  std::uint8_t root;
+};
+
+// The disk growing of sec. 3.3–3.6 on the input's triangles (Growth in packer_growth.h on splats).
+class MeshGrowth {
+public:
+  MeshGrowth(const InputMesh& in, const TriangleGrid& grid, const Surface& surface, double d, const RemeshParams& p,
+             RemeshStat& st, Progress& progress, size_t expected)
+      : in_(in), grid_(grid), surface_(surface), d_(d), d2_(d * d), w_(p.windowSize), params_(p), st_(st),
+        progress_(progress), expected_(std::max<size_t>(expected, 16)),
+        queue_(CandidatePriority::levels(p.windowSize)) {
+    lists_.reset(in.tri.size());
+    const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, p.maxOutputVertices);
+    vgrid_.reset(grid.indexer().origin(), crossingSearchRadius(d), reserve);
+    graph_.reserve(reserve);
+  }
+
+  const BorderGraph& graph() const { return graph_; }
+  bool reached(std::uint32_t t) const { return !lists_.empty(t); }
+  bool anyVertexCloserThan(const Vec3d& x, double r) const {
+    return vgrid_.anyCloserThan(x, r, graph_.positions(), kNone, kNone);
+  }
+
+  void start(const Vec3d& s1, std::uint32_t t1, const Vec3d& s2, std::uint32_t t2) {
+    insertVertex(s1, t1, surface_.normalAt(s1, in_.tri[t1].n), false);
+    insertVertex(s2, t2, surface_.normalAt(s2, in_.tri[t2].n), false);
+  }
+
+  // The candidate's position, recomputed bit for bit as when it was found.
+  bool position(const Candidate& cd, Vec3d& x) const {
+    const auto& pos = graph_.positions();
+    CirclePlaneMeet m;
+    if (!circleMeetsPlane(parentCircle(pos[cd.a], pos[cd.b], d_), in_.tri[cd.tri].a, in_.tri[cd.tri].n, m))
+      return false;
+    x = m.root(cd.root);
+    return true;
+  }
+
+  void run() {
+    size_t pops = 0;
+    std::vector<std::uint32_t> nearby;
+    std::vector<double> nearbyD2;
+    while (!queue_.empty()) {
+      int popped = 0;
+      const Candidate cd = queue_.pop(&popped);
+      if ((++pops & 31) == 0) progress_.update(std::min(0.99, double(graph_.vertexCount()) / double(expected_)));
+      Vec3d x;
+      if (!position(cd, x)) continue;
+      const auto& pos = graph_.positions();
+      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b)) {
+        ++st_.rejectedTooClose;
+        continue;
+      }
+      const int gapA = graph_.gapOf(cd.a, x), gapB = graph_.gapOf(cd.b, x);
+      const int level = levelOf(cd.a, cd.b, gapA, gapB);
+      if (level > popped) {
+        queue_.push(level, cd);
+        ++st_.requeued;
+        ++st_.candidates;
+        continue;
+      }
+      if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
+      const Vec3d n = surface_.normalAt(x, in_.tri[cd.tri].n);
+      nearby.clear();
+      nearbyD2.clear();
+      vgrid_.forEachInBall(x, crossingSearchRadius(d_), pos, [&](std::uint32_t v, double d2) {
+        nearby.push_back(v);
+        nearbyD2.push_back(d2);
+      });
+      if (newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
+        ++st_.rejectedCrossing;
+        continue;
+      }
+      if (params_.rejectTwisted && (!graph_.gapContains(cd.a, gapA, x, n) || !graph_.gapContains(cd.b, gapB, x, n))) {
+        ++st_.rejectedInconsistent;
+        continue;
+      }
+      const std::uint32_t c = insertVertex(x, cd.tri, n, true);
+      if (!graph_.connect(c, cd.a, gapA, cd.b, gapB))
+        throw std::logic_error("sphere packing remesher: could not connect a new vertex");
+      if (params_.checkInvariants) checkInvariants(c, cd.a, cd.b);
+      near_.clear();
+      for (size_t k = 0; k < nearby.size(); ++k)
+        if (nearbyD2[k] <= 4 * d2_) near_.push_back(nearby[k]);
+      enumerate(c, true);
+    }
+  }
+
+private:
+  std::uint32_t insertVertex(const Vec3d& x, std::uint32_t, const Vec3d& normal, bool enumerateLater) {
+    if (graph_.vertexCount() >= params_.maxOutputVertices)
+      throw Error("The mesh grew past the limit of " + std::to_string(params_.maxOutputVertices) +
+                  " vertices: use a larger sphere diameter d.");
+    const std::uint32_t v = graph_.addVertex(x, normal);
+    vgrid_.insert(v, x);
+    if (!enumerateLater) enumerate(v);
+    return v;
+  }
+
+  int levelOf(std::uint32_t a, std::uint32_t b, const Vec3d& x) const {
+    const int da = graph_.degree(a), db = graph_.degree(b);
+    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
+    return levelOf(a, b, graph_.gapOf(a, x), graph_.gapOf(b, x));
+  }
+  int levelOf(std::uint32_t a, std::uint32_t b, int gapA, int gapB) const {
+    const int da = graph_.degree(a), db = graph_.degree(b);
+    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
+    const int dist = w_ > 0 ? graph_.borderDistance(a, gapA, b, gapB, w_) : 0;
+    return CandidatePriority::level(da, db, dist, w_);
+  }
+
+  // Sec. 3.4/4.4 on triangles: for every triangle within d of v (facing v's side), the candidates
+  // with the vertices already in its list, then v joins the list. A candidate y of parents v and u
+  // on triangle t is within d of both, so both are in t's list: the later one finds it.
+  void enumerate(std::uint32_t v, bool nearKnown = false) {
+    const auto& pos = graph_.positions();
+    const Vec3d x = pos[v];
+    if (!nearKnown) {
+      near_.clear();
+      vgrid_.forEachInBall(x, 2 * d_, pos, [&](std::uint32_t u, double) { near_.push_back(u); });
+    }
+    found_.clear();
+    const Vec3d nv = graph_.normal(v);
+    tris_.clear();
+    grid_.forEachNear(x, [&](std::uint32_t t) { tris_.push_back(t); });
+    std::sort(tris_.begin(), tris_.end());
+    for (const std::uint32_t t : tris_) {
+      const InputTriangle& T = in_.tri[t];
+      if (T.n * nv < kMinFacingDot) continue;
+      if (surface_.squaredDistance(x, t) > d2_) continue;
+      lists_.forEach(t, [&](std::uint32_t u) {
+        const ParentCircle c = parentCircle(x, pos[u], d_);
+        if (!c.valid) return;
+        CirclePlaneMeet m;
+        if (!circleMeetsPlane(c, T.a, T.n, m)) return;
+        for (int root = 0; root < 2; ++root) {
+          const Vec3d y = m.root(root);
+          if (root == 1 && m.t == 0) break; // tangent: one point
+          const double inside = T.insideness(y);
+          if (!(inside >= -kInsideTolerance)) continue;
+          bool blocked = false;
+          for (std::uint32_t w : near_)
+            if (w != v && w != u && (pos[w] - y).SquaredNorm() < d2_) {
+              blocked = true;
+              break;
+            }
+          if (blocked) continue;
+          const bool side = (((pos[u] - x) ^ (y - x)) * nv) >= 0;
+          bool merged = false;
+          for (Found& f : found_)
+            if (f.u == u && f.side == side && (f.y - y).SquaredNorm() < 0.25 * d2_) {
+              if (inside > f.score) f = Found{y, inside, u, t, std::uint8_t(root), side};
+              merged = true;
+              break;
+            }
+          if (!merged) found_.push_back(Found{y, inside, u, t, std::uint8_t(root), side});
+        }
+      });
+      lists_.add(t, v);
+    }
+    for (const Found& f : found_) {
+      queue_.push(levelOf(v, f.u, f.y), Candidate{v, f.u, f.tri, f.root});
+      ++st_.candidates;
+    }
+  }
+  struct Found {
+    Vec3d y;
+    double score;
+    std::uint32_t u, tri;
+    std::uint8_t root;
+    bool side;
+  };
+
+  void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
+    const auto& pos = graph_.positions();
+    for (std::uint32_t v = 0; v < c; ++v)
+      if ((pos[v] - pos[c]).Norm() < d_ * (1 - 1e-12))
+        throw std::logic_error("sphere packing remesher invariant: vertices " + std::to_string(v) + " and " +
+                               std::to_string(c) + " closer than d");
+    for (std::uint32_t p : {a, b})
+      if (std::abs((pos[p] - pos[c]).Norm() - d_) > 1e-9 * d_)
+        throw std::logic_error("sphere packing remesher invariant: an edge is not d long");
+  }
+
+  const InputMesh& in_;
+  const TriangleGrid& grid_;
+  const Surface& surface_;
+  const double d_, d2_;
+  const int w_;
+  const RemeshParams& params_;
+  RemeshStat& st_;
+  Progress& progress_;
+  const size_t expected_;
+  SplatVertexLists lists_;
+  VertexGrid vgrid_;
+  BorderGraph graph_;
+  BucketQueue<Candidate> queue_;
+  std::vector<std::uint32_t> near_, tris_;
+  std::vector<Found> found_;
+};
+
+// Sec. 3.3 on every part of the input: in triangle order, every triangle no vertex has come within d
+// of gets a starting pair: its centroid, and the projection onto the input of a point 1.5·d away in
+// its plane (12 directions in turn) that lies between d and 2d from it; both at least d from every
+// vertex. The growth runs after each.
+void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surface, double d, RemeshStat& st) {
+  for (std::uint32_t t = 0; t < in.tri.size(); ++t) {
+    if (growth.reached(t)) continue;
+    const Triangle& f = in.faces[t];
+    const Vec3d s1 = (in.vertices[f[0]] + in.vertices[f[1]] + in.vertices[f[2]]) / 3.0;
+    if (growth.anyVertexCloserThan(s1, d)) continue;
+    Vec3d e1, e2;
+    tangentFrame(in.tri[t].n, e1, e2);
+    for (int k = 0; k < 12; ++k) {
+      const double phi = 2 * 3.14159265358979323846 * k / 12;
+      const Vec3d target = s1 + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
+      Vec3d s2;
+      std::uint32_t t2 = kNone;
+      if (!surface.project(target, in.tri[t].n, s2, t2)) continue;
+      const double dist = (s2 - s1).Norm();
+      if (dist < d || dist > 2 * d || growth.anyVertexCloserThan(s2, d)) continue;
+      growth.start(s1, t, s2, t2);
+      growth.run();
+      ++st.componentsStarted;
+      break;
+    }
+  }
+  for (std::uint32_t t = 0; t < in.tri.size(); ++t) st.unreachedFaces += growth.reached(t) ? 0 : 1;
+}
+
+// Sec. 3.7, with the input's boundary kept open: each border up to the limit is triangulated on its
+// own, and its faces are dropped again (the region left open) when at least half of their area has
+// its centroids beyond the input's boundary.
+std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Surface& surface,
+                                                 const RemeshParams& params, bool floatStorage, RemeshStat& st) {
+  EdgeSet edges(g.edgeCount() * 2 + 16);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
+    for (int k = 0; k < g.degree(v); ++k)
+      if (v < g.neighbour(v, k)) edges.insert(v, g.neighbour(v, k));
+  std::vector<Triangle> faces, region;
+  faces.reserve(2 * g.vertexCount() + 16);
+  const auto& pos = g.positions();
+  std::vector<std::vector<std::uint32_t>> one(1);
+  for (auto& border : g.borders()) {
+    if (border.size() > size_t(std::max(params.maxBorderLength, 0))) {
+      ++st.holes;
+      continue;
+    }
+    one[0] = std::move(border);
+    region.clear();
+    const RegionStats rs = triangulateRegions(one, pos, g.normals(), params.maxBorderLength, edges, region);
+    double all = 0, outside = 0;
+    for (const Triangle& f : region) {
+      const double a = ((pos[f[1]] - pos[f[0]]) ^ (pos[f[2]] - pos[f[0]])).Norm();
+      all += a;
+      if (surface.beyondBoundary((pos[f[0]] + pos[f[1]] + pos[f[2]]) / 3.0)) outside += a;
+    }
+    if (!region.empty() && outside >= 0.5 * all) {
+      ++st.holes;
+      ++st.regionsOutside;
+      continue;
+    }
+    st.holes += rs.holes;
+    faces.insert(faces.end(), region.begin(), region.end());
+  }
+  size_t w = 0;
+  for (const Triangle& f : faces) {
+    if (nearlyCollinear(asStored(pos[f[0]], floatStorage), asStored(pos[f[1]], floatStorage),
+                        asStored(pos[f[2]], floatStorage)))
+      ++st.flatFacesRemoved;
+    else
+      faces[w++] = f;
+  }
+  faces.resize(w);
+  return faces;
+}
+
+} // namespace
+
+double defaultRemeshDiameter(const MeshArrays& mesh) {
+  // The mean over the unique edges (an inner edge counts once), as InputMesh::meanEdge.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(3 * mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t u = f[e], v = f[(e + 1) % 3];
+      if (u >= mesh.vertices.size() || v >= mesh.vertices.size() || u == v) continue;
+      edges.emplace_back(std::min(u, v), std::max(u, v));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  double sum = 0;
+  size_t n = 0;
+  for (const auto& e : edges) {
+    const double len = (mesh.vertices[e.first] - mesh.vertices[e.second]).Norm();
+    if (!std::isfinite(len)) continue;
+    sum += len;
+    ++n;
+  }
+  return n > 0 ? kDefaultRemeshDiameterPerEdge * sum / double(n) : 0.0;
+}
+
+void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const RemeshParams& params, RemeshStat& st,
+            CallBackPos* cb) {
+  Stopwatch watch;
+  out = MeshArrays();
+  st = RemeshStat();
+  Progress progress(cb);
+  progress.phase("Sphere packing remesh: reading the mesh", 0, 5);
+  const InputMesh in = readMesh(mesh);
+  st.inputVertices = mesh.vertices.size();
+  st.inputFaces = in.faces.size();
+  st.inputComponents = in.components;
+  st.inputBoundaryEdges = in.boundaryEdgeCount;
+  st.inputMeanEdge = in.meanEdge;
+  st.inputArea = in.area;
+  if (!(params.windowSize >= 0) || params.maxBorderLength < 0)
+    throw Error("The window size and the border limit must not be negative.");
+  double d = params.sphereDiameter;
+  if (d > 0) {
+    st.diameterReason = "given";
+  } else {
+    d = kDefaultRemeshDiameterPerEdge * in.meanEdge;
+    st.diameterReason = "automatic: the input's mean edge length";
+  }
+  if (!(d > 0) || !std::isfinite(d)) throw Error("The sphere diameter d must be a positive length.");
+  const double diag = (in.box.max - in.box.min).Norm();
+  if (d > kMaxDiameterPerDiagonal * diag)
+    throw Error("d = " + fmt(d) + " is too large for this mesh (bounding-box diagonal " + fmt(diag) +
+                "): no triangle of side d fits on it. Use a d below " + fmt(kMaxDiameterPerDiagonal * diag) +
+                ", or 0 for the automatic one (" + fmt(kDefaultRemeshDiameterPerEdge * in.meanEdge) + ").");
+  const double expected = in.area / (kTriangleAreaFactor * d * d);
+  if (expected > double(params.maxOutputVertices))
+    throw Error("d = " + fmt(d) + " is too small for this mesh: the output would have about " + fmt(expected) +
+                " vertices, beyond the limit of " + std::to_string(params.maxOutputVertices) + ". Use a larger d "
+                "(the input's mean edge length is " + fmt(in.meanEdge) + ").");
+  st.sphereDiameter = d;
+
+  TriangleGrid grid;
+  grid.build(in, d);
+  const Surface surface(in, grid, d);
+  st.secondsInput = watch.lap();
+
+  progress.phase("Sphere packing remesh: growing", 5, 90);
+  MeshGrowth growth(in, grid, surface, d, params, st, progress, size_t(expected));
+  growEverywhere(growth, in, surface, d, st);
+  const BorderGraph& g = growth.graph();
+  st.secondsGrowth = watch.lap();
+
+  progress.phase("Sphere packing remesh: triangulating the regions", 90, 97);
+  std::vector<Triangle> faces = triangulateKeepingBoundary(g, surface, params, floatStorage, st);
+  st.secondsTriangulation = watch.lap();
+
+  Params p;
+  p.threads = params.threads;
+  p.minComponentFaces = 0;
+  Stat ps;
+  ps.sphereDiameter = d;
+  makeManifold(faces, g, p, floatStorage, ps);
+  st.nonManifoldVerticesRemoved = ps.nonManifoldVerticesRemoved;
+  st.selfIntersectionFacesRemoved = ps.selfIntersectionFacesRemoved;
+  st.facesRemoved = ps.facesRemoved;
+  st.secondsCleanup = watch.lap();
+
+  progress.phase("Sphere packing remesh: writing the mesh", 97, 100);
+  if (faces.empty())
+    throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
+                " vertices. d = " + fmt(d) + " is too large for this mesh's parts; try a smaller d.");
+  writeMesh(faces, g, floatStorage, out, ps);
+  if (ps.nonManifoldVertices > 0 || ps.nonManifoldEdges > 0)
+    throw std::logic_error("sphere packing remesher: the output is not manifold after the clean-up");
+  st.vertices = ps.vertices;
+  st.faces = ps.faces;
+  st.boundaryLoops = ps.boundaryLoops;
+  st.smallestEdge = ps.smallestEdge;
+  st.qualityAvg = ps.qualityAvg;
+  st.warnings = ps.warnings;
+  if (st.facesRemoved > 0)
+    st.warnings.push_back(std::to_string(st.facesRemoved) + " faces were removed to keep the mesh manifold and "
+                          "free of intersections, leaving holes: d = " + fmt(d) + " is too large for some parts "
+                          "(thin parts, narrow gaps); try a smaller d.");
+  if (st.unreachedFaces > 0)
+    st.warnings.push_back(std::to_string(st.unreachedFaces) + " input faces have no output vertex within d: parts "
+                          "too small to hold a triangle of side d = " + fmt(d) + ".");
+  st.secondsOutput = watch.lap();
+  st.seconds = watch.total();
+  try {
+    progress.update(1.0);
+  } catch (const Cancelled&) {
+    out = MeshArrays();
+    throw;
+  }
+}
+
+} // namespace spherepack
+} // namespace growth
