@@ -251,6 +251,109 @@ TEST(Remesh, CubeWithCreasesIsClosedAndManifold) {
   EXPECT_EQ(c.res.genus, 0);
 }
 
+// Item 2: creases and corners. The cube's 8 corners are output vertices exactly, its 12 edges lie
+// on the output (every point of them within rounding), no face bends over an edge (its three
+// vertices lie on one side of the cube), and every input vertex is within 0.3 d of the output.
+TEST(RemeshFeatures, CubeKeepsCornersAndEdges) {
+  for (const double d : {0.1, 0.093, 0.17}) {
+    const MeshArrays b = cube(1.0, 12);
+    RemeshParams p;
+    p.sphereDiameter = d;
+    const Checked c = remeshChecked(b, p);
+    EXPECT_EQ(c.res.boundaryLoops, 0u);
+    EXPECT_EQ(c.res.genus, 0);
+    EXPECT_EQ(c.st.featureCorners, 8u);
+    EXPECT_EQ(c.st.creaseEdges, 12u * 12u);
+    EXPECT_EQ(c.st.featureVerticesSkipped, 0u);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3d x(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+      bool found = false;
+      for (const Vec3d& v : c.out.vertices) found = found || v == x;
+      EXPECT_TRUE(found) << "corner " << corner << " at d = " << d;
+    }
+    const growth::MeshDistance toOut(c.out);
+    double worst = 0;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int corner = 0; corner < 4; ++corner)
+        for (int k = 0; k <= 200; ++k) {
+          Vec3d x(0, 0, 0);
+          x[axis] = k / 200.0;
+          x[(axis + 1) % 3] = corner & 1;
+          x[(axis + 2) % 3] = (corner >> 1) & 1;
+          worst = std::max(worst, toOut.distance(x));
+        }
+    EXPECT_LE(worst, 1e-12) << "d = " << d;
+    EXPECT_LE(c.maxInToOut, 0.3 * d);
+    size_t bent = 0;
+    for (const auto& f : c.out.faces) {
+      bool flat = false;
+      for (int axis = 0; axis < 3 && !flat; ++axis)
+        for (const double side : {0.0, 1.0}) {
+          bool all = true;
+          for (const auto v : f) all = all && std::abs(c.out.vertices[v][axis] - side) < 1e-12;
+          flat = flat || all;
+        }
+      bent += flat ? 0 : 1;
+    }
+    EXPECT_EQ(bent, 0u) << "faces over an edge of the cube at d = " << d;
+  }
+}
+
+// A closed crease line without corners: the rims of a capped cylinder are packed as loops, and the
+// rim circles lie on the output within the chord's sagitta.
+TEST(RemeshFeatures, CylinderRimsAreClosedCreaseLoops) {
+  MeshArrays m;
+  const int n = 96, h = 20;
+  const double pi = 3.14159265358979323846;
+  for (int j = 0; j <= h; ++j)
+    for (int i = 0; i < n; ++i)
+      m.vertices.push_back(Vec3d(std::cos(2 * pi * i / n), std::sin(2 * pi * i / n), 1.0 * j / h));
+  const std::uint32_t bottom = std::uint32_t(m.vertices.size()), top = bottom + 1;
+  m.vertices.push_back(Vec3d(0, 0, 0));
+  m.vertices.push_back(Vec3d(0, 0, 1));
+  auto id = [&](int i, int j) { return std::uint32_t(j * n + (i + n) % n); };
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  for (int i = 0; i < n; ++i) {
+    m.faces.push_back({bottom, id(i + 1, 0), id(i, 0)});
+    m.faces.push_back({top, id(i, h), id(i + 1, h)});
+  }
+  RemeshParams p;
+  p.sphereDiameter = 0.12;
+  const Checked c = remeshChecked(m, p);
+  EXPECT_EQ(c.res.components, 1u);
+  EXPECT_EQ(c.res.boundaryLoops, 0u);
+  EXPECT_EQ(c.res.genus, 0);
+  EXPECT_EQ(c.st.featureCorners, 0u);
+  EXPECT_EQ(c.st.creaseEdges, size_t(2 * n));
+  const growth::MeshDistance toOut(c.out);
+  double worst = 0;
+  for (int k = 0; k < 1000; ++k)
+    for (const double z : {0.0, 1.0})
+      worst = std::max(worst, toOut.distance(Vec3d(std::cos(2 * pi * k / 1000), std::sin(2 * pi * k / 1000), z)));
+  // The rims are sampled with chords of at most about 1.2 d on the 96-gon: sagitta (1.2 d)² / 8.
+  EXPECT_LE(worst, 1.44 * p.sphereDiameter * p.sphereDiameter / 8 + 1e-3);
+  EXPECT_LE(c.maxInToOut, 0.3 * p.sphereDiameter);
+}
+
+// A crease angle above every dihedral angle turns the features off: the cube's corners are then
+// not vertices (the growth rounds the edges), which is what the features change.
+TEST(RemeshFeatures, CreaseAngleTurnsFeaturesOff) {
+  const MeshArrays b = cube(1.0, 12);
+  RemeshParams p;
+  p.sphereDiameter = 0.1;
+  p.creaseAngleDeg = 180;
+  const Checked c = remeshChecked(b, p);
+  EXPECT_EQ(c.st.creaseEdges, 0u);
+  size_t corners = 0;
+  for (const Vec3d& v : c.out.vertices)
+    for (int k = 0; k < 8; ++k) corners += v == Vec3d(k & 1, (k >> 1) & 1, (k >> 2) & 1) ? 1 : 0;
+  EXPECT_LT(corners, 8u);
+}
+
 TEST(Remesh, SameMeshTwice) {
   const MeshArrays t = torus(1.0, 0.35, 80, 30);
   RemeshParams p;

@@ -94,6 +94,16 @@ struct InputMesh {
   size_t components = 0, boundaryEdgeCount = 0;
   double meanEdge = 0, area = 0;
   Box3d box;
+  // Features: the crease edges (two faces whose normals differ by more than the crease angle), each
+  // with the mean of its faces' normals; per face its patch (the faces reached from it without
+  // crossing a crease: the smallest face index of them); per vertex the angle-weighted normal.
+  struct CreaseEdge {
+    std::uint32_t u, v, f0, f1;
+    Vec3d n;
+  };
+  std::vector<CreaseEdge> creases;
+  std::vector<std::uint32_t> patch; // (until keepLongCreases: the union-find parents)
+  std::vector<Vec3d> vertexNormal;
 };
 
 struct EdgeRef {
@@ -112,7 +122,7 @@ std::uint32_t findRoot(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   return x;
 }
 
-InputMesh readMesh(const MeshArrays& mesh) {
+InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
   InputMesh in;
   if (mesh.faces.empty())
     throw Error("The layer has no faces: Remeshing: Sphere Packing needs a triangle mesh. For a point cloud "
@@ -169,8 +179,10 @@ InputMesh readMesh(const MeshArrays& mesh) {
   std::sort(edges.begin(), edges.end());
   in.boundaryEdges.assign(in.faces.size(), 0);
   in.boundaryVertex.assign(nv, 0);
-  std::vector<std::uint32_t> parent(in.faces.size());
+  std::vector<std::uint32_t> parent(in.faces.size()), patch(in.faces.size());
   std::iota(parent.begin(), parent.end(), 0u);
+  std::iota(patch.begin(), patch.end(), 0u);
+  const double creaseCos = std::cos(creaseAngleDeg * 3.14159265358979323846 / 180);
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
@@ -187,12 +199,35 @@ InputMesh readMesh(const MeshArrays& mesh) {
       in.boundaryVertex[r.lo] = in.boundaryVertex[r.hi] = 1;
       ++in.boundaryEdgeCount;
     } else {
-      const std::uint32_t x = findRoot(parent, edges[i].face), y = findRoot(parent, edges[i + 1].face);
+      const std::uint32_t f0 = edges[i].face, f1 = edges[i + 1].face;
+      const std::uint32_t x = findRoot(parent, f0), y = findRoot(parent, f1);
       if (x != y) parent[std::max(x, y)] = std::min(x, y);
+      if (in.tri[f0].n * in.tri[f1].n < creaseCos) {
+        Vec3d n = in.tri[f0].n + in.tri[f1].n;
+        const double len = n.Norm();
+        n = len > 1e-12 ? n / len : in.tri[f0].n;
+        in.creases.push_back(InputMesh::CreaseEdge{r.lo, r.hi, f0, f1, n});
+      } else {
+        const std::uint32_t px = findRoot(patch, f0), py = findRoot(patch, f1);
+        if (px != py) patch[std::max(px, py)] = std::min(px, py);
+      }
     }
     i = j;
   }
   for (std::uint32_t f = 0; f < in.faces.size(); ++f) in.components += findRoot(parent, f) == f ? 1 : 0;
+  in.patch = std::move(patch);
+  in.vertexNormal.assign(nv, Vec3d(0, 0, 0));
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Vec3d& p = in.vertices[in.faces[f][k]];
+      Vec3d a = in.vertices[in.faces[f][(k + 1) % 3]] - p, b = in.vertices[in.faces[f][(k + 2) % 3]] - p;
+      const double angle = std::atan2((a ^ b).Norm(), a * b);
+      in.vertexNormal[in.faces[f][k]] += in.tri[f].n * angle;
+    }
+  for (Vec3d& n : in.vertexNormal) {
+    const double len = n.Norm();
+    if (len > 0) n /= len;
+  }
   in.meanEdge = edgeCount > 0 ? edgeSum / double(edgeCount) : 0;
   // Vertices: the faces around each must form one fan (joined through the vertex's edges with two faces).
   std::vector<std::uint32_t> start(nv + 1, 0), around(3 * in.faces.size());
@@ -336,12 +371,14 @@ public:
 
   // The mean normal of the triangles within d/2 of x that face the side of `side` (weights: their
   // area, at most d²/4), unit; `side` itself where there is none.
-  Vec3d normalAt(const Vec3d& x, const Vec3d& side) const {
+  // `patch`: only the triangles of that patch (kNone: any).
+  Vec3d normalAt(const Vec3d& x, const Vec3d& side, std::uint32_t patch = kNone) const {
     Vec3d sum(0, 0, 0);
     const double r2 = 0.25 * d_ * d_, cap = 0.25 * d_ * d_;
     grid_.forEachNear(x, [&](std::uint32_t t) {
       const InputTriangle& T = in_.tri[t];
       if (T.n * side <= 0) return;
+      if (patch != kNone && in_.patch[t] != patch) return;
       if (squaredDistance(x, t) > r2) return;
       sum += T.n * std::min(T.area, cap);
     });
@@ -351,11 +388,11 @@ public:
 
   // The closest point to x on the triangles within d of it that face the side of `side`; false when
   // there is none.
-  bool project(const Vec3d& x, const Vec3d& side, Vec3d& out, std::uint32_t& tri) const {
+  bool project(const Vec3d& x, const Vec3d& side, std::uint32_t patch, Vec3d& out, std::uint32_t& tri) const {
     double best = d_ * d_;
     bool found = false;
     grid_.forEachNear(x, [&](std::uint32_t t) {
-      if (in_.tri[t].n * side <= 0) return;
+      if (in_.tri[t].n * side <= 0 || in_.patch[t] != patch) return;
       int feature = 0;
       const Vec3d q = closest(x, t, feature);
       const double d2 = (q - x).SquaredNorm();
@@ -424,9 +461,24 @@ public:
   }
 
   void start(const Vec3d& s1, std::uint32_t t1, const Vec3d& s2, std::uint32_t t2) {
-    insertVertex(s1, t1, surface_.normalAt(s1, in_.tri[t1].n), false);
-    insertVertex(s2, t2, surface_.normalAt(s2, in_.tri[t2].n), false);
+    insertVertex(s1, in_.patch[t1], surface_.normalAt(s1, in_.tri[t1].n, in_.patch[t1]), false);
+    insertVertex(s2, in_.patch[t2], surface_.normalAt(s2, in_.tri[t2].n, in_.patch[t2]), false);
   }
+
+  // Sec. 3.3 with more than two starting vertices: a feature vertex (a corner or a point of a
+  // crease) at x with normal n, unless a vertex is closer than d (then kNone). It belongs to every
+  // patch; its candidates are enumerated by enumerateFeature() once all feature vertices and
+  // edges are in.
+  std::uint32_t addFeatureVertex(const Vec3d& x, const Vec3d& n) {
+    if (anyVertexCloserThan(x, d_)) return kNone;
+    return insertVertex(x, kNone, n, true);
+  }
+  // An edge of a crease line between two feature vertices.
+  bool addFeatureEdge(std::uint32_t u, std::uint32_t v) {
+    const auto& pos = graph_.positions();
+    return graph_.addEdge(u, graph_.gapOf(u, pos[v]), v, graph_.gapOf(v, pos[u]));
+  }
+  void enumerateFeature(std::uint32_t v) { enumerate(v); }
 
   // The candidate's position, recomputed bit for bit as when it was found.
   bool position(const Candidate& cd, Vec3d& x) const {
@@ -440,6 +492,9 @@ public:
 
   void run() {
     size_t pops = 0;
+    // A face never joins two patches: a candidate is taken when each parent is a feature vertex or
+    // lies on the candidate's patch (enumerate() queues no other; the check is kept for the
+    // re-queued ones).
     std::vector<std::uint32_t> nearby;
     std::vector<double> nearbyD2;
     while (!queue_.empty()) {
@@ -462,14 +517,21 @@ public:
         continue;
       }
       if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
-      const Vec3d n = surface_.normalAt(x, in_.tri[cd.tri].n);
+      const std::uint32_t patch = in_.patch[cd.tri];
+      if ((vpatch_[cd.a] != kNone && vpatch_[cd.a] != patch) || (vpatch_[cd.b] != kNone && vpatch_[cd.b] != patch))
+        continue;
+      const Vec3d n = surface_.normalAt(x, in_.tri[cd.tri].n, patch);
       nearby.clear();
       nearbyD2.clear();
       vgrid_.forEachInBall(x, crossingSearchRadius(d_), pos, [&](std::uint32_t v, double d2) {
         nearby.push_back(v);
         nearbyD2.push_back(d2);
       });
-      if (newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
+      // Edges on another patch are seen edge-on across the crease; the crease edges between them
+      // (feature vertices) are what keeps the faces on their side.
+      const auto samePatch = [&](std::uint32_t u) { return vpatch_[u] == kNone || vpatch_[u] == patch; };
+      if (newEdgesCrossIf(graph_, x, cd.a, cd.b, n, d_, nearby,
+                          [&](std::uint32_t u, std::uint32_t w) { return samePatch(u) && samePatch(w); })) {
         ++st_.rejectedCrossing;
         continue;
       }
@@ -477,7 +539,7 @@ public:
         ++st_.rejectedInconsistent;
         continue;
       }
-      const std::uint32_t c = insertVertex(x, cd.tri, n, true);
+      const std::uint32_t c = insertVertex(x, patch, n, true);
       if (!graph_.connect(c, cd.a, gapA, cd.b, gapB))
         throw std::logic_error("sphere packing remesher: could not connect a new vertex");
       if (params_.checkInvariants) checkInvariants(c, cd.a, cd.b);
@@ -489,12 +551,13 @@ public:
   }
 
 private:
-  std::uint32_t insertVertex(const Vec3d& x, std::uint32_t, const Vec3d& normal, bool enumerateLater) {
+  std::uint32_t insertVertex(const Vec3d& x, std::uint32_t patch, const Vec3d& normal, bool enumerateLater) {
     if (graph_.vertexCount() >= params_.maxOutputVertices)
       throw Error("The mesh grew past the limit of " + std::to_string(params_.maxOutputVertices) +
                   " vertices: use a larger sphere diameter d.");
     const std::uint32_t v = graph_.addVertex(x, normal);
     vgrid_.insert(v, x);
+    vpatch_.push_back(patch);
     if (!enumerateLater) enumerate(v);
     return v;
   }
@@ -526,11 +589,15 @@ private:
     tris_.clear();
     grid_.forEachNear(x, [&](std::uint32_t t) { tris_.push_back(t); });
     std::sort(tris_.begin(), tris_.end());
+    const std::uint32_t vp = vpatch_[v];
     for (const std::uint32_t t : tris_) {
       const InputTriangle& T = in_.tri[t];
       if (T.n * nv < kMinFacingDot) continue;
+      const std::uint32_t tp = in_.patch[t];
+      if (vp != kNone && vp != tp) continue;
       if (surface_.squaredDistance(x, t) > d2_) continue;
       lists_.forEach(t, [&](std::uint32_t u) {
+        if (vpatch_[u] != kNone && vpatch_[u] != tp) return;
         const ParentCircle c = parentCircle(x, pos[u], d_);
         if (!c.valid) return;
         CirclePlaneMeet m;
@@ -598,8 +665,190 @@ private:
   BorderGraph graph_;
   BucketQueue<Candidate> queue_;
   std::vector<std::uint32_t> near_, tris_;
+  std::vector<std::uint32_t> vpatch_; // per vertex: its patch, kNone for a feature vertex
   std::vector<Found> found_;
 };
+
+// Crease lines shorter than kMinCreasePerD·d (summed over a connected set of crease edges) are
+// not features: at the scale of d they are the noise of a scanned surface's triangulation, not an
+// edge of the shape (a cube's crease edges are one set, 12 sides long). Their edges are dropped, and
+// the patches are the sets of faces joined by the edges left.
+constexpr double kMinCreasePerD = 2.0;
+void keepLongCreases(InputMesh& in, double d) {
+  const size_t nv = in.vertices.size();
+  std::vector<std::uint32_t> set(nv);
+  std::iota(set.begin(), set.end(), 0u);
+  for (const auto& e : in.creases) {
+    const std::uint32_t x = findRoot(set, e.u), y = findRoot(set, e.v);
+    if (x != y) set[std::max(x, y)] = std::min(x, y);
+  }
+  std::vector<double> length(nv, 0.0);
+  for (const auto& e : in.creases) length[findRoot(set, e.u)] += (in.vertices[e.u] - in.vertices[e.v]).Norm();
+  size_t w = 0;
+  for (const auto& e : in.creases) {
+    if (length[findRoot(set, e.u)] >= kMinCreasePerD * d) {
+      in.creases[w++] = e;
+      continue;
+    }
+    const std::uint32_t x = findRoot(in.patch, e.f0), y = findRoot(in.patch, e.f1);
+    if (x != y) in.patch[std::max(x, y)] = std::min(x, y);
+  }
+  in.creases.resize(w);
+  for (std::uint32_t f = 0; f < in.patch.size(); ++f) in.patch[f] = findRoot(in.patch, f);
+}
+
+// The points of a polyline P[0..m] at chord distance s from each other,
+// from P[0] on, each the first point after the previous one where the polyline leaves the ball of
+// radius s around it; with the segment it lies on. Stops after `limit` points, or where the rest of
+// the polyline stays inside the ball.
+struct LinePoint {
+  Vec3d p;
+  size_t seg;
+};
+std::vector<LinePoint> chordWalk(const std::vector<Vec3d>& P, double s, size_t limit) {
+  std::vector<LinePoint> out;
+  Vec3d q = P[0];
+  size_t seg = 0;
+  double t = 0;
+  while (out.size() < limit) {
+    bool found = false;
+    for (; seg + 1 < P.size(); ++seg, t = 0) {
+      if ((P[seg + 1] - q).SquaredNorm() < s * s) continue;
+      const Vec3d a = P[seg], e = P[seg + 1] - a, aq = a - q;
+      const double A = e * e, B = 2 * (e * aq), C = aq.SquaredNorm() - s * s;
+      const double root = (-B + std::sqrt(std::max(0.0, B * B - 4 * A * C))) / (2 * A);
+      t = std::min(1.0, std::max(t, root));
+      q = a + e * t;
+      out.push_back(LinePoint{q, seg});
+      found = true;
+      break;
+    }
+    if (!found) break;
+  }
+  return out;
+}
+
+// The points between the ends of a crease line (P[0] and P.back(), equal for a closed line): the
+// most points m whose chord spacing s > d can end exactly at P.back() (|P.back() − last| = s), s
+// found by bisection; empty when not even one fits (the ends are then joined directly). The spacing
+// stays above d by a relative 1e-9, so that rounding never brings two feature vertices below d.
+std::vector<LinePoint> sampleLine(const std::vector<Vec3d>& P, double d) {
+  const std::vector<LinePoint> atD = chordWalk(P, d, std::numeric_limits<size_t>::max());
+  const Vec3d& end = P.back();
+  std::vector<LinePoint> pts;
+  for (size_t m = atD.size() > 0 ? atD.size() - 1 : 0; m >= 1; --m) {
+    auto gap = [&](double s) {
+      pts = chordWalk(P, s, m);
+      if (pts.size() < m) return -1.0;
+      return (end - pts.back().p).Norm() - s;
+    };
+    double lo = d * (1 + 1e-9), hi = 2 * d;
+    if (gap(lo) < 0 || gap(hi) >= 0) continue;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (gap(mid) >= 0) lo = mid;
+      else hi = mid;
+    }
+    gap(lo);
+    return pts;
+  }
+  return {};
+}
+
+// Item 2 of the features, sec. 3.3 with more than two starting vertices: the corners (input
+// vertices where crease lines end or meet: not two crease edges, or two that turn by more than
+// kCornerTurnDeg) as vertices at their exact positions, then every crease line between corners
+// (and every closed crease line, from its lowest vertex) sampled at a chord spacing s >= d that
+// ends exactly at its corner, joined by edges; then their candidates. A feature vertex closer
+// than d to one placed before is left out (with the edges to it).
+constexpr double kCornerTurnDeg = 60;
+void placeFeatures(MeshGrowth& growth, const InputMesh& in, double d, RemeshStat& st) {
+  if (in.creases.empty()) return;
+  const size_t nv = in.vertices.size();
+  // The crease graph: per vertex its crease edges (CSR), in edge order.
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const auto& e : in.creases) ++start[e.u + 1], ++start[e.v + 1];
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> adj(start[nv]), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t k = 0; k < in.creases.size(); ++k) {
+    adj[fill[in.creases[k].u]++] = k;
+    adj[fill[in.creases[k].v]++] = k;
+  }
+  auto other = [&](std::uint32_t k, std::uint32_t v) { return in.creases[k].u == v ? in.creases[k].v : in.creases[k].u; };
+  const double turnCos = std::cos(kCornerTurnDeg * 3.14159265358979323846 / 180);
+  std::vector<char> corner(nv, 0);
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    const std::uint32_t deg = start[v + 1] - start[v];
+    if (deg == 0) continue;
+    if (deg != 2) {
+      corner[v] = 1;
+      continue;
+    }
+    const Vec3d a = in.vertices[v] - in.vertices[other(adj[start[v]], v)];
+    const Vec3d b = in.vertices[other(adj[start[v] + 1], v)] - in.vertices[v];
+    corner[v] = (a * b) < turnCos * a.Norm() * b.Norm() ? 1 : 0;
+  }
+  std::vector<std::uint32_t> vertexOf(nv, kNone);
+  std::vector<std::uint32_t> placed;
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (corner[v]) {
+      ++st.featureCorners;
+      vertexOf[v] = growth.addFeatureVertex(in.vertices[v], in.vertexNormal[v]);
+      if (vertexOf[v] != kNone) placed.push_back(vertexOf[v]);
+      else ++st.featureVerticesSkipped;
+    }
+  // The lines: from every corner along each unused crease edge to the next corner; then the closed
+  // lines without a corner, from their lowest vertex.
+  std::vector<char> used(in.creases.size(), 0);
+  auto traceLine = [&](std::uint32_t from, std::uint32_t k0) {
+    std::vector<Vec3d> P{in.vertices[from]};
+    std::vector<Vec3d> segNormal;
+    std::uint32_t v = from, k = k0;
+    for (;;) {
+      used[k] = 1;
+      segNormal.push_back(in.creases[k].n);
+      v = other(k, v);
+      P.push_back(in.vertices[v]);
+      if (corner[v] || v == from) break;
+      std::uint32_t next = kNone;
+      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+        if (!used[adj[j]]) next = adj[j];
+      if (next == kNone) break;
+      k = next;
+    }
+    const bool closed = v == from;
+    if (!corner[from]) {
+      // A closed line without a corner starts at a vertex of its own.
+      vertexOf[from] = growth.addFeatureVertex(in.vertices[from], in.creases[k0].n);
+      if (vertexOf[from] != kNone) placed.push_back(vertexOf[from]);
+      else ++st.featureVerticesSkipped;
+    }
+    const std::uint32_t first = vertexOf[from], last = closed ? vertexOf[from] : vertexOf[v];
+    std::uint32_t prev = first;
+    for (const LinePoint& q : sampleLine(P, d)) {
+      const std::uint32_t id = growth.addFeatureVertex(q.p, segNormal[q.seg]);
+      if (id == kNone) {
+        ++st.featureVerticesSkipped;
+      } else {
+        placed.push_back(id);
+        if (prev != kNone) growth.addFeatureEdge(prev, id);
+      }
+      prev = id;
+    }
+    if (prev != kNone && last != kNone && prev != last) growth.addFeatureEdge(prev, last);
+  };
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (corner[v])
+      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+        if (!used[adj[j]]) traceLine(v, adj[j]);
+  for (std::uint32_t v = 0; v < nv; ++v)
+    for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+      if (!used[adj[j]]) traceLine(v, adj[j]);
+  st.creaseEdges = in.creases.size();
+  st.featureVertices = placed.size();
+  for (const std::uint32_t v : placed) growth.enumerateFeature(v);
+  growth.run();
+}
 
 // Sec. 3.3 on every part of the input: in triangle order, every triangle no vertex has come within d
 // of gets a starting pair: its centroid, and the projection onto the input of a point 1.5·d away in
@@ -618,7 +867,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
       const Vec3d target = s1 + (e1 * std::cos(phi) + e2 * std::sin(phi)) * (1.5 * d);
       Vec3d s2;
       std::uint32_t t2 = kNone;
-      if (!surface.project(target, in.tri[t].n, s2, t2)) continue;
+      if (!surface.project(target, in.tri[t].n, in.patch[t], s2, t2)) continue;
       const double dist = (s2 - s1).Norm();
       if (dist < d || dist > 2 * d || growth.anyVertexCloserThan(s2, d)) continue;
       growth.start(s1, t, s2, t2);
@@ -709,7 +958,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st = RemeshStat();
   Progress progress(cb);
   progress.phase("Sphere packing remesh: reading the mesh", 0, 5);
-  const InputMesh in = readMesh(mesh);
+  InputMesh in = readMesh(mesh, params.creaseAngleDeg);
   st.inputVertices = mesh.vertices.size();
   st.inputFaces = in.faces.size();
   st.inputComponents = in.components;
@@ -737,6 +986,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
                 " vertices, beyond the limit of " + std::to_string(params.maxOutputVertices) + ". Use a larger d "
                 "(the input's mean edge length is " + fmt(in.meanEdge) + ").");
   st.sphereDiameter = d;
+  keepLongCreases(in, d);
 
   TriangleGrid grid;
   grid.build(in, d);
@@ -745,6 +995,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
 
   progress.phase("Sphere packing remesh: growing", 5, 90);
   MeshGrowth growth(in, grid, surface, d, params, st, progress, size_t(expected));
+  placeFeatures(growth, in, d, st);
   growEverywhere(growth, in, surface, d, st);
   const BorderGraph& g = growth.graph();
   st.secondsGrowth = watch.lap();

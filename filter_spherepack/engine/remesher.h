@@ -67,6 +67,10 @@ struct RemeshStat {
   double sphereDiameter = 0;      // d actually used
   std::string diameterReason;
   size_t vertices = 0, faces = 0;
+  size_t creaseEdges = 0;         // input edges whose faces' normals differ by more than the crease angle
+  size_t featureCorners = 0;      // input vertices where crease lines end or meet
+  size_t featureVertices = 0;     // vertices placed on the corners and crease lines before the growth
+  size_t featureVerticesSkipped = 0; // corners and crease points left out: closer than d to one placed before
   size_t componentsStarted = 0;   // starting pairs placed (one per part of the input reached)
   size_t unreachedFaces = 0;      // input triangles with no vertex within d
   size_t candidates = 0, requeued = 0, rejectedTooClose = 0, rejectedCrossing = 0, rejectedInconsistent = 0;
