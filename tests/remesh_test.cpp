@@ -79,6 +79,28 @@ MeshArrays torus(double R, double r, int n, int m) {
   return t;
 }
 
+// A sphere of radius 1 from its south pole up to latitude `top` (radians), open there: a rim circle
+// of n segments; m rows of latitude, a fan at the pole.
+MeshArrays openSphere(double top, int n, int m) {
+  const double pi = 3.14159265358979323846;
+  MeshArrays s;
+  s.vertices.push_back(Vec3d(0, 0, -1));
+  for (int j = 1; j <= m; ++j) {
+    const double lat = -pi / 2 + (top + pi / 2) * j / m;
+    for (int i = 0; i < n; ++i)
+      s.vertices.push_back(Vec3d(std::cos(lat) * std::cos(2 * pi * i / n), std::cos(lat) * std::sin(2 * pi * i / n),
+                                 std::sin(lat)));
+  }
+  auto id = [&](int i, int j) { return std::uint32_t(1 + (j - 1) * n + (i + n) % n); };
+  for (int i = 0; i < n; ++i) s.faces.push_back({0, id(i + 1, 1), id(i, 1)});
+  for (int j = 1; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      s.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      s.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return s;
+}
+
 // The faces of `m` whose centroid passes `keep`, with the unreferenced vertices dropped.
 template <class Keep>
 MeshArrays keepFaces(const MeshArrays& m, Keep keep) {
@@ -206,23 +228,25 @@ TEST(Remesh, DefaultDiameterIsTheMeanEdgeLength) {
 }
 
 TEST(Remesh, OpenMeshesStayOpen) {
-  const MeshArrays s = icosphere(4, 1.0);
   // A hemisphere: one boundary loop, 2π long (about 60 d: beyond the border limit).
-  const MeshArrays half = keepFaces(s, [](const Vec3d& c) { return c[2] > 0; });
-  // A sphere with a small hole: its rim is about 2π·0.37 = 2.3 long, 23 d, within the border limit,
+  const MeshArrays half = openSphere(0, 96, 24);
+  // A sphere with a small hole: its rim is 2π·cos(68°) = 2.35 long, 23 d, within the border limit,
   // so only the rule that keeps regions beyond the input's boundary open keeps it.
-  const MeshArrays holed = keepFaces(s, [](const Vec3d& c) { return c[2] < 0.93; });
+  const MeshArrays holed = openSphere(68 * 3.14159265358979323846 / 180, 96, 40);
+  // A jagged rim (the faces of an icosphere below a plane): the rim is a feature line whose turns
+  // are corners, and its samples keep d from them; the output's border stays within d of it.
+  const MeshArrays jagged = keepFaces(icosphere(4, 1.0), [](const Vec3d& c) { return c[2] < 0.93; });
   RemeshParams p;
   p.sphereDiameter = 0.1;
-  for (const MeshArrays* m : {&half, &holed}) {
+  for (const MeshArrays* m : {&half, &holed, &jagged}) {
     const Checked c = remeshChecked(*m, p);
     EXPECT_EQ(c.in.boundaryLoops, 1u);
     EXPECT_EQ(c.res.boundaryLoops, 1u);
     EXPECT_EQ(c.res.components, 1u);
     EXPECT_EQ(c.res.genus, 0);
     if (m == &holed) { EXPECT_EQ(c.st.regionsOutside, 1u); }
-    // The growth stops where no candidate fits on the input any more: within d of its rim.
-    EXPECT_LE(c.maxInToOut, 1.5 * p.sphereDiameter);
+    // The rim is a feature line: the output's border runs along it.
+    EXPECT_LE(c.maxInToOut, (m == &jagged ? 1.0 : 0.3) * p.sphereDiameter);
   }
 }
 
@@ -440,8 +464,58 @@ TEST(RemeshBadInput, NonManifoldVertexSaysWhere) {
 TEST(RemeshBadInput, ZeroAreaFace) {
   MeshArrays m = icosphere(2, 1.0);
   const auto f = m.faces[5];
-  m.vertices[f[2]] = (m.vertices[f[0]] + m.vertices[f[1]]) * 0.5;
-  EXPECT_NE(errorOf(m).find("Face 5 "), std::string::npos);
+  m.vertices[f[2]] = m.vertices[f[0]];
+  const std::string e = errorOf(m);
+  EXPECT_NE(e.find("Face 5 "), std::string::npos) << e;
+  EXPECT_NE(e.find("zero area"), std::string::npos) << e;
+}
+
+// A sliver (what a CAD boolean leaves where it split an edge: a face of height about 1e-10) joins its
+// neighbours but holds no vertex; on an edge of a cube the crease has a gap there, and the mesh is
+// still closed, manifold, with every corner.
+TEST(Remesh, SliversAreNoObstacle) {
+  for (const bool onCrease : {false, true}) {
+    MeshArrays b = cube(1.0, 12);
+    // The faces a–b–c and b–a–e sharing the edge a–b; a–b on the cube's edge or inside a side.
+    size_t f1 = 0, f2 = 0;
+    bool found = false;
+    for (size_t i = 0; i < b.faces.size() && !found; ++i)
+      for (size_t j = i + 1; j < b.faces.size() && !found; ++j)
+        for (int e = 0; e < 3 && !found; ++e)
+          for (int k = 0; k < 3 && !found; ++k)
+            if (b.faces[i][e] == b.faces[j][(k + 1) % 3] && b.faces[i][(e + 1) % 3] == b.faces[j][k]) {
+              const Vec3d ni = (b.vertices[b.faces[i][1]] - b.vertices[b.faces[i][0]]) ^ (b.vertices[b.faces[i][2]] - b.vertices[b.faces[i][0]]);
+              const Vec3d nj = (b.vertices[b.faces[j][1]] - b.vertices[b.faces[j][0]]) ^ (b.vertices[b.faces[j][2]] - b.vertices[b.faces[j][0]]);
+              const bool crease = std::abs(ni * nj) < 1e-12;
+              const Vec3d mid = (b.vertices[b.faces[i][e]] + b.vertices[b.faces[i][(e + 1) % 3]]) * 0.5;
+              const bool awayFromCorners = mid[0] > 0.3 && mid[0] < 0.7 && mid[1] > 0.3 && mid[1] < 0.7;
+              if (crease == onCrease && (awayFromCorners || onCrease)) {
+                f1 = i;
+                f2 = j;
+                found = true;
+                const std::uint32_t a = b.faces[i][e], bb = b.faces[i][(e + 1) % 3], c = b.faces[i][(e + 2) % 3];
+                b.vertices.push_back(mid + Vec3d(1e-10, 1e-10, 1e-10));
+                const std::uint32_t m = std::uint32_t(b.vertices.size() - 1);
+                b.faces[f1] = {a, m, c};
+                b.faces.push_back({m, bb, c});
+                b.faces.push_back({a, bb, m});
+              }
+            }
+    ASSERT_TRUE(found);
+    (void)f2;
+    RemeshParams p;
+    p.sphereDiameter = 0.1;
+    const Checked c = remeshChecked(b, p);
+    EXPECT_EQ(c.st.inputSlivers, 1u);
+    EXPECT_EQ(c.res.boundaryLoops, 0u);
+    EXPECT_EQ(c.res.genus, 0);
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3d x(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+      bool hit = false;
+      for (const Vec3d& v : c.out.vertices) hit = hit || v == x;
+      EXPECT_TRUE(hit) << "corner " << corner;
+    }
+  }
 }
 
 TEST(RemeshBadInput, DiameterTooSmallOrTooLarge) {

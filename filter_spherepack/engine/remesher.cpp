@@ -30,6 +30,8 @@ using namespace detail;
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+// A face whose height is below this share of its longest edge is a sliver (InputTriangle::sliver).
+constexpr double kSliverHeight = 1e-8;
 // Triangles whose normal makes an angle of more than 120° with a vertex's normal take no part in
 // its candidates: the other side of a part thinner than d, not the surface around the vertex (a
 // crease of up to 120° still joins its two sides).
@@ -42,6 +44,7 @@ struct InputTriangle {
   Vec3d a, e0, e1, n;     // corner a, edges e0 = b − a and e1 = c − a, unit normal
   double d00, d01, d11, inv; // Gram matrix of e0, e1 and the inverse of its determinant
   double area;
+  bool sliver;
   // Barycentric coordinates (u, v, w) of x (projected onto the plane): x ≈ a + v·e0 + w·e1.
   void barycentric(const Vec3d& x, double& u, double& v, double& w) const {
     const Vec3d p = x - a;
@@ -91,11 +94,11 @@ struct InputMesh {
   std::vector<InputTriangle> tri;
   std::vector<std::uint8_t> boundaryEdges; // per face: bit e set when its edge e has no other face
   std::vector<char> boundaryVertex;
-  size_t components = 0, boundaryEdgeCount = 0;
+  size_t components = 0, boundaryEdgeCount = 0, slivers = 0;
   double meanEdge = 0, area = 0;
   Box3d box;
   // Features: the crease edges (two faces whose normals differ by more than the crease angle), each
-  // with the mean of its faces' normals; per face its patch (the faces reached from it without
+  // with the mean of its faces' normals, and the boundary edges (f0 == f1), with their face's normal; per face its patch (the faces reached from it without
   // crossing a crease: the smallest face index of them); per vertex the angle-weighted normal.
   struct CreaseEdge {
     std::uint32_t u, v, f0, f1;
@@ -155,11 +158,18 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
     const Vec3d cr = T.e0 ^ T.e1;
     const double len2 = std::max(T.e0.SquaredNorm(), std::max(T.e1.SquaredNorm(), (c - b).SquaredNorm()));
     const double twiceArea = cr.Norm();
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(twiceArea > 1e-12 * len2))
+    const double shortest = std::min(T.e0.SquaredNorm(), std::min(T.e1.SquaredNorm(), (c - b).SquaredNorm()));
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] || !(shortest > 0))
       throw Error("Face " + std::to_string(f) + " (vertices " + std::to_string(t[0]) + ", " + std::to_string(t[1]) +
-                  ", " + std::to_string(t[2]) + ", near " + vecText(a) + ") has zero area. Remove such faces first "
-                  "(Filters > Cleaning and Repairing > Remove Zero Area Faces, and Remove Duplicate Vertices).");
-    T.n = cr / twiceArea;
+                  ", " + std::to_string(t[2]) + ", near " + vecText(a) + ") has zero area: two of its corners "
+                  "coincide. Remove such faces first (Filters > Cleaning and Repairing > Merge Close Vertices, or "
+                  "Remove Duplicate Vertices, then Remove Zero Area Faces).");
+    // A sliver (height below kSliverHeight × its longest edge, down to three distinct corners on one
+    // line: what a CAD boolean leaves where it split an edge) has no reliable plane: it joins its
+    // neighbours but holds no vertex.
+    T.sliver = !(twiceArea > kSliverHeight * len2);
+    in.slivers += T.sliver ? 1 : 0;
+    T.n = T.sliver ? Vec3d(0, 0, 0) : cr / twiceArea;
     T.area = 0.5 * twiceArea;
     T.d00 = T.e0 * T.e0;
     T.d01 = T.e0 * T.e1;
@@ -198,11 +208,15 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
       in.boundaryEdges[r.face] |= std::uint8_t(1u << r.e);
       in.boundaryVertex[r.lo] = in.boundaryVertex[r.hi] = 1;
       ++in.boundaryEdgeCount;
+      // The input's borders are feature lines too: the output's border then runs along them.
+      if (!in.tri[r.face].sliver) in.creases.push_back(InputMesh::CreaseEdge{r.lo, r.hi, r.face, r.face, in.tri[r.face].n});
     } else {
       const std::uint32_t f0 = edges[i].face, f1 = edges[i + 1].face;
       const std::uint32_t x = findRoot(parent, f0), y = findRoot(parent, f1);
       if (x != y) parent[std::max(x, y)] = std::min(x, y);
-      if (in.tri[f0].n * in.tri[f1].n < creaseCos) {
+      if (in.tri[f0].sliver || in.tri[f1].sliver) {
+        // Neither a crease nor a joint of patches: a sliver is a patch of its own.
+      } else if (in.tri[f0].n * in.tri[f1].n < creaseCos) {
         Vec3d n = in.tri[f0].n + in.tri[f1].n;
         const double len = n.Norm();
         n = len > 1e-12 ? n / len : in.tri[f0].n;
@@ -271,7 +285,7 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
   return in;
 }
 
-// Hash grid of cells of side d over the input triangles: a cell lists the triangles that meet the
+// Hash grid of cells of side d over the input triangles (slivers left out): a cell lists the triangles that meet the
 // ball circumscribing it (radius √3/2·d around its centre), in triangle order. Every point of a
 // triangle lies in a cell that lists it, so the triangles within d of x are all listed by the
 // 3 × 3 × 3 cells around x's cell.
@@ -284,6 +298,7 @@ public:
     std::vector<std::pair<KeyHash::Key, std::uint32_t>> refs;
     refs.reserve(in.tri.size() * 8);
     for (std::uint32_t f = 0; f < in.tri.size(); ++f) {
+      if (in.tri[f].sliver) continue; // no vertex lies on a sliver: no query needs it
       const Triangle& t = in.faces[f];
       const Vec3d &a = in.vertices[t[0]], &b = in.vertices[t[1]], &c = in.vertices[t[2]];
       std::int64_t lo[3], hi[3];
@@ -856,7 +871,7 @@ void placeFeatures(MeshGrowth& growth, const InputMesh& in, double d, RemeshStat
 // vertex. The growth runs after each.
 void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surface, double d, RemeshStat& st) {
   for (std::uint32_t t = 0; t < in.tri.size(); ++t) {
-    if (growth.reached(t)) continue;
+    if (growth.reached(t) || in.tri[t].sliver) continue;
     const Triangle& f = in.faces[t];
     const Vec3d s1 = (in.vertices[f[0]] + in.vertices[f[1]] + in.vertices[f[2]]) / 3.0;
     if (growth.anyVertexCloserThan(s1, d)) continue;
@@ -876,7 +891,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
       break;
     }
   }
-  for (std::uint32_t t = 0; t < in.tri.size(); ++t) st.unreachedFaces += growth.reached(t) ? 0 : 1;
+  for (std::uint32_t t = 0; t < in.tri.size(); ++t) st.unreachedFaces += growth.reached(t) || in.tri[t].sliver ? 0 : 1;
 }
 
 // Sec. 3.7, with the input's boundary kept open: each border up to the limit is triangulated on its
@@ -963,6 +978,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.inputFaces = in.faces.size();
   st.inputComponents = in.components;
   st.inputBoundaryEdges = in.boundaryEdgeCount;
+  st.inputSlivers = in.slivers;
   st.inputMeanEdge = in.meanEdge;
   st.inputArea = in.area;
   if (!(params.windowSize >= 0) || params.maxBorderLength < 0)

@@ -62,12 +62,14 @@ struct RemeshStat {
   size_t inputVertices = 0, inputFaces = 0;
   size_t inputComponents = 0;     // edge-connected pieces of the input
   size_t inputBoundaryEdges = 0;
+  size_t inputSlivers = 0;        // faces of nearly zero area (height below 1e-8 of their longest edge):
+                                  // they join their neighbours but hold no vertex, and no crease runs along them
   double inputMeanEdge = 0;
   double inputArea = 0;
   double sphereDiameter = 0;      // d actually used
   std::string diameterReason;
   size_t vertices = 0, faces = 0;
-  size_t creaseEdges = 0;         // input edges whose faces' normals differ by more than the crease angle
+  size_t creaseEdges = 0;         // feature edges: crease edges (faces' normals differ by more than the crease angle) and boundary edges
   size_t featureCorners = 0;      // input vertices where crease lines end or meet
   size_t featureVertices = 0;     // vertices placed on the corners and crease lines before the growth
   size_t featureVerticesSkipped = 0; // corners and crease points left out: closer than d to one placed before
@@ -92,8 +94,8 @@ double defaultRemeshDiameter(const MeshArrays& mesh);
 // Remeshes `mesh` (vertices and faces; a face index of ~0u or out of range is refused) into `out`
 // (cleared first), with per-face quality Q_t. `floatStorage`: the output layer stores float
 // coordinates (the checks that must hold on the saved mesh are made on the rounded positions).
-// Throws growth::Error on bad input (no faces, a non-manifold edge or vertex, a zero-area face, d
-// too small or too large) and growth::Cancelled when cb returns false; `out` is then left empty.
+// Throws growth::Error on bad input (no faces, a non-manifold edge or vertex, a face of zero area or
+// with a repeated vertex, d too small or too large) and growth::Cancelled when cb returns false; `out` is then left empty.
 void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const RemeshParams& params, RemeshStat& st,
             CallBackPos* cb = nullptr);
 
