@@ -684,31 +684,104 @@ private:
   std::vector<Found> found_;
 };
 
-// Crease lines shorter than kMinCreasePerD·d (summed over a connected set of crease edges) are
-// not features: at the scale of d they are the noise of a scanned surface's triangulation, not an
-// edge of the shape (a cube's crease edges are one set, 12 sides long). Their edges are dropped, and
-// the patches are the sets of faces joined by the edges left.
-constexpr double kMinCreasePerD = 2.0;
-void keepLongCreases(InputMesh& in, double d) {
+// The feature lines: the crease and border edges split at the corners, input vertices where lines
+// end or meet (not two feature edges) or turn by more than kCornerTurnDeg; a closed line without a
+// corner starts at its lowest vertex. In the order of the corners, then of those starts.
+constexpr double kCornerTurnDeg = 60;
+struct FeatureLine {
+  std::vector<std::uint32_t> vertices; // input vertices, from one end to the other (first == last: closed)
+  std::vector<std::uint32_t> edges;    // indices into InputMesh::creases, one per step
+  double length = 0;
+};
+struct FeatureLines {
+  std::vector<char> corner;            // per input vertex
+  std::vector<FeatureLine> lines;
+};
+FeatureLines traceFeatureLines(const InputMesh& in) {
+  FeatureLines out;
   const size_t nv = in.vertices.size();
-  std::vector<std::uint32_t> set(nv);
-  std::iota(set.begin(), set.end(), 0u);
-  for (const auto& e : in.creases) {
-    const std::uint32_t x = findRoot(set, e.u), y = findRoot(set, e.v);
-    if (x != y) set[std::max(x, y)] = std::min(x, y);
+  std::vector<std::uint32_t> start(nv + 1, 0);
+  for (const auto& e : in.creases) ++start[e.u + 1], ++start[e.v + 1];
+  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> adj(start[nv]), fill(start.begin(), start.end() - 1);
+  for (std::uint32_t k = 0; k < in.creases.size(); ++k) {
+    adj[fill[in.creases[k].u]++] = k;
+    adj[fill[in.creases[k].v]++] = k;
   }
-  std::vector<double> length(nv, 0.0);
-  for (const auto& e : in.creases) length[findRoot(set, e.u)] += (in.vertices[e.u] - in.vertices[e.v]).Norm();
-  size_t w = 0;
-  for (const auto& e : in.creases) {
-    if (length[findRoot(set, e.u)] >= kMinCreasePerD * d) {
-      in.creases[w++] = e;
+  auto other = [&](std::uint32_t k, std::uint32_t v) { return in.creases[k].u == v ? in.creases[k].v : in.creases[k].u; };
+  const double turnCos = std::cos(kCornerTurnDeg * 3.14159265358979323846 / 180);
+  out.corner.assign(nv, 0);
+  for (std::uint32_t v = 0; v < nv; ++v) {
+    const std::uint32_t deg = start[v + 1] - start[v];
+    if (deg == 0) continue;
+    if (deg != 2) {
+      out.corner[v] = 1;
       continue;
     }
-    const std::uint32_t x = findRoot(in.patch, e.f0), y = findRoot(in.patch, e.f1);
-    if (x != y) in.patch[std::max(x, y)] = std::min(x, y);
+    const Vec3d a = in.vertices[v] - in.vertices[other(adj[start[v]], v)];
+    const Vec3d b = in.vertices[other(adj[start[v] + 1], v)] - in.vertices[v];
+    out.corner[v] = (a * b) < turnCos * a.Norm() * b.Norm() ? 1 : 0;
   }
-  in.creases.resize(w);
+  std::vector<char> used(in.creases.size(), 0);
+  auto trace = [&](std::uint32_t from, std::uint32_t k) {
+    FeatureLine line;
+    line.vertices.push_back(from);
+    std::uint32_t v = from;
+    for (;;) {
+      used[k] = 1;
+      line.edges.push_back(k);
+      const std::uint32_t w = other(k, v);
+      line.length += (in.vertices[w] - in.vertices[v]).Norm();
+      v = w;
+      line.vertices.push_back(v);
+      if (out.corner[v] || v == from) break;
+      std::uint32_t next = kNone;
+      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+        if (!used[adj[j]]) next = adj[j];
+      if (next == kNone) break;
+      k = next;
+    }
+    out.lines.push_back(std::move(line));
+  };
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (out.corner[v])
+      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+        if (!used[adj[j]]) trace(v, adj[j]);
+  for (std::uint32_t v = 0; v < nv; ++v)
+    for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
+      if (!used[adj[j]]) trace(v, adj[j]);
+  return out;
+}
+
+// Feature lines shorter than kMinCreasePerD·d are not features: at the scale of d they are the
+// noise of a scanned surface's triangulation (a network of short lines between many corners), or
+// details smaller than d, not an edge of the shape (a cube's sides are lines from corner to corner).
+// They are dropped, the corners recomputed, and again until every line is long enough; the faces
+// along a dropped crease join one patch.
+constexpr double kMinCreasePerD = 2.0;
+void keepLongCreases(InputMesh& in, double d) {
+  for (;;) {
+    const FeatureLines fl = traceFeatureLines(in);
+    std::vector<char> drop(in.creases.size(), 0);
+    bool any = false;
+    for (const FeatureLine& line : fl.lines)
+      if (line.length < kMinCreasePerD * d) {
+        for (const std::uint32_t k : line.edges) drop[k] = 1;
+        any = true;
+      }
+    if (!any) break;
+    size_t w = 0;
+    for (size_t k = 0; k < in.creases.size(); ++k) {
+      const auto& e = in.creases[k];
+      if (!drop[k]) {
+        in.creases[w++] = e;
+        continue;
+      }
+      const std::uint32_t x = findRoot(in.patch, e.f0), y = findRoot(in.patch, e.f1);
+      if (x != y) in.patch[std::max(x, y)] = std::min(x, y);
+    }
+    in.creases.resize(w);
+  }
   for (std::uint32_t f = 0; f < in.patch.size(); ++f) in.patch[f] = findRoot(in.patch, f);
 }
 
@@ -770,95 +843,44 @@ std::vector<LinePoint> sampleLine(const std::vector<Vec3d>& P, double d) {
   return {};
 }
 
-// Item 2 of the features, sec. 3.3 with more than two starting vertices: the corners (input
-// vertices where crease lines end or meet: not two crease edges, or two that turn by more than
-// kCornerTurnDeg) as vertices at their exact positions, then every crease line between corners
-// (and every closed crease line, from its lowest vertex) sampled at a chord spacing s >= d that
-// ends exactly at its corner, joined by edges; then their candidates. A feature vertex closer
-// than d to one placed before is left out (with the edges to it).
-constexpr double kCornerTurnDeg = 60;
+// Item 2 of the features, sec. 3.3 with more than two starting vertices: the corners as vertices at
+// their exact positions, then every feature line (traceFeatureLines) sampled at a chord spacing
+// s >= d that ends exactly at its far end (sampleLine), joined by edges; then their candidates and
+// the growth from them. A feature vertex closer than d to one placed before is left out (with the
+// edges to it). The normal of a point of a crease is the mean of its two faces' normals, of a
+// corner the angle-weighted mean of its faces' normals.
 void placeFeatures(MeshGrowth& growth, const InputMesh& in, double d, RemeshStat& st) {
   if (in.creases.empty()) return;
+  const FeatureLines fl = traceFeatureLines(in);
   const size_t nv = in.vertices.size();
-  // The crease graph: per vertex its crease edges (CSR), in edge order.
-  std::vector<std::uint32_t> start(nv + 1, 0);
-  for (const auto& e : in.creases) ++start[e.u + 1], ++start[e.v + 1];
-  for (size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> adj(start[nv]), fill(start.begin(), start.end() - 1);
-  for (std::uint32_t k = 0; k < in.creases.size(); ++k) {
-    adj[fill[in.creases[k].u]++] = k;
-    adj[fill[in.creases[k].v]++] = k;
-  }
-  auto other = [&](std::uint32_t k, std::uint32_t v) { return in.creases[k].u == v ? in.creases[k].v : in.creases[k].u; };
-  const double turnCos = std::cos(kCornerTurnDeg * 3.14159265358979323846 / 180);
-  std::vector<char> corner(nv, 0);
-  for (std::uint32_t v = 0; v < nv; ++v) {
-    const std::uint32_t deg = start[v + 1] - start[v];
-    if (deg == 0) continue;
-    if (deg != 2) {
-      corner[v] = 1;
-      continue;
-    }
-    const Vec3d a = in.vertices[v] - in.vertices[other(adj[start[v]], v)];
-    const Vec3d b = in.vertices[other(adj[start[v] + 1], v)] - in.vertices[v];
-    corner[v] = (a * b) < turnCos * a.Norm() * b.Norm() ? 1 : 0;
-  }
   std::vector<std::uint32_t> vertexOf(nv, kNone);
   std::vector<std::uint32_t> placed;
-  for (std::uint32_t v = 0; v < nv; ++v)
-    if (corner[v]) {
-      ++st.featureCorners;
-      vertexOf[v] = growth.addFeatureVertex(in.vertices[v], in.vertexNormal[v]);
-      if (vertexOf[v] != kNone) placed.push_back(vertexOf[v]);
-      else ++st.featureVerticesSkipped;
-    }
-  // The lines: from every corner along each unused crease edge to the next corner; then the closed
-  // lines without a corner, from their lowest vertex.
-  std::vector<char> used(in.creases.size(), 0);
-  auto traceLine = [&](std::uint32_t from, std::uint32_t k0) {
-    std::vector<Vec3d> P{in.vertices[from]};
-    std::vector<Vec3d> segNormal;
-    std::uint32_t v = from, k = k0;
-    for (;;) {
-      used[k] = 1;
-      segNormal.push_back(in.creases[k].n);
-      v = other(k, v);
-      P.push_back(in.vertices[v]);
-      if (corner[v] || v == from) break;
-      std::uint32_t next = kNone;
-      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
-        if (!used[adj[j]]) next = adj[j];
-      if (next == kNone) break;
-      k = next;
-    }
-    const bool closed = v == from;
-    if (!corner[from]) {
-      // A closed line without a corner starts at a vertex of its own.
-      vertexOf[from] = growth.addFeatureVertex(in.vertices[from], in.creases[k0].n);
-      if (vertexOf[from] != kNone) placed.push_back(vertexOf[from]);
-      else ++st.featureVerticesSkipped;
-    }
-    const std::uint32_t first = vertexOf[from], last = closed ? vertexOf[from] : vertexOf[v];
-    std::uint32_t prev = first;
-    for (const LinePoint& q : sampleLine(P, d)) {
-      const std::uint32_t id = growth.addFeatureVertex(q.p, segNormal[q.seg]);
-      if (id == kNone) {
-        ++st.featureVerticesSkipped;
-      } else {
-        placed.push_back(id);
-        if (prev != kNone) growth.addFeatureEdge(prev, id);
-      }
-      prev = id;
-    }
-    if (prev != kNone && last != kNone && prev != last) growth.addFeatureEdge(prev, last);
+  auto place = [&](const Vec3d& x, const Vec3d& n) {
+    const std::uint32_t id = growth.addFeatureVertex(x, n);
+    if (id != kNone) placed.push_back(id);
+    else ++st.featureVerticesSkipped;
+    return id;
   };
   for (std::uint32_t v = 0; v < nv; ++v)
-    if (corner[v])
-      for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
-        if (!used[adj[j]]) traceLine(v, adj[j]);
-  for (std::uint32_t v = 0; v < nv; ++v)
-    for (std::uint32_t j = start[v]; j < start[v + 1]; ++j)
-      if (!used[adj[j]]) traceLine(v, adj[j]);
+    if (fl.corner[v]) {
+      ++st.featureCorners;
+      vertexOf[v] = place(in.vertices[v], in.vertexNormal[v]);
+    }
+  for (const FeatureLine& line : fl.lines) {
+    const std::uint32_t from = line.vertices.front(), to = line.vertices.back();
+    // A closed line without a corner starts at a vertex of its own.
+    if (!fl.corner[from] && vertexOf[from] == kNone) vertexOf[from] = place(in.vertices[from], in.creases[line.edges[0]].n);
+    std::vector<Vec3d> P;
+    for (const std::uint32_t v : line.vertices) P.push_back(in.vertices[v]);
+    std::uint32_t prev = vertexOf[from];
+    for (const LinePoint& q : sampleLine(P, d)) {
+      const std::uint32_t id = place(q.p, in.creases[line.edges[q.seg]].n);
+      if (id != kNone && prev != kNone) growth.addFeatureEdge(prev, id);
+      prev = id;
+    }
+    const std::uint32_t last = vertexOf[to];
+    if (prev != kNone && last != kNone && prev != last) growth.addFeatureEdge(prev, last);
+  }
   st.creaseEdges = in.creases.size();
   st.featureVertices = placed.size();
   for (const std::uint32_t v : placed) growth.enumerateFeature(v);
@@ -897,7 +919,8 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
 // Sec. 3.7, with the input's boundary kept open: each border up to the limit is triangulated on its
 // own, and its faces are dropped again (the region left open) when at least half of their area has
 // its centroids beyond the input's boundary.
-std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Surface& surface,
+constexpr size_t kShortRegion = 6;
+std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Surface& surface, bool hasBorders,
                                                  const RemeshParams& params, bool floatStorage, RemeshStat& st) {
   EdgeSet edges(g.edgeCount() * 2 + 16);
   for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
@@ -916,12 +939,16 @@ std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Sur
     region.clear();
     const RegionStats rs = triangulateRegions(one, pos, g.normals(), params.maxBorderLength, edges, region);
     double all = 0, outside = 0;
-    for (const Triangle& f : region) {
-      const double a = ((pos[f[1]] - pos[f[0]]) ^ (pos[f[2]] - pos[f[0]])).Norm();
-      all += a;
-      if (surface.beyondBoundary((pos[f[0]] + pos[f[1]] + pos[f[2]]) / 3.0)) outside += a;
-    }
-    if (!region.empty() && outside >= 0.5 * all) {
+    // Without input borders a region can only lie off the input where no triangle is within d of
+    // it, which takes a border longer than kShortRegion edges (d to 2d long each).
+    const bool check = hasBorders || one[0].size() > kShortRegion;
+    if (check)
+      for (const Triangle& f : region) {
+        const double a = ((pos[f[1]] - pos[f[0]]) ^ (pos[f[2]] - pos[f[0]])).Norm();
+        all += a;
+        if (surface.beyondBoundary((pos[f[0]] + pos[f[1]] + pos[f[2]]) / 3.0)) outside += a;
+      }
+    if (check && !region.empty() && outside >= 0.5 * all) {
       ++st.holes;
       ++st.regionsOutside;
       continue;
@@ -1017,7 +1044,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.secondsGrowth = watch.lap();
 
   progress.phase("Sphere packing remesh: triangulating the regions", 90, 97);
-  std::vector<Triangle> faces = triangulateKeepingBoundary(g, surface, params, floatStorage, st);
+  std::vector<Triangle> faces = triangulateKeepingBoundary(g, surface, in.boundaryEdgeCount > 0, params, floatStorage, st);
   st.secondsTriangulation = watch.lap();
 
   Params p;
