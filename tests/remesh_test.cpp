@@ -323,6 +323,45 @@ TEST(RemeshFeatures, CubeKeepsCornersAndEdges) {
   }
 }
 
+// A sharp concave crease: two unit squares folded along a common side to an interior angle of 30°.
+// Within about 1.9 d of the crease the two sides are closer than d to each other; both are meshed
+// (vertices of two patches may be closer than d, and no edge joins them), so the fold keeps its one
+// border and every edge is at least d. Feature vertices keep d from every vertex, so near the ends of
+// the crease the border's points of one side keep the other side's vertices off: every input vertex
+// is within d of the output (0.69 d), not 0.3 d.
+TEST(RemeshFeatures, SharpConcaveCreaseKeepsBothSides) {
+  const double pi = 3.14159265358979323846, a = 30 * pi / 180;
+  const int n = 24;
+  MeshArrays m;
+  for (int j = 0; j <= 2 * n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) / n, t = double(j - n) / n;
+      m.vertices.push_back(t <= 0 ? Vec3d(x, -t, 0) : Vec3d(x, t * std::cos(a), t * std::sin(a)));
+    }
+  auto id = [&](int i, int j) { return std::uint32_t(j * (n + 1) + i); };
+  for (int j = 0; j < 2 * n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.faces.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.faces.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  RemeshParams p;
+  p.sphereDiameter = 0.1;
+  const Checked c = remeshChecked(m, p);
+  EXPECT_EQ(c.res.components, 1u);
+  EXPECT_EQ(c.res.boundaryLoops, 1u);
+  EXPECT_EQ(c.st.featureCorners, 4u + 2u); // the square's corners and the crease's ends
+  EXPECT_LE(c.maxInToOut, 1.0 * p.sphereDiameter);
+  // Both sides hold faces within 1.5 d of the crease.
+  size_t nearA = 0, nearB = 0;
+  for (const auto& f : c.out.faces) {
+    const Vec3d g = (c.out.vertices[f[0]] + c.out.vertices[f[1]] + c.out.vertices[f[2]]) / 3.0;
+    if (std::abs(g[2]) < 1e-12 && g[1] < 1.5 * p.sphereDiameter) ++nearA;
+    if (g[2] > 1e-12 && g.Norm() > 0 && std::hypot(g[1], g[2]) < 1.5 * p.sphereDiameter) ++nearB;
+  }
+  EXPECT_GT(nearA, 10u);
+  EXPECT_GT(nearB, 10u);
+}
+
 // A closed crease line without corners: the rims of a capped cylinder are packed as loops, and the
 // rim circles lie on the output within the chord's sagitta.
 TEST(RemeshFeatures, CylinderRimsAreClosedCreaseLoops) {

@@ -102,12 +102,13 @@ int main(int argc, char** argv) {
                 st.inputVertices, st.inputFaces, st.inputComponents, st.inputBoundaryEdges, st.inputMeanEdge,
                 st.sphereDiameter, st.diameterReason.c_str());
     std::printf("vertices: %zu\nfaces: %zu\nsmallest_edge: %.8g\nsmallest_edge_per_d: %.6f\nq_avg: %.5f\n"
-                "boundary_loops: %zu\nholes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\nfaces_removed: %zu\n"
+                "boundary_loops: %zu\nholes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\n"
+                "short_edge_faces_removed: %zu\nfaces_removed: %zu\n"
                 "crease_edges: %zu\nfeature_corners: %zu\nfeature_vertices: %zu\nfeature_vertices_skipped: %zu\n"
                 "components_started: %zu\nunreached_faces: %zu\ncandidates: %zu\nrequeued: %zu\n"
                 "rejected_too_close: %zu\nrejected_crossing: %zu\nrejected_inconsistent: %zu\n",
                 st.vertices, st.faces, st.smallestEdge, st.smallestEdge / st.sphereDiameter, st.qualityAvg,
-                st.boundaryLoops, st.holes, st.regionsOutside, st.flatFacesRemoved, st.facesRemoved,
+                st.boundaryLoops, st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved,
                 st.creaseEdges, st.featureCorners, st.featureVertices, st.featureVerticesSkipped,
                 st.componentsStarted, st.unreachedFaces, st.candidates, st.requeued, st.rejectedTooClose,
                 st.rejectedCrossing, st.rejectedInconsistent);

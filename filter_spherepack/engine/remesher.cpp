@@ -193,6 +193,17 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
   std::iota(parent.begin(), parent.end(), 0u);
   std::iota(patch.begin(), patch.end(), 0u);
   const double creaseCos = std::cos(creaseAngleDeg * 3.14159265358979323846 / 180);
+  std::vector<std::uint32_t> across(3 * in.faces.size(), kNone); // per face edge: the face on its other side
+  auto addCrease = [&](std::uint32_t lo, std::uint32_t hi, std::uint32_t f0, std::uint32_t f1) {
+    Vec3d n = in.tri[f0].n + in.tri[f1].n;
+    const double len = n.Norm();
+    n = len > 1e-12 ? n / len : in.tri[f0].n;
+    in.creases.push_back(InputMesh::CreaseEdge{lo, hi, f0, f1, n});
+  };
+  auto joinPatches = [&](std::uint32_t f0, std::uint32_t f1) {
+    const std::uint32_t px = findRoot(patch, f0), py = findRoot(patch, f1);
+    if (px != py) patch[std::max(px, py)] = std::min(px, py);
+  };
   for (size_t i = 0; i < edges.size();) {
     size_t j = i;
     while (j < edges.size() && edges[j].lo == edges[i].lo && edges[j].hi == edges[i].hi) ++j;
@@ -212,21 +223,40 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
       if (!in.tri[r.face].sliver) in.creases.push_back(InputMesh::CreaseEdge{r.lo, r.hi, r.face, r.face, in.tri[r.face].n});
     } else {
       const std::uint32_t f0 = edges[i].face, f1 = edges[i + 1].face;
+      across[3 * f0 + edges[i].e] = f1;
+      across[3 * f1 + edges[i + 1].e] = f0;
       const std::uint32_t x = findRoot(parent, f0), y = findRoot(parent, f1);
       if (x != y) parent[std::max(x, y)] = std::min(x, y);
       if (in.tri[f0].sliver || in.tri[f1].sliver) {
-        // Neither a crease nor a joint of patches: a sliver is a patch of its own.
+        // Decided below, through the sliver.
       } else if (in.tri[f0].n * in.tri[f1].n < creaseCos) {
-        Vec3d n = in.tri[f0].n + in.tri[f1].n;
-        const double len = n.Norm();
-        n = len > 1e-12 ? n / len : in.tri[f0].n;
-        in.creases.push_back(InputMesh::CreaseEdge{r.lo, r.hi, f0, f1, n});
+        addCrease(r.lo, r.hi, f0, f1);
       } else {
-        const std::uint32_t px = findRoot(patch, f0), py = findRoot(patch, f1);
-        if (px != py) patch[std::max(px, py)] = std::min(px, py);
+        joinPatches(f0, f1);
       }
     }
     i = j;
+  }
+  // A sliver stands between the face across its longest edge and the faces across its two short
+  // ones, which meet there as across one edge: each short edge is a crease between them or joins
+  // their patches (a crease along a split edge keeps running). A sliver is a patch of its own.
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f) {
+    if (!in.tri[f].sliver) continue;
+    int longest = 0;
+    double best = -1;
+    for (int e = 0; e < 3; ++e) {
+      const double len = (in.vertices[in.faces[f][e]] - in.vertices[in.faces[f][(e + 1) % 3]]).SquaredNorm();
+      if (len > best) best = len, longest = e;
+    }
+    const std::uint32_t y = across[3 * f + longest];
+    if (y == kNone || in.tri[y].sliver) continue;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t x = across[3 * f + e];
+      if (e == longest || x == kNone || in.tri[x].sliver) continue;
+      const std::uint32_t u = in.faces[f][e], v = in.faces[f][(e + 1) % 3];
+      if (in.tri[x].n * in.tri[y].n < creaseCos) addCrease(std::min(u, v), std::max(u, v), x, y);
+      else joinPatches(x, y);
+    }
   }
   for (std::uint32_t f = 0; f < in.faces.size(); ++f) in.components += findRoot(parent, f) == f ? 1 : 0;
   in.patch = std::move(patch);
@@ -464,6 +494,7 @@ public:
         progress_(progress), expected_(std::max<size_t>(expected, 16)),
         queue_(CandidatePriority::levels(p.windowSize)) {
     lists_.reset(in.tri.size());
+    for (const std::uint32_t p : in.patch) multiPatch_ = multiPatch_ || p != in.patch[0];
     const size_t reserve = std::min<size_t>(expected_ + expected_ / 4, p.maxOutputVertices);
     vgrid_.reset(grid.indexer().origin(), crossingSearchRadius(d), reserve);
     graph_.reserve(reserve);
@@ -471,6 +502,11 @@ public:
 
   const BorderGraph& graph() const { return graph_; }
   bool reached(std::uint32_t t) const { return !lists_.empty(t); }
+  // No vertex of `patch` (or feature vertex) closer than d to x: a start may go there.
+  bool freeOnPatch(const Vec3d& x, std::uint32_t patch) const {
+    return !vgrid_.anyCloserThan(x, d_, graph_.positions(), kNone, kNone) ||
+           (multiPatch_ && !closerOnPatch(x, patch, kNone, kNone));
+  }
   bool anyVertexCloserThan(const Vec3d& x, double r) const {
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNone, kNone);
   }
@@ -519,7 +555,8 @@ public:
       Vec3d x;
       if (!position(cd, x)) continue;
       const auto& pos = graph_.positions();
-      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b)) {
+      const std::uint32_t patch = in_.patch[cd.tri];
+      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b) && (!multiPatch_ || closerOnPatch(x, patch, cd.a, cd.b))) {
         ++st_.rejectedTooClose;
         continue;
       }
@@ -532,7 +569,6 @@ public:
         continue;
       }
       if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
-      const std::uint32_t patch = in_.patch[cd.tri];
       if ((vpatch_[cd.a] != kNone && vpatch_[cd.a] != patch) || (vpatch_[cd.b] != kNone && vpatch_[cd.b] != patch))
         continue;
       const Vec3d n = surface_.normalAt(x, in_.tri[cd.tri].n, patch);
@@ -575,6 +611,18 @@ private:
     vpatch_.push_back(patch);
     if (!enumerateLater) enumerate(v);
     return v;
+  }
+
+  // Vertices on two different patches may be closer than d: they are never joined (every face
+  // keeps to one patch), and a concave crease sharper than 60° or a plate thinner than d then has
+  // vertices on both sides. A feature vertex keeps d from every vertex.
+  bool onPatch(std::uint32_t v, std::uint32_t patch) const { return vpatch_[v] == kNone || vpatch_[v] == patch; }
+  bool closerOnPatch(const Vec3d& x, std::uint32_t patch, std::uint32_t skipA, std::uint32_t skipB) const {
+    bool hit = false;
+    vgrid_.forEachInBall(x, d_, graph_.positions(), [&](std::uint32_t u, double d2) {
+      hit = hit || (u != skipA && u != skipB && d2 < d2_ && onPatch(u, patch));
+    });
+    return hit;
   }
 
   int levelOf(std::uint32_t a, std::uint32_t b, const Vec3d& x) const {
@@ -624,7 +672,7 @@ private:
           if (!(inside >= -kInsideTolerance)) continue;
           bool blocked = false;
           for (std::uint32_t w : near_)
-            if (w != v && w != u && (pos[w] - y).SquaredNorm() < d2_) {
+            if (w != v && w != u && onPatch(w, tp) && (pos[w] - y).SquaredNorm() < d2_) {
               blocked = true;
               break;
             }
@@ -658,7 +706,7 @@ private:
   void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
     const auto& pos = graph_.positions();
     for (std::uint32_t v = 0; v < c; ++v)
-      if ((pos[v] - pos[c]).Norm() < d_ * (1 - 1e-12))
+      if ((vpatch_[c] == kNone || onPatch(v, vpatch_[c])) && (pos[v] - pos[c]).Norm() < d_ * (1 - 1e-12))
         throw std::logic_error("sphere packing remesher invariant: vertices " + std::to_string(v) + " and " +
                                std::to_string(c) + " closer than d");
     for (std::uint32_t p : {a, b})
@@ -681,6 +729,7 @@ private:
   BucketQueue<Candidate> queue_;
   std::vector<std::uint32_t> near_, tris_;
   std::vector<std::uint32_t> vpatch_; // per vertex: its patch, kNone for a feature vertex
+  bool multiPatch_ = false;           // the input has more than one patch
   std::vector<Found> found_;
 };
 
@@ -896,7 +945,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
     if (growth.reached(t) || in.tri[t].sliver) continue;
     const Triangle& f = in.faces[t];
     const Vec3d s1 = (in.vertices[f[0]] + in.vertices[f[1]] + in.vertices[f[2]]) / 3.0;
-    if (growth.anyVertexCloserThan(s1, d)) continue;
+    if (!growth.freeOnPatch(s1, in.patch[t])) continue;
     Vec3d e1, e2;
     tangentFrame(in.tri[t].n, e1, e2);
     for (int k = 0; k < 12; ++k) {
@@ -906,7 +955,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
       std::uint32_t t2 = kNone;
       if (!surface.project(target, in.tri[t].n, in.patch[t], s2, t2)) continue;
       const double dist = (s2 - s1).Norm();
-      if (dist < d || dist > 2 * d || growth.anyVertexCloserThan(s2, d)) continue;
+      if (dist < d || dist > 2 * d || !growth.freeOnPatch(s2, in.patch[t])) continue;
       growth.start(s1, t, s2, t2);
       growth.run();
       ++st.componentsStarted;
@@ -1045,6 +1094,22 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
 
   progress.phase("Sphere packing remesh: triangulating the regions", 90, 97);
   std::vector<Triangle> faces = triangulateKeepingBoundary(g, surface, in.boundaryEdgeCount > 0, params, floatStorage, st);
+  // Vertices of two patches may be closer than d (MeshGrowth::onPatch); a region whose border
+  // passes from one to the other where a crease point was left out could join them by a diagonal
+  // shorter than d: such a face is left out, so that every edge stays at least d.
+  {
+    const auto& pos = g.positions();
+    size_t w = 0;
+    for (const Triangle& f : faces) {
+      bool shortEdge = false;
+      // (The growth's edges are d up to rounding: the test leaves a relative 1e-9.)
+      for (int k = 0; k < 3; ++k)
+        shortEdge = shortEdge || (pos[f[k]] - pos[f[(k + 1) % 3]]).SquaredNorm() < d * d * (1 - 1e-9);
+      if (shortEdge) ++st.shortEdgeFacesRemoved;
+      else faces[w++] = f;
+    }
+    faces.resize(w);
+  }
   st.secondsTriangulation = watch.lap();
 
   Params p;

@@ -79,6 +79,7 @@ struct RemeshStat {
   size_t holes = 0;               // regions left open (border limit, not triangulable, beyond the input's boundary)
   size_t regionsOutside = 0;      // of which: beyond the input's boundary
   size_t flatFacesRemoved = 0;
+  size_t shortEdgeFacesRemoved = 0; // region faces across two patches with an edge below d (left out)
   size_t nonManifoldVerticesRemoved = 0, selfIntersectionFacesRemoved = 0, facesRemoved = 0;
   size_t boundaryLoops = 0;       // of the output
   double smallestEdge = 0;        // as stored
