@@ -417,6 +417,33 @@ TEST(RemeshFeatures, CreaseAngleTurnsFeaturesOff) {
   EXPECT_LT(corners, 8u);
 }
 
+// A CAD export: the cube as 12 triangles. Its mean edge length (the cube's size) would allow no
+// mesh; the default d gives about 1,000 vertices, with every corner exact and every edge kept.
+TEST(RemeshFeatures, CoarseCadCubeAtTheDefaultD) {
+  const MeshArrays b = cube(2.0, 1);
+  ASSERT_EQ(b.faces.size(), 12u);
+  const Checked c = remeshChecked(b, RemeshParams());
+  const double d = c.st.sphereDiameter;
+  EXPECT_NEAR(d, std::sqrt(24.0 / (0.86602540378443864676 * 1000)), 1e-12);
+  EXPECT_GT(c.out.vertices.size(), 700u);
+  EXPECT_LT(c.out.vertices.size(), 1300u);
+  EXPECT_EQ(c.res.boundaryLoops, 0u);
+  EXPECT_EQ(c.res.genus, 0);
+  EXPECT_EQ(c.maxInToOut, 0.0); // the 8 corners are vertices
+}
+
+// A single triangle with a 45° corner: the first points of its two sides near that corner are
+// closer than d, one is left out and the side joined across it, so the corner keeps its face.
+TEST(RemeshFeatures, AcuteCornerOfASingleTriangle) {
+  MeshArrays t;
+  t.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  t.faces = {{0, 1, 2}};
+  const Checked c = remeshChecked(t, RemeshParams());
+  EXPECT_EQ(c.res.boundaryLoops, 1u);
+  EXPECT_EQ(c.res.components, 1u);
+  EXPECT_EQ(c.maxInToOut, 0.0);
+}
+
 TEST(Remesh, SameMeshTwice) {
   const MeshArrays t = torus(1.0, 0.35, 80, 30);
   RemeshParams p;
@@ -555,6 +582,13 @@ TEST(Remesh, SliversAreNoObstacle) {
       EXPECT_TRUE(hit) << "corner " << corner;
     }
   }
+}
+
+TEST(RemeshBadInput, OnlySlivers) {
+  MeshArrays m;
+  m.vertices = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+  m.faces = {{0, 1, 2}, {1, 3, 2}};
+  EXPECT_NE(errorOf(m).find("zero area"), std::string::npos);
 }
 
 TEST(RemeshBadInput, DiameterTooSmallOrTooLarge) {

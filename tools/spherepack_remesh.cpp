@@ -91,8 +91,11 @@ int main(int argc, char** argv) {
     const int err = vcg::tri::io::ImporterPLY<CMeshO>::Open(input, in.c_str(), mask);
     if (err != 0 && vcg::tri::io::ImporterPLY<CMeshO>::ErrorCritical(err))
       throw growth::Error(std::string("cannot read ") + in + ": " + vcg::tri::io::ImporterPLY<CMeshO>::ErrorMsg(err));
-    if (dEdges > 0) params.sphereDiameter = dEdges * growth::spherepack::defaultRemeshDiameter(input) /
-                                            growth::spherepack::kDefaultRemeshDiameterPerEdge;
+    if (dEdges > 0) {
+      growth::MeasureOptions o;
+      o.minVertexDistance = false;
+      params.sphereDiameter = dEdges * growth::measure(growth::meshlab::meshArrays(input), nullptr, o).edgeMean;
+    }
 
     CMeshO mesh;
     growth::spherepack::RemeshStat st;

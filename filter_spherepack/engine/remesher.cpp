@@ -921,14 +921,22 @@ void placeFeatures(MeshGrowth& growth, const InputMesh& in, double d, RemeshStat
     if (!fl.corner[from] && vertexOf[from] == kNone) vertexOf[from] = place(in.vertices[from], in.creases[line.edges[0]].n);
     std::vector<Vec3d> P;
     for (const std::uint32_t v : line.vertices) P.push_back(in.vertices[v]);
+    // Consecutive placed points are joined; across a point left out (at a corner sharper than 60°,
+    // the first points of two lines are closer than d) when they are at most 2.2 d apart: the
+    // crossing check (sec. 3.6) sees an edge up to 2 (√5 − 1) d long.
     std::uint32_t prev = vertexOf[from];
+    auto join = [&](std::uint32_t u, std::uint32_t v) {
+      if (u != kNone && v != kNone && u != v &&
+          (growth.graph().position(u) - growth.graph().position(v)).SquaredNorm() <= 2.2 * 2.2 * d * d)
+        growth.addFeatureEdge(u, v);
+    };
     for (const LinePoint& q : sampleLine(P, d)) {
       const std::uint32_t id = place(q.p, in.creases[line.edges[q.seg]].n);
-      if (id != kNone && prev != kNone) growth.addFeatureEdge(prev, id);
+      if (id == kNone) continue;
+      join(prev, id);
       prev = id;
     }
-    const std::uint32_t last = vertexOf[to];
-    if (prev != kNone && last != kNone && prev != last) growth.addFeatureEdge(prev, last);
+    join(prev, vertexOf[to]);
   }
   st.creaseEdges = in.creases.size();
   st.featureVertices = placed.size();
@@ -1019,6 +1027,11 @@ std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Sur
 
 } // namespace
 
+double defaultDiameterOf(double meanEdge, double area) {
+  return std::min(kDefaultRemeshDiameterPerEdge * meanEdge,
+                  std::sqrt(area / (kTriangleAreaFactor * kMinDefaultVertices)));
+}
+
 double defaultRemeshDiameter(const MeshArrays& mesh) {
   // The mean over the unique edges (an inner edge counts once), as InputMesh::meanEdge.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
@@ -1031,7 +1044,7 @@ double defaultRemeshDiameter(const MeshArrays& mesh) {
     }
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  double sum = 0;
+  double sum = 0, area = 0;
   size_t n = 0;
   for (const auto& e : edges) {
     const double len = (mesh.vertices[e.first] - mesh.vertices[e.second]).Norm();
@@ -1039,7 +1052,12 @@ double defaultRemeshDiameter(const MeshArrays& mesh) {
     sum += len;
     ++n;
   }
-  return n > 0 ? kDefaultRemeshDiameterPerEdge * sum / double(n) : 0.0;
+  for (const auto& f : mesh.faces) {
+    if (f[0] >= mesh.vertices.size() || f[1] >= mesh.vertices.size() || f[2] >= mesh.vertices.size()) continue;
+    const double a = 0.5 * ((mesh.vertices[f[1]] - mesh.vertices[f[0]]) ^ (mesh.vertices[f[2]] - mesh.vertices[f[0]])).Norm();
+    if (std::isfinite(a)) area += a;
+  }
+  return n > 0 ? defaultDiameterOf(sum / double(n), area) : 0.0;
 }
 
 void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const RemeshParams& params, RemeshStat& st,
@@ -1063,15 +1081,20 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   if (d > 0) {
     st.diameterReason = "given";
   } else {
-    d = kDefaultRemeshDiameterPerEdge * in.meanEdge;
-    st.diameterReason = "automatic: the input's mean edge length";
+    d = defaultDiameterOf(in.meanEdge, in.area);
+    st.diameterReason = d < kDefaultRemeshDiameterPerEdge * in.meanEdge
+                            ? "automatic: the d of about " + std::to_string(size_t(kMinDefaultVertices)) +
+                                  " vertices, below the input's mean edge length " + fmt(in.meanEdge)
+                            : std::string("automatic: the input's mean edge length");
   }
+  if (in.slivers == in.faces.size())
+    throw Error("Every face of the mesh has (nearly) zero area: there is no surface to place vertices on.");
   if (!(d > 0) || !std::isfinite(d)) throw Error("The sphere diameter d must be a positive length.");
   const double diag = (in.box.max - in.box.min).Norm();
   if (d > kMaxDiameterPerDiagonal * diag)
     throw Error("d = " + fmt(d) + " is too large for this mesh (bounding-box diagonal " + fmt(diag) +
                 "): no triangle of side d fits on it. Use a d below " + fmt(kMaxDiameterPerDiagonal * diag) +
-                ", or 0 for the automatic one (" + fmt(kDefaultRemeshDiameterPerEdge * in.meanEdge) + ").");
+                ", or 0 for the automatic one (" + fmt(defaultDiameterOf(in.meanEdge, in.area)) + ").");
   const double expected = in.area / (kTriangleAreaFactor * d * d);
   if (expected > double(params.maxOutputVertices))
     throw Error("d = " + fmt(d) + " is too small for this mesh: the output would have about " + fmt(expected) +

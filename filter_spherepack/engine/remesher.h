@@ -36,7 +36,7 @@ namespace growth {
 namespace spherepack {
 
 struct RemeshParams {
-  double sphereDiameter = 0;     // d, absolute; <= 0: kDefaultRemeshDiameterPerEdge × the mean edge length
+  double sphereDiameter = 0;     // d, absolute; <= 0: defaultDiameterOf(the mean edge length, the area)
   int windowSize = 8;            // w, sec. 4.2
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   double creaseAngleDeg = 30;    // dihedral angle above which an input edge is a crease
@@ -48,8 +48,12 @@ struct RemeshParams {
 
 // The default d is the input's mean edge length: the shortest output edge is then the length the
 // input's edges have on average, and the output has about as many vertices as a mesh of that
-// edge length (a packing has about area / (0.87·d²) vertices, most edges within 1.25 d).
+// edge length (a packing has about area / (0.87·d²) vertices, most edges within 1.25 d). But not
+// above the d of about kMinDefaultVertices vertices: a CAD export has few, long triangles, and its
+// mean edge length is the size of its parts, not a resolution.
 constexpr double kDefaultRemeshDiameterPerEdge = 1.0;
+constexpr double kMinDefaultVertices = 1000;
+double defaultDiameterOf(double meanEdge, double area);
 // Barycentric tolerance of the inside test of a candidate on a triangle.
 constexpr double kInsideTolerance = 1e-9;
 // A region's triangle lies beyond the input's boundary when its centroid's closest input point is
