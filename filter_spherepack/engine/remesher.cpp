@@ -36,6 +36,8 @@ constexpr double kSliverHeight = 1e-8;
 // its candidates: the other side of a part thinner than d, not the surface around the vertex (a
 // crease of up to 120° still joins its two sides).
 constexpr double kMinFacingDot = -0.5;
+// Vertices of two patches whose normals make more than 60° may be closer than d (MeshGrowth::keepsOff).
+constexpr double kApartDot = 0.5;
 
 std::string vecText(const Vec3d& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
 
@@ -503,9 +505,9 @@ public:
   const BorderGraph& graph() const { return graph_; }
   bool reached(std::uint32_t t) const { return !lists_.empty(t); }
   // No vertex of `patch` (or feature vertex) closer than d to x: a start may go there.
-  bool freeOnPatch(const Vec3d& x, std::uint32_t patch) const {
+  bool freeOnPatch(const Vec3d& x, std::uint32_t patch, const Vec3d& n) const {
     return !vgrid_.anyCloserThan(x, d_, graph_.positions(), kNone, kNone) ||
-           (multiPatch_ && !closerOnPatch(x, patch, kNone, kNone));
+           (multiPatch_ && !closerOnPatch(x, patch, n, kNone, kNone));
   }
   bool anyVertexCloserThan(const Vec3d& x, double r) const {
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNone, kNone);
@@ -556,7 +558,8 @@ public:
       if (!position(cd, x)) continue;
       const auto& pos = graph_.positions();
       const std::uint32_t patch = in_.patch[cd.tri];
-      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b) && (!multiPatch_ || closerOnPatch(x, patch, cd.a, cd.b))) {
+      if (vgrid_.anyCloserThan(x, d_, pos, cd.a, cd.b) &&
+          (!multiPatch_ || closerOnPatch(x, patch, in_.tri[cd.tri].n, cd.a, cd.b))) {
         ++st_.rejectedTooClose;
         continue;
       }
@@ -613,14 +616,20 @@ private:
     return v;
   }
 
-  // Vertices on two different patches may be closer than d: they are never joined (every face
-  // keeps to one patch), and a concave crease sharper than 60° or a plate thinner than d then has
-  // vertices on both sides. A feature vertex keeps d from every vertex.
+  // Vertices on two different patches whose normals differ by more than 60° (kApartDot) may be
+  // closer than d: they are never joined (every face keeps to one patch), and both sides of a
+  // concave crease sharper than 60° then hold vertices. Across gentler creases (a scan's noise
+  // that the crease angle picks up) the packing keeps d, as everywhere. A feature vertex keeps d
+  // from every vertex.
   bool onPatch(std::uint32_t v, std::uint32_t patch) const { return vpatch_[v] == kNone || vpatch_[v] == patch; }
-  bool closerOnPatch(const Vec3d& x, std::uint32_t patch, std::uint32_t skipA, std::uint32_t skipB) const {
+  bool keepsOff(std::uint32_t v, std::uint32_t patch, const Vec3d& n) const {
+    return onPatch(v, patch) || graph_.normal(v) * n > kApartDot;
+  }
+  bool closerOnPatch(const Vec3d& x, std::uint32_t patch, const Vec3d& n, std::uint32_t skipA,
+                     std::uint32_t skipB) const {
     bool hit = false;
     vgrid_.forEachInBall(x, d_, graph_.positions(), [&](std::uint32_t u, double d2) {
-      hit = hit || (u != skipA && u != skipB && d2 < d2_ && onPatch(u, patch));
+      hit = hit || (u != skipA && u != skipB && d2 < d2_ && keepsOff(u, patch, n));
     });
     return hit;
   }
@@ -672,7 +681,7 @@ private:
           if (!(inside >= -kInsideTolerance)) continue;
           bool blocked = false;
           for (std::uint32_t w : near_)
-            if (w != v && w != u && onPatch(w, tp) && (pos[w] - y).SquaredNorm() < d2_) {
+            if (w != v && w != u && keepsOff(w, tp, T.n) && (pos[w] - y).SquaredNorm() < d2_) {
               blocked = true;
               break;
             }
@@ -706,7 +715,7 @@ private:
   void checkInvariants(std::uint32_t c, std::uint32_t a, std::uint32_t b) const {
     const auto& pos = graph_.positions();
     for (std::uint32_t v = 0; v < c; ++v)
-      if ((vpatch_[c] == kNone || onPatch(v, vpatch_[c])) && (pos[v] - pos[c]).Norm() < d_ * (1 - 1e-12))
+      if ((vpatch_[c] == kNone || keepsOff(v, vpatch_[c], graph_.normal(c))) && (pos[v] - pos[c]).Norm() < d_ * (1 - 1e-12))
         throw std::logic_error("sphere packing remesher invariant: vertices " + std::to_string(v) + " and " +
                                std::to_string(c) + " closer than d");
     for (std::uint32_t p : {a, b})
@@ -953,7 +962,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
     if (growth.reached(t) || in.tri[t].sliver) continue;
     const Triangle& f = in.faces[t];
     const Vec3d s1 = (in.vertices[f[0]] + in.vertices[f[1]] + in.vertices[f[2]]) / 3.0;
-    if (!growth.freeOnPatch(s1, in.patch[t])) continue;
+    if (!growth.freeOnPatch(s1, in.patch[t], in.tri[t].n)) continue;
     Vec3d e1, e2;
     tangentFrame(in.tri[t].n, e1, e2);
     for (int k = 0; k < 12; ++k) {
@@ -963,7 +972,7 @@ void growEverywhere(MeshGrowth& growth, const InputMesh& in, const Surface& surf
       std::uint32_t t2 = kNone;
       if (!surface.project(target, in.tri[t].n, in.patch[t], s2, t2)) continue;
       const double dist = (s2 - s1).Norm();
-      if (dist < d || dist > 2 * d || !growth.freeOnPatch(s2, in.patch[t])) continue;
+      if (dist < d || dist > 2 * d || !growth.freeOnPatch(s2, in.patch[t], in.tri[t].n)) continue;
       growth.start(s1, t, s2, t2);
       growth.run();
       ++st.componentsStarted;
