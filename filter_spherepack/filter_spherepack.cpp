@@ -11,23 +11,46 @@
 
 #include <new>
 
-FilterSpherePackPlugin::FilterSpherePackPlugin() { addFilter(FP_SPHERE_PACKING, this); }
+FilterSpherePackPlugin::FilterSpherePackPlugin() {
+  addFilter(FP_SPHERE_PACKING, this);
+  addFilter(FP_SPHERE_PACKING_REMESH, this);
+}
 
 QString FilterSpherePackPlugin::pluginName() const { return "FilterSpherePack"; }
 
-// Frozen: this string is the key of the filter in .mlx scripts.
+// Frozen: these strings are the keys of the filters in .mlx scripts.
 QString FilterSpherePackPlugin::filterName(FilterID filter) const {
-  return filter == FP_SPHERE_PACKING ? QString("Surface Reconstruction: Sphere Packing") : QString("Error!");
+  switch (filter) {
+  case FP_SPHERE_PACKING: return QString("Surface Reconstruction: Sphere Packing");
+  case FP_SPHERE_PACKING_REMESH: return QString("Remeshing: Sphere Packing");
+  default: return QString("Error!");
+  }
 }
 
-// Frozen: the filter's name in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction filters.
+// Frozen: the filters' names in PyMeshLab (ms.apply_filter), after MeshLab's own reconstruction
+// (generate_surface_reconstruction_*) and remeshing (meshing_*_remeshing) filters.
 QString FilterSpherePackPlugin::pythonName(FilterID filter) const {
-  return filter == FP_SPHERE_PACKING ? QString("generate_surface_reconstruction_sphere_packing") : QString();
+  switch (filter) {
+  case FP_SPHERE_PACKING: return QString("generate_surface_reconstruction_sphere_packing");
+  case FP_SPHERE_PACKING_REMESH: return QString("meshing_sphere_packing_remeshing");
+  default: return QString();
+  }
 }
 
 // Shown at the top of the filter's dialog and as the menu's tooltip: a few sentences, so that the
 // dialog fits a screen 1000 px tall. The parameters are explained by their help texts and the docs.
 QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
+  if (filter == FP_SPHERE_PACKING_REMESH)
+    return QString(
+        "Remeshes a triangle mesh by packing touching spheres of diameter <i>d</i> on its surface; the "
+        "centres of the spheres become the vertices, all on the input surface. Every edge is at least "
+        "<i>d</i> long, the triangles are close to equilateral, the mesh is manifold without "
+        "intersecting faces, and it keeps the input's components, borders and genus where <i>d</i> is "
+        "below the size of its features. <i>d</i> left at 0 is the input's mean edge length. The mesh "
+        "goes to a new layer with per-face quality; the input is left unchanged.<br><br>"
+        "<i>H. Lipsch&uuml;tz, U. Reitebuch, K. Polthier, M. Skrodzki</i><br>"
+        "<b>\"Manifold Meshing of Point Clouds with Guaranteed Smallest Edge Length\"</b>, sections 3, 4 "
+        "and 6.");
   if (filter != FP_SPHERE_PACKING) return QString("Error!");
   return QString(
       "Reconstructs a triangle mesh from a point cloud <b>with normals</b> by packing touching "
@@ -44,7 +67,9 @@ QString FilterSpherePackPlugin::filterInfo(FilterID filter) const {
 
 FilterSpherePackPlugin::FilterClass FilterSpherePackPlugin::filterClass(FilterID) const { return Remeshing; }
 
-int FilterSpherePackPlugin::preConditions(FilterID) const { return MeshModel::MM_VERTNORMAL; }
+int FilterSpherePackPlugin::preConditions(FilterID filter) const {
+  return filter == FP_SPHERE_PACKING_REMESH ? int(MeshModel::MM_FACENUMBER) : int(MeshModel::MM_VERTNORMAL);
+}
 
 int FilterSpherePackPlugin::postConditions(FilterID) const {
   return MeshModel::MM_VERTNUMBER | MeshModel::MM_FACENUMBER;
@@ -53,6 +78,22 @@ int FilterSpherePackPlugin::postConditions(FilterID) const {
 void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, RichParameterList& parlst) {
   using growth::meshlab::RichLength;
   using growth::meshlab::RichPoint;
+  if (filter == FP_SPHERE_PACKING_REMESH) {
+    const growth::spherepack::RemeshParams def;
+    const double autoD = growth::spherepack::defaultRemeshDiameter(m.cm);
+    const float diag = m.cm.bbox.IsNull() ? 1.0f : m.cm.bbox.Diag();
+    const QString autoText = autoD > 0 ? QString(" For this layer: %1.").arg(autoD) : QString();
+    parlst.addParam(RichLength("sphereDiameter", 0.0f, 0.0f, diag,
+        "Sphere diameter d (shortest edge)",
+        "Every edge is at least d; most are close to it. 0 = the mean edge length." + autoText));
+    parlst.addParam(RichInt("windowSize", def.windowSize, "Window size w",
+        "Border window of the candidate priorities (sec. 4.2); 0 = breadth-first."));
+    parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
+        "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
+    parlst.addParam(RichFloat("creaseAngle", float(def.creaseAngleDeg), "Crease angle (degrees)",
+        "Edges whose faces' normals differ by more than this are creases."));
+    return;
+  }
   if (filter != FP_SPHERE_PACKING) return;
   // Lengths default to 0 = automatic (like Ball Pivoting's radius): derived from each cloud when
   // the filter runs, so the same .mlx script suits clouds of any scale. The tooltips show what
@@ -88,6 +129,7 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
 bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,
                                    vcg::CallBackPos* cb, growth::meshlab::Outputs& outputs) {
   if (filter == FP_SPHERE_PACKING) return applySpherePacking(md, par, cb, outputs);
+  if (filter == FP_SPHERE_PACKING_REMESH) return applyRemesh(md, par, cb, outputs);
   errorMessage = "Unknown filter.";
   return false;
 }
@@ -181,5 +223,69 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       double(st.memory.peak) / double(std::max<size_t>(st.inputPoints, 1)), mib * double(st.memory.input),
       mib * double(st.memory.boxGrid), mib * double(st.memory.growth), mib * double(st.memory.faces),
       mib * double(st.memory.output), mib * double(st.memory.estimate), mib * double(st.memory.limit));
+  return true;
+}
+
+bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                                         growth::meshlab::Outputs& outputs) {
+  MeshModel* in = md.mm();
+  if (in == nullptr) {
+    errorMessage = "No current layer: load a triangle mesh first.";
+    return false;
+  }
+  growth::spherepack::RemeshParams p;
+  p.sphereDiameter = par.getAbsPerc("sphereDiameter");
+  p.windowSize = par.getInt("windowSize");
+  p.maxBorderLength = par.getInt("maxBorderLength");
+  p.creaseAngleDeg = par.getFloat("creaseAngle");
+
+  growth::spherepack::RemeshStat st;
+  CMeshO result;
+  growth::meshlab::InterruptToCancel interrupt(cb);
+  try {
+    growth::spherepack::remesh(in->cm, result, p, st, interrupt.callback());
+  } catch (const growth::Cancelled&) {
+    errorMessage = "Sphere Packing remeshing was cancelled; no layer was added.";
+    return false;
+  } catch (const growth::Error& e) {
+    errorMessage = QString("Sphere Packing remeshing: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::bad_alloc&) {
+    errorMessage = "Sphere Packing remeshing ran out of memory: use a larger sphere diameter d.";
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  } catch (const std::exception& e) {
+    errorMessage = QString("Sphere Packing remeshing failed: ") + e.what();
+    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
+    return false;
+  }
+
+  MeshModel* out = md.addNewMesh("", in->label() + " (sphere packing remesh)", true);
+  out->updateDataMask(MeshModel::MM_FACEQUALITY);
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
+  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  outputs["vertices"] = int(st.vertices);
+  outputs["faces"] = int(st.faces);
+  outputs["holes"] = int(st.boundaryLoops);
+  outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["sphere_diameter"] = double(st.sphereDiameter);
+  outputs["seconds"] = double(st.seconds);
+
+  for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing remesh warning: %s", w.c_str());
+  Log("Sphere Packing remesh: input %zu vertices, %zu faces, %zu component%s, %zu boundary edges, mean edge %g, "
+      "area %g", st.inputVertices, st.inputFaces, st.inputComponents, st.inputComponents == 1 ? "" : "s",
+      st.inputBoundaryEdges, st.inputMeanEdge, st.inputArea);
+  Log("Sphere Packing remesh: sphere diameter d = %g (%s); %zu growth%s started, %zu input faces with no vertex "
+      "within d", st.sphereDiameter, st.diameterReason.c_str(), st.componentsStarted,
+      st.componentsStarted == 1 ? "" : "s", st.unreachedFaces);
+  Log("Sphere Packing remesh: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu boundary "
+      "loops (%zu regions left open, %zu of them beyond the input's boundary; %zu faces removed for a manifold "
+      "mesh without intersections)", st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops,
+      st.holes, st.regionsOutside, st.facesRemoved);
+  Log("Sphere Packing remesh: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
+      st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
+  Log("Sphere Packing remesh: time %.3f s (input %.3f, growth %.3f, regions %.3f, clean-up %.3f, output %.3f)",
+      st.seconds, st.secondsInput, st.secondsGrowth, st.secondsTriangulation, st.secondsCleanup, st.secondsOutput);
   return true;
 }

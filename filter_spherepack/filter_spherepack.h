@@ -15,7 +15,7 @@ class FilterSpherePackPlugin : public QObject, public growth::meshlab::Filter {
 #endif
 
 public:
-  enum { FP_SPHERE_PACKING };
+  enum { FP_SPHERE_PACKING, FP_SPHERE_PACKING_REMESH };
   using FilterID = growth::meshlab::FilterID;
 
   FilterSpherePackPlugin();
@@ -34,4 +34,6 @@ public:
 private:
   bool applySpherePacking(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
                           growth::meshlab::Outputs& outputs);
+  bool applyRemesh(MeshDocument& md, const RichParameterList& par, vcg::CallBackPos* cb,
+                   growth::meshlab::Outputs& outputs);
 };

@@ -15,6 +15,7 @@
 // within 2d sideways since edges of G are d long and the crossing point is within d of c), so the
 // caller gathers the vertices within crossingSearchRadius(d) of c.
 #include "borders.h"
+#include "splats.h"
 
 #include <growth/vec3.h>
 
@@ -43,5 +44,35 @@ inline bool segmentsCross2D(double p1x, double p1y, double p2x, double p2y, doub
 // within crossingSearchRadius(d) of c) that lies within d of c in the direction of n.
 bool newEdgesCross(const BorderGraph& g, const Vec3d& c, std::uint32_t a, std::uint32_t b, const Vec3d& n,
                    double d, const std::vector<std::uint32_t>& nearby);
+
+// The same, counting only the existing edges x–y for which keep(x, y) is true (the remesher leaves
+// out the edges on the other side of a crease, which its projection along n sees edge-on).
+template <class Keep>
+bool newEdgesCrossIf(const BorderGraph& g, const Vec3d& c, std::uint32_t a, std::uint32_t b, const Vec3d& n,
+                     double d, const std::vector<std::uint32_t>& nearby, Keep&& keep) {
+  Vec3d e1, e2;
+  tangentFrame(n, e1, e2);
+  struct P {
+    double x, y, h;
+  };
+  auto project = [&](const Vec3d& p) {
+    const Vec3d v = p - c;
+    return P{v * e1, v * e2, v * n};
+  };
+  const P pa = project(g.position(a)), pb = project(g.position(b));
+  for (std::uint32_t x : nearby) {
+    const P px = project(g.position(x));
+    for (int k = 0; k < g.degree(x); ++k) {
+      const std::uint32_t y = g.neighbour(x, k);
+      if (!keep(x, y)) continue;
+      const P py = project(g.position(y));
+      // Vicinity: the edge's height interval meets [−d, d].
+      if ((px.h > d && py.h > d) || (px.h < -d && py.h < -d)) continue;
+      if (x != a && y != a && segmentsCross2D(0, 0, pa.x, pa.y, px.x, px.y, py.x, py.y)) return true;
+      if (x != b && y != b && segmentsCross2D(0, 0, pb.x, pb.y, px.x, px.y, py.x, py.y)) return true;
+    }
+  }
+  return false;
+}
 
 } // namespace growth

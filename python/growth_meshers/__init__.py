@@ -1,4 +1,4 @@
-"""Sphere Packing and Robust G2S surface reconstruction for PyMeshLab 2025.7.
+"""Sphere Packing and Robust G2S surface reconstruction, and Sphere Packing remeshing, for PyMeshLab 2025.7.
 
 Importing this package loads its two MeshLab filter plugins into PyMeshLab, so that
 
@@ -8,6 +8,7 @@ Importing this package loads its two MeshLab filter plugins into PyMeshLab, so t
     ms.load_new_mesh("cloud.ply")
     ms.generate_surface_reconstruction_sphere_packing()   # needs normals
     ms.generate_surface_reconstruction_robust_g2s()
+    ms.meshing_sphere_packing_remeshing()                 # on a triangle mesh
 
 work like PyMeshLab's own filters (also through ``ms.apply_filter(name, ...)``).
 """
@@ -30,13 +31,14 @@ _here = pathlib.Path(__file__).resolve().parent
 #: The plugin libraries this package loads, built for PyMeshLab 2025.7 (double precision).
 PLUGINS = (_here / "plugins" / "libfilter_spherepack.so", _here / "plugins" / "libfilter_g2s.so")
 
-#: The filters' PyMeshLab names.
-FILTERS = ("generate_surface_reconstruction_sphere_packing", "generate_surface_reconstruction_robust_g2s")
+#: The filters' PyMeshLab names: each plugin's first filter (in the order of PLUGINS), then the others.
+FILTERS = ("generate_surface_reconstruction_sphere_packing", "generate_surface_reconstruction_robust_g2s",
+           "meshing_sphere_packing_remeshing")
 
 
 def _load():
     loaded = set(pymeshlab.filter_list())
-    for plugin, name in zip(PLUGINS, FILTERS):
+    for plugin, name in zip(PLUGINS, FILTERS[: len(PLUGINS)]):
         if name in loaded:  # a second import, or another copy of the plugin already loaded
             continue
         if not plugin.is_file():

@@ -22,6 +22,7 @@ import growth_meshers  # noqa: E402
 
 SP = "generate_surface_reconstruction_sphere_packing"
 G2S = "generate_surface_reconstruction_robust_g2s"
+REMESH = "meshing_sphere_packing_remeshing"
 SOURCE = pathlib.Path(os.environ.get("GROWTH_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 
 
@@ -73,7 +74,8 @@ def test_import_loads_both_filters_and_binds_methods():
     names = pymeshlab.filter_list()
     assert SP in names and G2S in names
     assert callable(getattr(pymeshlab.MeshSet, SP)) and callable(getattr(pymeshlab.MeshSet, G2S))
-    assert growth_meshers.FILTERS == (SP, G2S)
+    assert growth_meshers.FILTERS == (SP, G2S, REMESH)
+    assert REMESH in names and callable(getattr(pymeshlab.MeshSet, REMESH))
     assert all(p.is_file() and p.parent.name == "plugins" for p in growth_meshers.PLUGINS)
 
 
@@ -181,6 +183,40 @@ def test_chaining_with_isotropic_remeshing_and_quality_filters():
 
 
 # --- Robust G2S ----------------------------------------------------------------------------------
+
+# --- Remeshing: Sphere Packing --------------------------------------------------------------------
+
+def test_remeshing_adds_a_layer_with_edges_at_least_d_and_leaves_the_input_untouched():
+    ms = pymeshlab.MeshSet()
+    ms.create_torus(hradius=3.0, vradius=1.0, hsubdiv=48, vsubdiv=24)  # genus 1, closed
+    before_v, before_f = ms.current_mesh().vertex_matrix().copy(), ms.current_mesh().face_matrix().copy()
+    out = ms.apply_filter(REMESH)
+    assert ms.mesh_number() == 2 and ms.current_mesh_id() == 1
+    assert {"vertices", "faces", "holes", "faces_removed", "sphere_diameter", "seconds"} <= set(out), out
+    mesh = ms.current_mesh()
+    assert out["faces"] == mesh.face_number() > 0 and out["holes"] == 0 and out["faces_removed"] == 0
+    d = out["sphere_diameter"]
+    v, f = mesh.vertex_matrix(), mesh.face_matrix()
+    e, _ = edges_of(f)
+    assert np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1).min() >= d * (1 - 1e-12)
+    assert mesh.has_face_scalar() and mesh.face_scalar_array().mean() > 0.85
+    topo = assert_closed_manifold(ms)
+    assert topo["genus"] == 1, topo
+    assert np.array_equal(ms.mesh(0).vertex_matrix(), before_v) and np.array_equal(ms.mesh(0).face_matrix(), before_f)
+    # An absolute d: about a quarter of the vertices at twice the default.
+    ms.set_current_mesh(0)
+    out2 = ms.apply_filter(REMESH, spherediameter=pymeshlab.PureValue(2 * d))
+    assert out2["sphere_diameter"] == pytest.approx(2 * d, rel=1e-6)
+    assert 0.15 * out["vertices"] < out2["vertices"] < 0.35 * out["vertices"]
+
+
+def test_remeshing_a_point_cloud_raises_the_filters_message():
+    p, n = sphere_cloud(2000)
+    ms = meshset_with(p, n)
+    with pytest.raises(pymeshlab.PyMeshLabException, match="(?i)faces"):
+        ms.apply_filter(REMESH)
+    assert ms.mesh_number() == 1
+
 
 def test_robust_g2s_adds_a_layer_of_the_input_points():
     p, _ = sphere_cloud(seed=3)
