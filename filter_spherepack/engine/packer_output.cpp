@@ -114,6 +114,7 @@ void writeMesh(const std::vector<Triangle>& faces, const BorderGraph& g, bool fl
     st.nonManifoldVertices = topo.nonManifoldVertices;
     st.nonManifoldEdges = topo.nonManifoldEdges;
     st.boundaryLoops = topo.boundaryLoops;
+    st.holes = topo.boundaryLoops;
   }
   st.vertices = used.size();
   st.faces = faces.size();

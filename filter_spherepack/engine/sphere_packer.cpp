@@ -179,10 +179,14 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.memory.peak = st.memory.input + st.memory.boxGrid + st.memory.growth;
   grid.release();
   growth.releaseSearch();
+  // Where the cloud is, for the hole pass (the input is freed before it): the splats in float,
+  // copied once the box grid and the growth's search are freed (below the peak).
+  CloudCover cover;
+  if (params.closeHoles) cover = cloudCover(in.points, radius);
   in = InputCloud();
   order = Renumbering();
   std::vector<float>().swap(radius);
-  const size_t held = growth.memoryBytes(); // the graph G
+  const size_t held = growth.memoryBytes() + cover.memoryBytes(); // the graph G, the cover
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: region triangulation.
@@ -193,6 +197,9 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
   makeManifold(faces, g, params, floatStorage, st);
   dropSmallPieces(faces, g, params, st);
+  // The holes left where the cloud continues, closed with the packing's vertices.
+  closeHoles(faces, g, cover, params, floatStorage, st);
+  cover = CloudCover();
   st.secondsCleanup = watch.lap();
 
   // Output and report.

@@ -43,6 +43,9 @@ struct Params {
                                  // most the hardware's); the output is the same for any number
   bool rejectTwisted = true;     // reject a candidate whose new edges fall into other corners of its
                                  // parents seen along the box normal than in their own planes
+  bool closeHoles = true;        // close the holes of the output that the cloud covers with the
+                                 // packing's own vertices (packer_holes.cpp; a real boundary of an
+                                 // open surface is not covered and stays open)
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };
@@ -123,8 +126,19 @@ struct Stat {
   size_t splatsClamped = 0;      // local sizes: points whose Voronoi radius exceeded s (kept s)
   size_t vertices = 0;           // output vertices
   size_t faces = 0;
-  size_t holes = 0;              // regions left open (border longer than maxBorderLength, or not
-                                 // triangulable)
+  size_t holes = 0;              // holes of the output: its boundary loops (= boundaryLoops)
+  size_t regionsLeftOpen = 0;    // regions sec. 3.7 left open (border longer than maxBorderLength,
+                                 // or not triangulable)
+  // The hole pass (Params::closeHoles): loops of the mesh after the clean-up closed with the
+  // packing's vertices, the faces it added, and why the others stayed open: longer than
+  // kMaxHoleLoop; no triangulation without (nearly) flat faces or edges already there; a face
+  // where the cloud is not (a real boundary); a face folded back onto the mesh; a face through
+  // the mesh; a vertex of the loop where the boundary is not a single loop.
+  size_t holesClosed = 0;
+  size_t holeFacesAdded = 0;
+  size_t holeFacesRemoved = 0;   // faces of the rings taken out around holes before closing them
+  size_t holesTooLong = 0, holesNotTriangulable = 0, holesNotCovered = 0, holesFolded = 0,
+         holesCrossing = 0, holesOther = 0;
   size_t flatFacesRemoved = 0;   // faces of the regions left out because their vertices (as stored)
                                  // lie (nearly) on a line: an angle above 179° (region_triangulation.h)
   size_t longestBorder = 0;      // border edges of the longest region
