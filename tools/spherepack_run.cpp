@@ -146,9 +146,9 @@ int main(int argc, char** argv) {
     std::printf("boxes_two_sided: %zu\n", st.boxesTwoSided);
     std::printf("regions_left_open: %zu\nholes_closed: %zu\nhole_faces_added: %zu\nholes_too_long: %zu\n"
                 "holes_not_triangulable: %zu\nholes_not_covered: %zu\nholes_folded: %zu\nholes_crossing: %zu\n"
-                "holes_other: %zu\nhole_faces_removed: %zu\n",
+                "holes_other: %zu\nhole_faces_removed: %zu\nhole_islands_dropped: %zu\n",
                 st.regionsLeftOpen, st.holesClosed, st.holeFacesAdded, st.holesTooLong, st.holesNotTriangulable,
-                st.holesNotCovered, st.holesFolded, st.holesCrossing, st.holesOther, st.holeFacesRemoved);
+                st.holesNotCovered, st.holesFolded, st.holesCrossing, st.holesOther, st.holeFacesRemoved, st.holeIslandsDropped);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
                 "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,

@@ -46,12 +46,14 @@ inline bool hasHalfEdge(const Triangle& f, std::uint32_t a, std::uint32_t b) {
   return (f[0] == a && f[1] == b) || (f[1] == a && f[2] == b) || (f[2] == a && f[0] == b);
 }
 
-enum class Refusal { None, NotTriangulable, NotCovered, Folded, Crossing, TooLong };
+// FacesAway: the loop faces the other way from the mesh along it (the outline of a piece that is a
+// disk of its own, seen from outside).
+enum class Refusal { None, NotTriangulable, NotCovered, Folded, FacesAway, Crossing, TooLong };
 
 void count(Refusal why, Stat& st) {
   if (why == Refusal::TooLong) ++st.holesTooLong;
   else if (why == Refusal::NotCovered) ++st.holesNotCovered;
-  else if (why == Refusal::Folded) ++st.holesFolded;
+  else if (why == Refusal::Folded || why == Refusal::FacesAway) ++st.holesFolded;
   else if (why == Refusal::Crossing) ++st.holesCrossing;
   else ++st.holesNotTriangulable;
 }
@@ -123,6 +125,28 @@ double coverReach(const std::vector<std::uint32_t>& loop, const std::vector<Vec3
   double radius = 0;
   for (std::uint32_t v : loop) radius = std::max(radius, (pos[v] - centre).Norm());
   return std::max(kCoverReachPerD * d, kCoverReachPerLoopRadius * radius);
+}
+
+// Distance from p to the triangle abc (its closest point: inside, on an edge or at a corner).
+double pointTriangleDistance(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Vec3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab * ap, d2 = ac * ap;
+  if (d1 <= 0 && d2 <= 0) return ap.Norm();
+  const Vec3d bp = p - b;
+  const double d3 = ab * bp, d4 = ac * bp;
+  if (d3 >= 0 && d4 <= d3) return bp.Norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + ab * (d1 / (d1 - d3)))).Norm();
+  const Vec3d cp = p - c;
+  const double d5 = ab * cp, d6 = ac * cp;
+  if (d6 >= 0 && d5 <= d6) return cp.Norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + ac * (d2 / (d2 - d6)))).Norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))))).Norm();
+  const double den = 1 / (va + vb + vc);
+  return (p - (a + ab * (vb * den) + ac * (vc * den))).Norm();
 }
 
 // The checks a closure must pass on its own (the crossing test comes after, against the mesh):
@@ -389,7 +413,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
     Refusal why = Refusal::NotTriangulable;
     // The loop faces the way the mesh along it does.
     if (!(agree > 0)) {
-      why = Refusal::Folded;
+      why = Refusal::FacesAway;
     } else {
       for (int k = 0; k < 2; ++k) {
         std::vector<Triangle> made;
@@ -418,8 +442,9 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
     return tries.empty() ? why : Refusal::None;
   };
 
-  // Each loop's outcome: open (why), closed, or taken into another's closure.
-  enum class Outcome { Open, Closed, Merged };
+  // Each loop's outcome: open (why), closed, taken into another's closure, or the outline of an
+  // island dropped.
+  enum class Outcome { Open, Closed, Merged, Island };
   std::vector<Outcome> outcome(loops.size(), Outcome::Open);
   std::vector<Refusal> reason(loops.size(), Refusal::NotTriangulable);
   // A ring: the alive faces around the loop taken out, so that the hole grows by one ring of faces
@@ -574,9 +599,72 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
     }
     st.holeFacesAdded += tries.front().size();
   }
+  // Islands: a piece bounded by one loop that faces away, lying on the rest of the mesh (every
+  // vertex within the loop's cover reach of its faces, as a closure's faces must lie within it of
+  // the cloud): a second layer left inside a hole that has been closed under it (the clean-up cut
+  // it off, or the growth started it apart). It goes.
+  {
+    std::vector<std::uint32_t> root(nv);
+    for (std::uint32_t v = 0; v < nv; ++v) root[v] = v;
+    auto find = [&](std::uint32_t v) {
+      while (root[v] != v) v = root[v] = root[root[v]];
+      return v;
+    };
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (!dead[f])
+        for (int k = 1; k < 3; ++k) {
+          const std::uint32_t a = find(faces[f][0]), b = find(faces[f][k]);
+          if (a != b) root[std::max(a, b)] = std::min(a, b);
+        }
+    std::unordered_map<std::uint32_t, size_t> pieceFaces, pieceLoops;
+    for (size_t f = 0; f < faces.size(); ++f)
+      if (!dead[f]) ++pieceFaces[find(faces[f][0])];
+    size_t largest = 0;
+    for (const auto& e : pieceFaces) largest = std::max(largest, e.second);
+    for (size_t l = 0; l < loops.size(); ++l)
+      if (outcome[l] == Outcome::Open) ++pieceLoops[find(loops[l][0])];
+    for (size_t l = 0; l < loops.size(); ++l) {
+      if (outcome[l] != Outcome::Open || reason[l] != Refusal::FacesAway) continue;
+      const std::uint32_t piece = find(loops[l][0]);
+      if (pieceLoops[piece] != 1 || pieceFaces[piece] >= largest) continue;
+      std::vector<std::uint32_t> own;
+      for (size_t f = 0; f < faces.size(); ++f)
+        if (!dead[f] && find(faces[f][0]) == piece) own.push_back(std::uint32_t(f));
+      const double reach = coverReach(loops[l], pos, d);
+      bool lying = true;
+      for (size_t i = 0; i < own.size() && lying; ++i)
+        for (std::uint32_t v : faces[own[i]]) {
+          const Vec3d& p = stored[v];
+          bool near = false, unlisted = false;
+          Box3d b;
+          b.Add(p);
+          b.Offset(reach);
+          forEachCell(cellsOf(b, h), [&](std::uint64_t k) {
+            auto it = cells.find(k);
+            if (it == cells.end()) {
+              unlisted = true;
+              return;
+            }
+            for (std::uint32_t f : it->second)
+              if (!near && !dead[f] && find(faces[f][0]) != piece &&
+                  pointTriangleDistance(p, stored[faces[f][0]], stored[faces[f][1]], stored[faces[f][2]]) <= reach)
+                near = true;
+          });
+          if (unlisted || !near) {
+            lying = false;
+            break;
+          }
+        }
+      if (!lying) continue;
+      for (std::uint32_t f : own) dead[f] = 1;
+      outcome[l] = Outcome::Island;
+      ++st.holeIslandsDropped;
+      st.holeFacesRemoved += own.size();
+    }
+  }
   for (size_t l = 0; l < loops.size(); ++l) {
     if (outcome[l] == Outcome::Open) count(reason[l], st);
-    else ++st.holesClosed;
+    else if (outcome[l] == Outcome::Closed || outcome[l] == Outcome::Merged) ++st.holesClosed;
   }
   // The rings of the closures accepted go.
   size_t w = 0;

@@ -136,7 +136,10 @@ struct Stat {
   // the mesh; a vertex of the loop where the boundary is not a single loop.
   size_t holesClosed = 0;
   size_t holeFacesAdded = 0;
-  size_t holeFacesRemoved = 0;   // faces of the rings taken out around holes before closing them
+  size_t holeFacesRemoved = 0;   // faces of the rings taken out around holes before closing them,
+                                 // and of the islands dropped
+  size_t holeIslandsDropped = 0; // pieces bounded by one loop that faces away, lying on the rest of
+                                 // the mesh (a second layer left in a hole closed under it)
   size_t holesTooLong = 0, holesNotTriangulable = 0, holesNotCovered = 0, holesFolded = 0,
          holesCrossing = 0, holesOther = 0;
   size_t flatFacesRemoved = 0;   // faces of the regions left out because their vertices (as stored)
