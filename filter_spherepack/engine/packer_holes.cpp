@@ -307,7 +307,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
   splats.wide = double(cover.largest) + splats.widen;
   {
     const double g = 4 * d;
-    const double rings = 2 * kMaxHoleRings * kMaxEdgePerD * d; // how far rings can grow a hole
+    const double rings = kMaxHoleRings * kMaxEdgePerD * d; // how far rings can grow a hole
     std::unordered_map<std::uint64_t, char> marked;
     for (const auto& loop : loops) {
       if (loop.size() > size_t(kMaxHoleLoop)) continue;
@@ -320,9 +320,9 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
     const size_t points = cover.radius.size();
     for (size_t i = 0; i < points; ++i) {
       const Vec3d p(cover.xyz[3 * i], cover.xyz[3 * i + 1], cover.xyz[3 * i + 2]);
-      Box3d one;
-      one.Add(p);
-      if (marked.count(cellKey(cellsOf(one, g).lo[0], cellsOf(one, g).lo[1], cellsOf(one, g).lo[2])) == 0) continue;
+      const std::uint64_t key = cellKey(std::int64_t(std::floor(p[0] / g)), std::int64_t(std::floor(p[1] / g)),
+                                        std::int64_t(std::floor(p[2] / g)));
+      if (marked.count(key) == 0) continue;
       splats.points.push_back(p);
       splats.radius.push_back(cover.radius[i]);
     }
@@ -365,7 +365,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
     if (loop.size() > size_t(kMaxHoleLoop)) continue;
     Box3d b;
     for (std::uint32_t v : loop) b.Add(stored[v]);
-    b.Offset(2 * kMaxHoleRings * kMaxEdgePerD * d);
+    b.Offset(kMaxHoleRings * kMaxEdgePerD * d);
     forEachCell(cellsOf(b, h), [&](std::uint64_t k) { cells[k]; });
   }
   for (size_t f = 0; f < faces.size(); ++f)
