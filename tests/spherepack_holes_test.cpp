@@ -104,6 +104,20 @@ TEST(SpherePackHoles, BoxWithEstimatedNormalsClosesAcrossD) {
     expectCloses(cloud, spacings, 2, "slab 0.4 at " + std::to_string(spacings) + " spacings");
 }
 
+TEST(SpherePackHoles, BoxWithEstimatedNormalsIsClosedAtLargeD) {
+  // At 6 and 10 spacings the growth leaves no hole here; the pass must keep it so.
+  const growth::Cloud cloud = estimatedCloud(slabSpec());
+  for (double spacings : {6.0, 10.0}) {
+    const std::string what = "slab 0.4 at " + std::to_string(spacings) + " spacings";
+    Result r;
+    run(cloud, spacings, true, r);
+    expectGuarantees(r, what);
+    EXPECT_EQ(r.m.boundaryLoops, 0u) << what;
+    EXPECT_EQ(r.m.components, 1u) << what;
+    EXPECT_EQ(r.m.eulerCharacteristic, 2) << what;
+  }
+}
+
 TEST(SpherePackHoles, SparseSamplingWithEstimatedNormalsCloses) {
   // Density 10:1 to 16:1 along z: the sparse side holds regions the splats barely cover.
   growth::CloudSpec g;
