@@ -635,22 +635,19 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
       for (size_t i = 0; i < own.size() && lying; ++i)
         for (std::uint32_t v : faces[own[i]]) {
           const Vec3d& p = stored[v];
-          bool near = false, unlisted = false;
+          bool near = false; // faces in cells not gathered are not seen: the piece then stays
           Box3d b;
           b.Add(p);
           b.Offset(reach);
           forEachCell(cellsOf(b, h), [&](std::uint64_t k) {
             auto it = cells.find(k);
-            if (it == cells.end()) {
-              unlisted = true;
-              return;
-            }
+            if (it == cells.end()) return;
             for (std::uint32_t f : it->second)
               if (!near && !dead[f] && find(faces[f][0]) != piece &&
                   pointTriangleDistance(p, stored[faces[f][0]], stored[faces[f][1]], stored[faces[f][2]]) <= reach)
                 near = true;
           });
-          if (unlisted || !near) {
+          if (!near) {
             lying = false;
             break;
           }
