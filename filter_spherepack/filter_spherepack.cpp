@@ -115,7 +115,7 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
   parlst.addParam(RichInt("windowSize", def.windowSize, "Window size w",
       "Border window of the candidate priorities (sec. 4.2); 0 = breadth-first."));
   parlst.addParam(RichInt("maxBorderLength", def.maxBorderLength, "Border limit",
-      "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
+      "Longer region borders (edges) stay open unless the cloud covers them (sec. 3.7)."));
   parlst.addParam(RichInt("minComponentFaces", def.minComponentFaces, "Smallest piece kept",
       "Pieces with fewer faces are dropped (second scan layers, stray points); 0 keeps all."));
   parlst.addParam(RichBool("useStartPoints", def.useStartPoints, "Use given starting points",
@@ -207,11 +207,16 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       "layers, bits of stray points", st.componentsDropped, st.componentsDropped == 1 ? "" : "s",
       p.minComponentFaces, st.componentFacesDropped);
   Log("Sphere Packing: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu holes (boundary "
-      "loops: %zu regions left open by the border limit or not triangulable, %zu faces removed for a manifold mesh "
-      "without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu boxes where d "
-      "looked too large (%zu of them saw two sides and kept both, as two layers)",
-      st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.facesRemoved,
+      "loops; before the hole pass: %zu regions left open by the border limit or not triangulable, %zu faces removed "
+      "for a manifold mesh without intersections, %zu faces with (nearly) collinear vertices left out); %zu of %zu "
+      "boxes where d looked too large (%zu of them saw two sides and kept both, as two layers)",
+      st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.regionsLeftOpen, st.facesRemoved,
       st.flatFacesRemoved, st.boxesDTooLarge, st.boxes, st.boxesTwoSided);
+  Log("Sphere Packing: hole pass: %zu holes closed where the cloud covers them (%zu faces added, %zu taken out "
+      "around them); left open: %zu not covered by the cloud (a real boundary), %zu too long, %zu not "
+      "triangulable, %zu folded, %zu through the mesh, %zu other",
+      st.holesClosed, st.holeFacesAdded, st.holeFacesRemoved, st.holesNotCovered, st.holesTooLong,
+      st.holesNotTriangulable, st.holesFolded, st.holesCrossing, st.holesOther);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "

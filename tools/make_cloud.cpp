@@ -2,13 +2,17 @@
 //   make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab|scan --points N [--seed S]
 //              [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA | --gauss-spacings F]
 //              [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [--flip-normals FRACTION]
-//              [--parts K (scan)] -o out.ply
+//              [--parts K (scan)] [--estimate-normals K] -o out.ply
+// --estimate-normals K: the normals estimated from the points (PCA over the K nearest, signs
+// propagated over the neighbour graph, growth/point_normals.h) instead of the exact ones, as
+// MeshLab's "Compute normals for point sets" gives them (its default K is 10).
 // --gauss-spacings F: Gaussian noise of sigma F * sqrt(area / N), a fraction of the sampling's
 // spacing whatever the size. A scan-like cloud of ten million points:
 //   make_cloud --shape scan --parts 6 --points 9803922 --gauss-spacings 0.1 --outliers 0.02
 //     --flip-normals 0.01 -o scan10m.ply
 #include <growth/cloud_generator.h>
 #include <growth/error.h>
+#include <growth/point_normals.h>
 
 #include <cmath>
 #include <cstdio>
@@ -22,13 +26,15 @@ static void usage() {
                "usage: make_cloud --shape sphere|torus|patch|genus2|latlong|hollowball|slab|scan --points N [--seed S]\n"
                "                  [--nonuniform [--density-ratio R]] [--noise NU] [--gauss SIGMA | --gauss-spacings F]\n"
                "                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N]\n"
-               "                  [--flip-normals FRACTION] [--parts K (scan)] [--thickness T (slab)] -o out.ply\n");
+               "                  [--flip-normals FRACTION] [--parts K (scan)] [--thickness T (slab)]\n"
+               "                  [--estimate-normals K] -o out.ply\n");
 }
 
 int main(int argc, char** argv) {
   growth::CloudSpec spec;
   std::string out;
   double gaussSpacings = 0;
+  int estimateK = 0;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -50,6 +56,7 @@ int main(int argc, char** argv) {
       else if (a == "--gauss-spacings") gaussSpacings = std::atof(value());
       else if (a == "--flip-normals") spec.flippedNormals = std::atof(value());
       else if (a == "--parts") spec.scanParts = std::atoi(value());
+      else if (a == "--estimate-normals") estimateK = std::atoi(value());
       else if (a == "-o") out = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
       else throw growth::Error("unknown argument " + a);
@@ -60,7 +67,8 @@ int main(int argc, char** argv) {
       if (spec.count == 0) throw growth::Error("a cloud needs at least one point");
       spec.gaussianSigma = gaussSpacings * std::sqrt(growth::shapeArea(spec) / double(spec.count));
     }
-    const growth::Cloud c = growth::generateCloud(spec);
+    growth::Cloud c = growth::generateCloud(spec);
+    if (estimateK != 0) c.normals = growth::estimateNormals(c.points, estimateK);
     growth::writePly(out, c);
     std::printf("%s: %zu points (%s)\n", out.c_str(), c.points.size(), growth::shapeName(spec.shape));
     if (spec.gaussianSigma > 0) std::printf("gaussian sigma: %.9g\n", spec.gaussianSigma);

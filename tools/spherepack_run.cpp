@@ -4,7 +4,7 @@
 //   spherepack_run --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform] [--noise NU]
 //                  [--outliers FRACTION] [--cluster FRACTION] [--far-points N] [--thickness T (slab)] [options]      a generated cloud
 // options: --d D (absolute)  --d-spacings K (d = K · mean spacing)  --s S  --s-d F (s = F · d)
-//          --global-splats  --keep-twisted (no twisted-candidate rejection)  --w W  --border B  --threads T (0 = automatic)
+//          --global-splats  --keep-twisted (no twisted-candidate rejection)  --no-hole-pass (holes left as they are)  --w W  --border B  --threads T (0 = automatic)
 //          --min-component-faces F (drop pieces with fewer faces; 0 keeps all)
 //          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
 //          --repeat R (best of R runs; each phase time is that phase's best)
@@ -34,7 +34,8 @@ static void usage() {
   std::fprintf(stderr,
                "usage: spherepack_run <cloud.ply> | --shape sphere|torus|patch|genus2|latlong|hollowball|slab --points N [--seed S] [--nonuniform]\n"
                "                      [--noise NU] [--outliers FRACTION] [--thickness T]\n"
-               "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--w W] [--border B] [--threads T]\n"
+               "       [--d D | --d-spacings K] [--s S | --s-d F] [--global-splats] [--keep-twisted] [--no-hole-pass]\n"
+               "       [--w W] [--border B] [--threads T]\n"
                "       [--min-component-faces F]\n"
                "       [--spatial-order-min N]\n"
                "       [--repeat R] [--measure] [--points-only] [-o out.ply]\n");
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
       else if (a == "--s-d") sOverD = std::atof(value());
       else if (a == "--global-splats") params.localSplatSizes = false;
       else if (a == "--keep-twisted") params.rejectTwisted = false;
+      else if (a == "--no-hole-pass") params.closeHoles = false;
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
@@ -143,6 +145,11 @@ int main(int argc, char** argv) {
                 st.vertices, st.faces, st.holes, st.longestBorder, st.meanBorderLength, st.smallestEdge, st.qualityAvg);
     std::printf("boxes_two_sided: %zu\n", st.boxesTwoSided);
     std::printf("box_references: %zu\n", st.boxReferences);
+    std::printf("regions_left_open: %zu\nholes_closed: %zu\nhole_faces_added: %zu\nholes_too_long: %zu\n"
+                "holes_not_triangulable: %zu\nholes_not_covered: %zu\nholes_folded: %zu\nholes_crossing: %zu\n"
+                "holes_other: %zu\nhole_faces_removed: %zu\nhole_islands_dropped: %zu\n",
+                st.regionsLeftOpen, st.holesClosed, st.holeFacesAdded, st.holesTooLong, st.holesNotTriangulable,
+                st.holesNotCovered, st.holesFolded, st.holesCrossing, st.holesOther, st.holeFacesRemoved, st.holeIslandsDropped);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
                 "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,

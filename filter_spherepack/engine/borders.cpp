@@ -12,6 +12,12 @@ void BorderGraph::clear() {
   edges_ = 0;
 }
 
+void BorderGraph::releaseAdjacency() {
+  std::vector<Rotation>().swap(rot_);
+  std::vector<Vec3d>().swap(nrm_);
+  edges_ = 0;
+}
+
 void BorderGraph::reserve(size_t n) {
   pos_.reserve(n);
   nrm_.reserve(n);

@@ -42,6 +42,10 @@ public:
   static constexpr int kMaxDegree = 12;
 
   void clear();
+  // Frees the rotations and the normals, keeping the positions (vertexCount(), position() and
+  // positions() stay; nothing else may be asked afterwards): the regions are triangulated, and the
+  // clean-up and the output need the positions only.
+  void releaseAdjacency();
   void reserve(size_t vertices);
   std::uint32_t addVertex(const Vec3d& position, const Vec3d& normal);
 

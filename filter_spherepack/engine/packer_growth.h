@@ -48,7 +48,8 @@ public:
   }
 
   const BorderGraph& graph() const { return graph_; }
-  // Frees the graph G too (after the output is written).
+  // Frees the graph's rotations and normals (after the regions are triangulated), then the graph.
+  void releaseAdjacency() { graph_.releaseAdjacency(); }
   void releaseGraph() { graph_ = BorderGraph(); }
   bool anyVertexCloserThan(const Vec3d& x, double r) const {
     return vgrid_.anyCloserThan(x, r, graph_.positions(), kNoVertex, kNoVertex);

@@ -121,6 +121,7 @@ void checkTopology(const MeshArrays& out, Stat& st) {
   st.nonManifoldVertices = topo.nonManifoldVertices;
   st.nonManifoldEdges = topo.nonManifoldEdges;
   st.boundaryLoops = topo.boundaryLoops;
+  st.holes = topo.boundaryLoops;
 }
 
 // The report: warnings on what the cloud made the method do (unoriented normals, d too large for

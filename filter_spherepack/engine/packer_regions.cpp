@@ -23,7 +23,7 @@ std::vector<Triangle> triangulate(const BorderGraph& g, const Params& params, bo
   std::vector<Triangle> faces;
   faces.reserve(2 * g.vertexCount() + 16);
   const RegionStats rs = triangulateRegions(g.borders(), g.positions(), g.normals(), params.maxBorderLength, edges, faces);
-  st.holes = rs.holes;
+  st.regionsLeftOpen = rs.holes;
   st.longestBorder = rs.longestBorder;
   st.meanBorderLength = rs.borders > 0 ? double(rs.borderEdges) / double(rs.borders) : 0;
   // No face with (nearly) collinear vertices is output (region_triangulation.h, nearlyCollinear),

@@ -168,6 +168,58 @@ void makeManifold(std::vector<Triangle>& faces, const BorderGraph& g, const Para
                   Stat& st);
 void dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const Params& params, Stat& st);
 
+// packer_holes.cpp: the hole pass (docs/design/spherepack-holes.md). Where the cloud is: the
+// splats, kept in float (16 bytes a point) once the input is freed.
+struct CloudCover {
+  std::vector<float> xyz;    // the points, 3 floats each
+  std::vector<float> radius; // their splat radii (sec. 4.3)
+  float largest = 0;         // the largest radius
+  size_t memoryBytes() const { return xyz.capacity() * sizeof(float) + radius.capacity() * sizeof(float); }
+};
+CloudCover cloudCover(const std::vector<Vec3d>& points, const std::vector<float>& radius);
+// A closure's face is where the cloud is when its centroid lies on a splat widened by
+// kCoverWidenPerD·d and thickened along the face's normal: a point within its splat radius +
+// kCoverWidenPerD·d of the centroid across the normal, and within the reach along it, the larger
+// of kCoverReachPerD·d and kCoverReachPerLoopRadius × the loop's radius (the largest distance of
+// its vertices from their centroid). A closure is a chord of the surface, off it by up to the
+// sagitta of the hole, which grows with the hole; where the sampling is sparser than the largest
+// splat radius s allows, the splats (clamped to s) leave gaps, which are the holes the growth
+// could not fill. Across a real boundary of an open surface no splat reaches: its loop is longer
+// than ∂max, so the middle of its closure lies farther than s + d from the cloud across the
+// normal, and the surface does not come back within half the loop's radius along it.
+constexpr double kCoverReachPerD = 2.0;
+constexpr double kCoverReachPerLoopRadius = 0.5;
+constexpr double kCoverWidenPerD = 1.0;
+// Loops of more edges are left open without a try (the ear cut is quadratic in the loop's length).
+constexpr int kMaxHoleLoop = 2000;
+// A hole whose closures all fail a check (but the cloud's) grows by a ring of faces, up to this
+// many times, and is tried again: the faces next to it are often the folded ones that kept it open.
+constexpr int kMaxHoleRings = 2;
+// Where a ring leaves the grown hole pinched or split, the faces around those vertices join it, up
+// to this many times.
+constexpr int kMaxRingFixes = 3;
+// How far the rings are expected to grow a hole, per ring, in d (the packing's edges are d long,
+// sec. 3.4, the regions' diagonals a few d): the faces and splats near the holes are gathered that
+// far around them. A closure face reaching beyond counts as crossing, one beyond the splats
+// gathered as not covered: the hole then stays open.
+constexpr double kMaxEdgePerD = 3.0;
+// Loops of more edges get the ear cut only, not the least-bend triangulation (cubic in the length).
+constexpr int kMaxLeastBendLoop = 150;
+// A closure's face and the mesh's face across a loop edge bend by less than this (a face folded
+// flat back onto the mesh is refused; the mesh's own creases near a hole can reach 150°).
+constexpr double kCosMaxClosureBend = -0.95; // about 162°
+// Every boundary loop of `faces` (manifold, oriented) is closed by sec. 3.7's ear cut of the loop
+// projected on the plane of its area normal, using the packing's vertices only (so every new edge
+// is >= d), when every new face is where the cloud is (`cover`, kCoverReachPerD) and the new faces
+// have no (nearly) collinear vertices, add no edge the mesh has, do not fold back onto the mesh
+// along the loop (kCosMaxClosureBend) and intersect neither the mesh nor the closures accepted
+// before them; and the loop faces the way the mesh around it does (its area normal and the
+// normals of the mesh's faces along it agree on the whole: the loop of a piece that is a disk of
+// its own, whose closure would double it, faces the other way). The mesh stays manifold and
+// oriented: a disk is glued along each loop closed.
+void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudCover& cover, const Params& params,
+                bool floatStorage, Stat& st);
+
 // packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, its topology checked (on
 // the output alone, once the graph and the faces are freed: the check's arrays, about 100 bytes a
 // face, then stay below the growth's peak), and the report.

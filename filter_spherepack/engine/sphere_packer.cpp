@@ -179,21 +179,31 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.memory.peak = st.memory.input + st.memory.boxGrid + st.memory.growth;
   grid.release();
   growth.releaseSearch();
+  // Where the cloud is, for the hole pass (the input is freed before it): the splats in float,
+  // copied once the box grid and the growth's search are freed (below the peak).
+  CloudCover cover;
+  if (params.closeHoles) cover = cloudCover(in.points, radius);
   in = InputCloud();
   order = Renumbering();
   std::vector<float>().swap(radius);
   releaseFreeHeap();
-  const size_t held = growth.memoryBytes(); // the graph G
+  const size_t coverBytes = cover.memoryBytes();
   st.secondsGrowth = watch.lap();
 
   // Sec. 3.7: region triangulation.
   progress.phase("Sphere packing: triangulating the regions", 90, 97);
   std::vector<Triangle> faces = triangulate(g, params, floatStorage, st);
+  growth.releaseAdjacency(); // the positions stay
   st.secondsTriangulation = watch.lap();
 
   // Clean-up: manifold and free of self-intersections (sec. 3.1's guarantee on any input), no small pieces.
   makeManifold(faces, g, params, floatStorage, st);
   dropSmallPieces(faces, g, params, st);
+  // The holes left where the cloud continues, closed with the packing's vertices.
+  closeHoles(faces, g, cover, params, floatStorage, st);
+  cover = CloudCover();
+  st.memory.faces = faces.capacity() * sizeof(Triangle);
+  st.memory.peak = std::max(st.memory.peak, growth.memoryBytes() + coverBytes + st.memory.faces);
   st.secondsCleanup = watch.lap();
 
   // Output and report.
@@ -203,7 +213,7 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   st.memory.faces = faces.capacity() * sizeof(Triangle);
   st.memory.output = out.vertices.capacity() * sizeof(Vec3d) + out.faces.capacity() * sizeof(out.faces[0]) +
                      out.faceQuality.capacity() * sizeof(double);
-  st.memory.peak = std::max(st.memory.peak, held + st.memory.faces + st.memory.output);
+  st.memory.peak = std::max(st.memory.peak, growth.memoryBytes() + st.memory.faces + st.memory.output);
   const size_t graphVertices = g.vertexCount();
   const bool noFaces = faces.empty();
   std::vector<Triangle>().swap(faces);

@@ -43,6 +43,9 @@ struct Params {
                                  // most the hardware's); the output is the same for any number
   bool rejectTwisted = true;     // reject a candidate whose new edges fall into other corners of its
                                  // parents seen along the box normal than in their own planes
+  bool closeHoles = true;        // close the holes of the output that the cloud covers with the
+                                 // packing's own vertices (packer_holes.cpp; a real boundary of an
+                                 // open surface is not covered and stays open)
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };
@@ -123,8 +126,22 @@ struct Stat {
   size_t splatsClamped = 0;      // local sizes: points whose Voronoi radius exceeded s (kept s)
   size_t vertices = 0;           // output vertices
   size_t faces = 0;
-  size_t holes = 0;              // regions left open (border longer than maxBorderLength, or not
-                                 // triangulable)
+  size_t holes = 0;              // holes of the output: its boundary loops (= boundaryLoops)
+  size_t regionsLeftOpen = 0;    // regions sec. 3.7 left open (border longer than maxBorderLength,
+                                 // or not triangulable)
+  // The hole pass (Params::closeHoles): loops of the mesh after the clean-up closed with the
+  // packing's vertices, the faces it added, and why the others stayed open: longer than
+  // kMaxHoleLoop; no triangulation without (nearly) flat faces or edges already there; a face
+  // where the cloud is not (a real boundary); a face folded back onto the mesh; a face through
+  // the mesh; a vertex of the loop where the boundary is not a single loop.
+  size_t holesClosed = 0;
+  size_t holeFacesAdded = 0;
+  size_t holeFacesRemoved = 0;   // faces of the rings taken out around holes before closing them,
+                                 // and of the islands dropped
+  size_t holeIslandsDropped = 0; // pieces bounded by one loop that faces away, lying on the rest of
+                                 // the mesh (a second layer left in a hole closed under it)
+  size_t holesTooLong = 0, holesNotTriangulable = 0, holesNotCovered = 0, holesFolded = 0,
+         holesCrossing = 0, holesOther = 0;
   size_t flatFacesRemoved = 0;   // faces of the regions left out because their vertices (as stored)
                                  // lie (nearly) on a line: an angle above 179° (region_triangulation.h)
   size_t longestBorder = 0;      // border edges of the longest region
@@ -164,7 +181,10 @@ struct Stat {
     size_t input = 0;   // positions and normals (double), splat radii, the spatial order
     size_t boxGrid = 0; // box hash, per-box normals and flags, the boxes' point lists (sec. 4.1)
     size_t growth = 0;  // graph G with its rotations, vertex grid, splat vertex lists, candidate queue
-    size_t faces = 0;   // the triangles of the regions and the clean-up's arrays
+    size_t faces = 0;   // the triangles of the regions (the clean-up's and the hole pass's working
+                        // arrays, up to about 150 bytes a face while they run, are not counted: they
+                        // come after the graph's rotations are freed, below the growth's peak;
+                        // spherepack_run's bytes_per_point_engine, from the RSS, includes them)
     size_t output = 0;  // the mesh handed to the caller (MeshArrays)
     size_t peak = 0;
     size_t estimate = 0; // the peak as estimated before the box grid (Params::maxMemoryBytes)
