@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace growth {
@@ -245,6 +246,7 @@ void joinFacingEnds(std::vector<CloudFeatures::Line>& lines, double d) {
     if (bc == 1) std::reverse(B.p.begin(), B.p.end()), std::reverse(B.n.begin(), B.n.end());
     A.p.insert(A.p.end(), B.p.begin(), B.p.end());
     A.n.insert(A.n.end(), B.n.begin(), B.n.end());
+    A.support += B.support;
     lines.erase(lines.begin() + std::ptrdiff_t(bm));
   }
 }
@@ -327,9 +329,10 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     mn.Normalize();
     return true;
   };
+  size_t support = 0;
   auto markUsed = [&](const Vec3d& x, const Vec3d& t) {
     cgrid.forEachInBall(x, reach, [&](int j, double d2) {
-      if (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace) used[size_t(j)] = 1;
+      if (!used[size_t(j)] && (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace)) used[size_t(j)] = 1, ++support;
     });
   };
   const size_t maxSteps = 4 * np + 16;
@@ -337,6 +340,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     if (used[s]) continue;
     Vec3d x0, t0, n0;
     if (!seedAt(s, x0, t0, n0)) continue;
+    support = 0;
     markUsed(x0, t0);
     std::vector<Vec3d> half[2], halfN[2];
     bool closed = false;
@@ -369,6 +373,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
       line.n.push_back(n0);
       line.closed = true;
     }
+    line.support = support;
     f.lines.push_back(std::move(line));
   }
   joinFacingEnds(f.lines, d);
@@ -392,7 +397,8 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   {
     size_t w = 0;
     for (size_t l = 0; l < f.lines.size(); ++l) {
-      if (polylineLength(f.lines[l].p) < kMinLinePerD * d) ++f.linesDropped;
+      const double len = polylineLength(f.lines[l].p);
+      if (len < kMinLinePerD * d || double(f.lines[l].support) < kMinSupportPerD * len / d) ++f.linesDropped;
       else if (w++ != l) f.lines[w - 1] = std::move(f.lines[l]);
     }
     f.lines.resize(w);
@@ -502,11 +508,16 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     }
   PointGrid lgrid;
   lgrid.build(dense, w);
+  // zone: 1 within w of a line, 3 farther than kPatchReachPerZone·w (every patch), 0 between.
   std::vector<char> zone(np, 0);
-  for (std::uint32_t i = 0; i < np; ++i) zone[i] = lgrid.forEachInBallWhile(P[i], w, [](int, double) { return false; }) ? 0 : 1;
+  const double far = kPatchReachPerZone * w;
+  for (std::uint32_t i = 0; i < np; ++i) {
+    double nearest = std::numeric_limits<double>::infinity();
+    lgrid.forEachInBall(P[i], far, [&](int, double d2) { nearest = std::min(nearest, d2); });
+    zone[i] = nearest <= w * w ? 1 : nearest <= far * far ? 0 : 3;
+  }
   PointGrid wgrid;
   wgrid.build(P, w);
-  const double cosCrease = std::cos(crease);
   f.patch.assign(np, kNoPatch);
   std::vector<std::uint32_t> stack, members;
   std::uint32_t next = 0;
@@ -521,7 +532,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
       stack.pop_back();
       members.push_back(i);
       wgrid.forEachInBall(P[i], w, [&](int j, double) {
-        if (zone[size_t(j)] || f.patch[size_t(j)] != kNoPatch || std::abs(N[i] * N[size_t(j)]) < cosCrease) return;
+        if (zone[size_t(j)] || f.patch[size_t(j)] != kNoPatch) return;
         f.patch[size_t(j)] = next;
         stack.push_back(std::uint32_t(j));
       });
@@ -539,11 +550,10 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   }
   // The zone's points: the patch whose points' tangent planes pass nearest (3 w around) and whose
   // normals agree best with theirs (w per unit of 1 − |n·m|: a point right at the crease lies on
-  // both planes, its normal tells which side its splat is on), then, for
-  // those still without one, the nearest point's.
+  // both planes, its normal tells which side its splat is on); none found: every patch.
   std::vector<std::uint32_t> assigned(np, kNoPatch);
   for (std::uint32_t i = 0; i < np; ++i) {
-    if (!zone[i]) continue;
+    if (zone[i] != 1 && zone[i] != 2) continue;
     double best = 1e300;
     std::uint32_t bestPatch = kNoPatch;
     grid.forEachInBall(P[i], std::max(3 * w, R), [&](int j, double d2) {
@@ -555,16 +565,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     assigned[i] = bestPatch;
   }
   for (std::uint32_t i = 0; i < np; ++i)
-    if (zone[i]) f.patch[i] = assigned[i];
-  for (std::uint32_t i = 0; i < np; ++i)
-    if (f.patch[i] == kNoPatch) {
-      int j = -1;
-      double best = 1e300;
-      grid.forEachInBall(P[i], R, [&](int q, double d2) {
-        if (f.patch[size_t(q)] != kNoPatch && d2 < best) best = d2, j = q;
-      });
-      f.patch[i] = j >= 0 ? f.patch[size_t(j)] : 0;
-    }
+    if (zone[i] == 1 || zone[i] == 2) f.patch[i] = assigned[i];
   return f;
 }
 

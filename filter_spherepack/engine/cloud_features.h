@@ -16,15 +16,19 @@
 //    direction and the mean of the two planes' normals.
 // 2. Crease lines. From the crease points in input order, a line is traced both ways in steps of
 //    d/2, each step to the mean of the crease points within d of the step's end whose directions
-//    agree (a gap of up to about d between crease points is bridged);
+//    agree (a gap of up to about 2 d between crease points is bridged); lines with fewer than
+//    kMinSupportPerD crease points per d are scattered noise and dropped;
 //    lines shorter than kMinLinePerD·d are noise and dropped.
 // 3. Corners. Near a corner three planes meet and the two-plane test fails, so the traced lines
 //    stop short of it: ends whose forward rays meet are extended to the point nearest to all
 //    their lines (least squares), which is the corner; an end that meets no other is a corner of
 //    its own (a crease ending, at the cloud's border or where it fades out).
-// 4. Patches. The points farther than the zone width from every line are joined to their
-//    neighbours with agreeing normals; the connected sets are the patches (the sides of the
-//    crease lines). The points within the zone take the patch whose points' tangent planes pass
+// 4. Patches. Near the lines (within kPatchReachPerZone zone widths), the points farther than the
+//    zone width from every line are joined to their neighbours; the connected sets are the
+//    patches (the sides of the crease lines). The points within the zone take the patch whose
+//    points' tangent planes pass nearest to them. The points farther from every line belong to
+//    every patch (kNoPatch), so that gaps in the sampling away from the creases do not split the
+//    growth. The points within the zone take the patch whose points' tangent planes pass
 //    nearest to them.
 #include "packer_steps.h"
 
@@ -43,7 +47,10 @@ constexpr double kFitRadiusPerD = 1.5;    // neighbourhood of the two-plane fit
 constexpr double kTraceStepPerD = 0.5;    // step of the line tracing
 constexpr double kTraceRadiusPerD = 1.0;  // the crease points within this of a step's end are averaged
 constexpr double kMinLinePerD = 2.0;      // shorter crease lines are dropped
-constexpr std::uint32_t kNoPatch = 0xffffffffu;
+constexpr double kMinSupportPerD = 2.0;   // and lines with fewer crease points per d of length (a
+                                          // line bridged over scattered crease points is noise)
+constexpr double kPatchReachPerZone = 4.0;
+constexpr std::uint32_t kNoPatch = 0xffffffffu; // a point of every patch (also Growth::kNoVertex)
 
 struct CloudFeatures {
   struct Line {
@@ -51,10 +58,11 @@ struct CloudFeatures {
     std::vector<Vec3d> n; // per vertex: the mean of the two planes' normals
     bool closed = false;  // p.front() == p.back()
     int front = -1, back = -1; // corners at the ends (indices into corners), -1 for none
+    size_t support = 0;   // crease points the tracing went through
   };
   std::vector<Line> lines;
   std::vector<Vec3d> corners, cornerNormals;
-  std::vector<std::uint32_t> patch; // per point (working order); empty when there is no line
+  std::vector<std::uint32_t> patch; // per point (working order), kNoPatch: every patch; empty when there is no line
   size_t creasePoints = 0;          // points that passed the two-plane test
   size_t linesDropped = 0;          // traced lines shorter than kMinLinePerD·d
   size_t patches = 0;

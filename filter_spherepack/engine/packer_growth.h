@@ -66,8 +66,9 @@ public:
     return graph_.memoryBytes() + vgrid_.memoryBytes() + lists_.memoryBytes() + queue_.memoryBytes();
   }
 
-  // Keep features (Params::keepFeatures): the patch of every splat (cloud_features.h). A vertex
-  // takes its splat's patch, a feature vertex none (it belongs to every patch); a candidate is
+  // Keep features (Params::keepFeatures): the patch of every splat (cloud_features.h; kNoVertex:
+  // every patch, away from the creases). A vertex takes its splat's patch, a feature vertex none
+  // (it belongs to every patch); a candidate is
   // taken only when each parent is on its splat's patch or a feature vertex, so no face joins two
   // sides of a crease, and the crossing check leaves out the edges of other patches (seen
   // edge-on across the crease), as the remesher does. Null (the default): no patches.
@@ -295,7 +296,10 @@ private:
   Stat& st_;
   const std::vector<std::uint32_t>* patch_ = nullptr;
   std::vector<std::uint32_t> vpatch_; // with patches: per vertex its patch, kNoVertex for a feature vertex
-  bool onPatch(std::uint32_t v, std::uint32_t patch) const { return vpatch_[v] == kNoVertex || vpatch_[v] == patch; }
+  // kNoVertex as a patch: every patch (a splat away from the creases, a feature vertex).
+  bool onPatch(std::uint32_t v, std::uint32_t patch) const {
+    return patch == kNoVertex || vpatch_[v] == kNoVertex || vpatch_[v] == patch;
+  }
   std::vector<std::vector<std::pair<std::uint32_t, Vec3d>>> featureSides_; // per feature vertex (addFeatureVertex)
   bool onSide(std::uint32_t v, std::uint32_t patch, const Vec3d& y) const {
     if (v >= featureSides_.size()) return true;
