@@ -241,8 +241,8 @@ TEST(SpherePackFeatures, BoxEstimatedNormals) {
     if (s.normals[i][ax] * s.points[i][ax] < 0) s.normals[i] = -s.normals[i];
   }
   const Result r = reconstruct(s, true);
-  // The planes fitted to PCA normals' neighbourhoods place the lines less exactly than exact normals.
-  checkBox(r, 0.15, 0.15);
+  // The crease points of PCA normals' neighbourhoods scatter more than with exact normals.
+  checkBox(r, 0.05, 0.1);
 }
 
 TEST(SpherePackFeatures, CylinderRimsAreClosedLines) {

@@ -29,6 +29,10 @@ constexpr double kMaxLineDistPerRadius = 0.35;
 constexpr double kTraceAngleDeg = 30;
 // Rounds of smoothing of the traced lines.
 constexpr int kSmoothingRounds = 4;
+// The corner from the lines fitted to the stretch from kEndSkipPerD·d to (kEndSkipPerD +
+// kEndFitPerD)·d back from the ends.
+constexpr double kEndSkipPerD = 1.5;
+constexpr double kEndFitPerD = 4.0;
 // The direction at an end of a line: over this many d of it.
 constexpr double kEndStretchPerD = 3.0;
 // Tracing: up to this many steps of d/2 are tried in turn where no crease point is found.
@@ -405,10 +409,16 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   }
 
   // 3. Corners: the open ends, joined where their rays meet, extended to the least-squares point.
+  // Near a corner the crease points come from neighbourhoods of three planes and bend the line's
+  // last stretch: the corner is computed from the line fitted to the stretch from kEndSkipPerD·d
+  // to (kEndSkipPerD + kEndFitPerD)·d back from each end (`fit`, through `fitPoint`), where the
+  // line is long enough; the ends are joined by their own rays as traced.
   struct End {
     size_t line;
     bool back;
     Vec3d e, t, n;
+    Vec3d fitPoint, fit;
+    bool fitted = false;
   };
   std::vector<End> ends;
   for (size_t l = 0; l < f.lines.size(); ++l) {
@@ -418,7 +428,32 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
       const Vec3d e = b ? L.p.back() : L.p.front();
       const Vec3d t = endDirection(L.p, b == 1, d);
       if (!(t.Norm() > 0)) continue;
-      ends.push_back(End{l, b == 1, e, t, b ? L.n.back() : L.n.front()});
+      End E{l, b == 1, e, t, b ? L.n.back() : L.n.front(), e, t, false};
+      // The points of the fitted stretch, by arc length from the end.
+      std::vector<std::uint32_t> idx;
+      std::vector<Vec3d> pts;
+      double arc = 0;
+      for (size_t k = 1; k < L.p.size(); ++k) {
+        const Vec3d& q = b ? L.p[L.p.size() - 1 - k] : L.p[k];
+        const Vec3d& q0 = b ? L.p[L.p.size() - k] : L.p[k - 1];
+        arc += (q - q0).Norm();
+        if (arc > (kEndSkipPerD + kEndFitPerD) * d) break;
+        if (arc >= kEndSkipPerD * d) pts.push_back(q);
+      }
+      if (arc > (kEndSkipPerD + kEndFitPerD) * d && pts.size() >= 4) {
+        for (std::uint32_t k = 0; k < pts.size(); ++k) idx.push_back(k);
+        Plane pl;
+        fitPlane(pts, idx, pl);
+        // The line's direction: the largest spread, taken as the chord of the stretch.
+        Vec3d dir = pts.front() - pts.back();
+        if (dir.Norm() > 0) {
+          dir.Normalize();
+          E.fitPoint = pl.c;
+          E.fit = dir * t >= 0 ? dir : -dir;
+          E.fitted = true;
+        }
+      }
+      ends.push_back(E);
     }
   }
   std::vector<std::uint32_t> parent(ends.size());
@@ -460,8 +495,8 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
       if (root(std::uint32_t(b)) != r) continue;
       const End& E = ends[b];
       for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) m[i][j] += (i == j ? 1.0 : 0.0) - E.t[i] * E.t[j];
-      rhs += E.e - E.t * (E.t * E.e);
+        for (int j = 0; j < 3; ++j) m[i][j] += (i == j ? 1.0 : 0.0) - E.fit[i] * E.fit[j];
+      rhs += E.fitPoint - E.fit * (E.fit * E.fitPoint);
       nsum += E.n;
       esum += E.e;
       ++cnt;
@@ -482,14 +517,16 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     const int c = cornerOfRoot[root(std::uint32_t(&E - ends.data()))];
     auto& L = f.lines[E.line];
     const Vec3d& x = f.corners[size_t(c)];
-    // The line's points that lie beyond the corner, or within d/2 of it, give way to it.
+    // The line's points that lie beyond the corner, or within d/2 of it (within the stretch left
+    // out of the fit where the corner came from fitted lines), give way to it.
+    const double keepOff = E.fitted ? kEndSkipPerD * d : 0.5 * d;
     if (E.back) {
-      while (L.p.size() > 1 && ((L.p.back() - x) * E.t > 0 || (L.p.back() - x).Norm() < 0.5 * d))
+      while (L.p.size() > 1 && ((L.p.back() - x) * E.t > 0 || (L.p.back() - x).Norm() < keepOff))
         L.p.pop_back(), L.n.pop_back();
       if ((L.p.back() - x).Norm() > 0) L.p.push_back(x), L.n.push_back(f.cornerNormals[size_t(c)]);
       L.back = c;
     } else {
-      while (L.p.size() > 1 && ((L.p.front() - x) * E.t > 0 || (L.p.front() - x).Norm() < 0.5 * d))
+      while (L.p.size() > 1 && ((L.p.front() - x) * E.t > 0 || (L.p.front() - x).Norm() < keepOff))
         L.p.erase(L.p.begin()), L.n.erase(L.n.begin());
       if ((L.p.front() - x).Norm() > 0) L.p.insert(L.p.begin(), x), L.n.insert(L.n.begin(), f.cornerNormals[size_t(c)]);
       L.front = c;
