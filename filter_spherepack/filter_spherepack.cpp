@@ -124,6 +124,10 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
       "First start point (used only with 'Use given starting points')."));
   parlst.addParam(RichPoint("startPoint2", Point3m(def.startPoint[1][0], def.startPoint[1][1], def.startPoint[1][2]), "Starting point 2",
       "Second start point, between d and 2d from the first."));
+  parlst.addParam(RichBool("keepFeatures", def.keepFeatures, "Keep features",
+      "Detect creases and corners in the cloud; vertices on them first, no face across a crease."));
+  parlst.addParam(RichFloat("creaseAngle", float(def.creaseAngleDeg), "Crease angle (degrees)",
+      "With 'Keep features': surfaces meeting at more than this angle form a crease."));
 }
 
 bool FilterSpherePackPlugin::apply(FilterID filter, MeshDocument& md, const RichParameterList& par,
@@ -151,6 +155,8 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   p.useStartPoints = par.getBool("useStartPoints");
   p.startPoint[0] = growth::Vec3d::Construct(par.getPoint3m("startPoint1"));
   p.startPoint[1] = growth::Vec3d::Construct(par.getPoint3m("startPoint2"));
+  p.keepFeatures = par.getBool("keepFeatures");
+  p.creaseAngleDeg = par.getFloat("creaseAngle");
 
   growth::spherepack::Stat st;
   CMeshO result;
@@ -188,6 +194,10 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   outputs["sphere_diameter"] = double(st.sphereDiameter);
   outputs["seconds"] = double(st.seconds);
   outputs["memory_peak_bytes"] = double(st.memory.peak); // the engine's own arrays, at their largest sum
+  if (p.keepFeatures) {
+    outputs["feature_lines"] = int(st.featureLines);
+    outputs["feature_corners"] = int(st.featureCorners);
+  }
 
   for (const std::string& w : st.warnings) Log(GLLogStream::WARNING, "Sphere Packing warning: %s", w.c_str());
   Log("Sphere Packing: %zu points (%zu duplicates dropped); spacing %g (robust mean, as Robust G2S and the "
@@ -217,6 +227,10 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
       "triangulable, %zu folded, %zu through the mesh, %zu other",
       st.holesClosed, st.holeFacesAdded, st.holeFacesRemoved, st.holesNotCovered, st.holesTooLong,
       st.holesNotTriangulable, st.holesFolded, st.holesCrossing, st.holesOther);
+  if (p.keepFeatures)
+    Log("Sphere Packing: keep features (crease angle %g degrees): %zu crease points, %zu crease lines, %zu corners, "
+        "%zu vertices placed on them first, %zu sides", p.creaseAngleDeg, st.featureCreasePoints, st.featureLines,
+        st.featureCorners, st.featureVertices, st.featurePatches);
   Log("Sphere Packing: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing: time %.3f s (input %.3f, splats %.3f, box grid %.3f, growth %.3f, regions %.3f, clean-up %.3f, "

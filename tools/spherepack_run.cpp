@@ -9,6 +9,7 @@
 //          --spatial-order-min N (renumber the points spatially from N points on; the same mesh)
 //          --repeat R (best of R runs; each phase time is that phase's best)
 //          --measure (topology and quality of the result)  --points-only (drop the faces of a mesh)
+//          --keep-features [--crease-angle DEG] (crease lines and corners kept)
 //          -o out.ply (save the mesh)
 // Prints one "key: value" per line. Time is the engine's own (Stat::seconds).
 #include "filter_spherepack_layer.h"
@@ -38,6 +39,7 @@ static void usage() {
                "       [--w W] [--border B] [--threads T]\n"
                "       [--min-component-faces F]\n"
                "       [--spatial-order-min N]\n"
+               "       [--keep-features] [--crease-angle DEG]\n"
                "       [--repeat R] [--measure] [--points-only] [-o out.ply]\n");
 }
 
@@ -78,6 +80,8 @@ int main(int argc, char** argv) {
       else if (a == "--global-splats") params.localSplatSizes = false;
       else if (a == "--keep-twisted") params.rejectTwisted = false;
       else if (a == "--no-hole-pass") params.closeHoles = false;
+      else if (a == "--keep-features") params.keepFeatures = true;
+      else if (a == "--crease-angle") params.creaseAngleDeg = std::atof(value());
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--min-component-faces") params.minComponentFaces = std::atoi(value());
@@ -150,6 +154,10 @@ int main(int argc, char** argv) {
                 "holes_other: %zu\nhole_faces_removed: %zu\nhole_islands_dropped: %zu\n",
                 st.regionsLeftOpen, st.holesClosed, st.holeFacesAdded, st.holesTooLong, st.holesNotTriangulable,
                 st.holesNotCovered, st.holesFolded, st.holesCrossing, st.holesOther, st.holeFacesRemoved, st.holeIslandsDropped);
+    if (params.keepFeatures)
+      std::printf("feature_crease_points: %zu\nfeature_lines: %zu\nfeature_corners: %zu\nfeature_vertices: %zu\n"
+                  "feature_patches: %zu\n",
+                  st.featureCreasePoints, st.featureLines, st.featureCorners, st.featureVertices, st.featurePatches);
     std::printf("boxes: %zu\nboxes_d_too_large: %zu\ncandidates: %zu\nrequeued: %zu\nrejected_too_close: %zu\n"
                 "rejected_crossing: %zu\nrejected_inconsistent: %zu\nunreached_points: %zu\ncomponents_started: %zu\nstarts_refused_near_mesh: %zu\ncomponents_dropped: %zu\ncomponent_faces_dropped: %zu\nnon_manifold_vertices_removed: %zu\nself_intersection_faces_removed: %zu\nfaces_removed: %zu\nnon_manifold_vertices: %zu\n",
                 st.boxes, st.boxesDTooLarge, st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing,

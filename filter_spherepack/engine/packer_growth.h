@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace growth {
 namespace spherepack {
@@ -68,6 +69,35 @@ public:
     return graph_.memoryBytes() + vgrid_.memoryBytes() + lists_.memoryBytes() + queue_.memoryBytes();
   }
 
+  // Keep features (Params::keepFeatures): the patch of every splat (cloud_features.h; kNoVertex:
+  // every patch, away from the creases). A vertex takes its splat's patch, a feature vertex none
+  // (it belongs to every patch); a candidate is
+  // taken only when each parent is on its splat's patch or a feature vertex, so no face joins two
+  // sides of a crease, and the crossing check leaves out the edges of other patches (seen
+  // edge-on across the crease), as the remesher does. Null (the default): no patches.
+  void setPatches(const std::vector<std::uint32_t>* patch) { patch_ = patch; }
+  // Sec. 3.3 with more than two starting vertices: a feature vertex at x with normal n, unless a
+  // vertex is closer than d (then kNoVertex). Its candidates are enumerated by enumerateFeature()
+  // once all feature vertices and edges are in.
+  // `sides`: per patch, the direction across the crease into it (CloudFeatures::sidesAt); a
+  // candidate of a listed patch with this vertex as a parent must lie on that side of it.
+  std::uint32_t addFeatureVertex(const Vec3d& x, const Vec3d& n,
+                                 std::vector<std::pair<std::uint32_t, Vec3d>> sides = {}) {
+    if (anyVertexCloserThan(x, d_)) return kNoVertex;
+    const std::uint32_t v = insertVertex(x, 0, &n, /*enumerateLater=*/true, /*feature=*/true);
+    if (!sides.empty()) {
+      if (featureSides_.size() <= v) featureSides_.resize(v + 1);
+      featureSides_[v] = std::move(sides);
+    }
+    return v;
+  }
+  // An edge of a crease line between two feature vertices.
+  bool addFeatureEdge(std::uint32_t u, std::uint32_t v) {
+    const auto& pos = graph_.positions();
+    return graph_.addEdge(u, graph_.gapOf(u, pos[v]), v, graph_.gapOf(v, pos[u]));
+  }
+  void enumerateFeature(std::uint32_t v) { enumerate(v); }
+
   // Sec. 3.3: the two starting vertices (already projected onto their splats).
   void start(const Vec3d& s1, std::uint32_t splat1, const Vec3d& s2, std::uint32_t splat2) {
     insertVertex(s1, splat1);
@@ -108,6 +138,8 @@ public:
         continue;
       }
       if (graph_.degree(cd.a) >= BorderGraph::kMaxDegree || graph_.degree(cd.b) >= BorderGraph::kMaxDegree) continue;
+      const std::uint32_t patch = patch_ != nullptr ? (*patch_)[cd.splat] : kNoVertex;
+      if (patch_ != nullptr && (!onPatch(cd.a, patch) || !onPatch(cd.b, patch))) continue;
       // Sec. 3.6, fig. 4b: projected along the approximated surface normal, the new edges must not
       // cross existing edges within d in normal direction.
       const Vec3d n = normalAt(x, cd.splat);
@@ -119,7 +151,10 @@ public:
         nearby.push_back(v);
         nearbyD2.push_back(d2);
       });
-      if (newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
+      const auto samePatch = [&](std::uint32_t u) { return onPatch(u, patch); };
+      if (patch_ != nullptr ? newEdgesCrossIf(graph_, x, cd.a, cd.b, n, d_, nearby,
+                                              [&](std::uint32_t u, std::uint32_t w) { return samePatch(u) && samePatch(w); })
+                            : newEdgesCross(graph_, x, cd.a, cd.b, n, d_, nearby)) {
         ++st_.rejectedCrossing;
         continue;
       }
@@ -152,7 +187,7 @@ private:
   }
 
   std::uint32_t insertVertex(const Vec3d& x, std::uint32_t splat, const Vec3d* normal = nullptr,
-                             bool enumerateLater = false) {
+                             bool enumerateLater = false, bool feature = false) {
     // The limit checked before the growth bounds the surface area estimated from the points; the
     // splats can cover more (large splats on a noisy or thick cloud: a fuzz input estimated at
     // under 10,000 vertices grew 51,000), so it is enforced here too.
@@ -163,6 +198,7 @@ private:
                   "smaller splat size.");
     const std::uint32_t v = graph_.addVertex(x, normal != nullptr ? *normal : normalAt(x, splat));
     vgrid_.insert(v, x);
+    if (patch_ != nullptr) vpatch_.push_back(feature ? std::uint32_t(kNoVertex) : (*patch_)[splat]);
     if (!enumerateLater) enumerate(v);
     return v;
   }
@@ -199,6 +235,9 @@ private:
     const Vec3d& nv = graph_.normal(v);
     enumerateCandidates(v, pos, nv, d_, grid_, splats_, lists_,
                         [&](std::uint32_t u, std::uint32_t s, int root, const Vec3d& y) {
+                          if (patch_ != nullptr && (!onPatch(v, (*patch_)[s]) || !onPatch(u, (*patch_)[s]) ||
+                                                    !onSide(v, (*patch_)[s], y) || !onSide(u, (*patch_)[s], y)))
+                            return;
                           // A candidate already closer than d to a vertex can never be inserted
                           // (vertices are never removed): drop it now instead of when popped.
                           for (std::uint32_t w : near_)
@@ -258,6 +297,19 @@ private:
   const int w_;
   const Params& params_;
   Stat& st_;
+  const std::vector<std::uint32_t>* patch_ = nullptr;
+  std::vector<std::uint32_t> vpatch_; // with patches: per vertex its patch, kNoVertex for a feature vertex
+  // kNoVertex as a patch: every patch (a splat away from the creases, a feature vertex).
+  bool onPatch(std::uint32_t v, std::uint32_t patch) const {
+    return patch == kNoVertex || vpatch_[v] == kNoVertex || vpatch_[v] == patch;
+  }
+  std::vector<std::vector<std::pair<std::uint32_t, Vec3d>>> featureSides_; // per feature vertex (addFeatureVertex)
+  bool onSide(std::uint32_t v, std::uint32_t patch, const Vec3d& y) const {
+    if (v >= featureSides_.size()) return true;
+    for (const auto& e : featureSides_[v])
+      if (e.first == patch) return (y - graph_.position(v)) * e.second > 0;
+    return true;
+  }
   Progress& progress_;
   const size_t expected_;
   SplatSet splats_;

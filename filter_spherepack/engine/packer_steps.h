@@ -158,6 +158,9 @@ class Growth;
 void growEveryPart(Growth& growth, const StartPair& first, const InputCloud& in, const std::vector<float>& radius,
                    const BoxGrid& grid, const Renumbering& order, double d, Stat& st);
 size_t unreachedPoints(const Growth& growth, size_t points);
+struct CloudFeatures;
+void placeCloudFeatures(Growth& growth, const CloudFeatures& features, const std::vector<Vec3d>& points, double d,
+                        Stat& st);
 
 // packer_regions.cpp, sec. 3.7: the regions triangulated; the clean-up (manifold, no intersecting
 // faces, no small pieces).

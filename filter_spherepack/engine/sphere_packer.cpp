@@ -2,6 +2,7 @@
 // method's steps (packer_steps.h) in the paper's order.
 #include "sphere_packer.h"
 
+#include "cloud_features.h"
 #include "packer_growth.h"
 #include "packer_steps.h"
 
@@ -162,6 +163,16 @@ void build(CloudArrays cloud, MeshArrays& out, const Params& params, Stat& st, C
   grid.startNormals(params.threads, first.s1);
   progress.phase("Sphere packing: growing", 51, 90);
   Growth growth(in, grid, radius, d, params, st, progress, static_cast<size_t>(expected));
+  CloudFeatures features;
+  if (params.keepFeatures) {
+    features = detectCloudFeatures(in.points, in.normals, d, scale.areaSpacing, params.creaseAngleDeg, order);
+    st.featureCreasePoints = features.creasePoints;
+    st.featurePatches = features.patches;
+    if (!features.lines.empty()) {
+      growth.setPatches(&features.patch);
+      placeCloudFeatures(growth, features, in.points, d, st);
+    }
+  }
   growEveryPart(growth, first, in, radius, grid, order, d, st);
   const BorderGraph& g = growth.graph();
   grid.finishNormals();

@@ -46,6 +46,9 @@ struct Params {
   bool closeHoles = true;        // close the holes of the output that the cloud covers with the
                                  // packing's own vertices (packer_holes.cpp; a real boundary of an
                                  // open surface is not covered and stays open)
+  bool keepFeatures = false;     // detect crease lines and corners in the cloud and start the growth
+                                 // from them, no face across a crease (cloud_features.h)
+  double creaseAngleDeg = 30;    // keepFeatures: planes meeting at more than this angle make a crease
   bool checkInvariants = false;  // tests: after every insertion, compare the new vertex with all
                                  // others by brute force (O(V²)); a violation throws std::logic_error
 };
@@ -157,6 +160,11 @@ struct Stat {
   size_t rejectedCrossing = 0;   // candidates whose edges crossed existing edges (sec. 3.6, fig. 4b)
   size_t rejectedInconsistent = 0; // candidates whose edges fall into other corners seen along n
   size_t unreachedPoints = 0;    // input points with no vertex within d of their splat
+  size_t featureCreasePoints = 0; // keepFeatures: points that passed the two-plane test
+  size_t featureLines = 0;       // keepFeatures: crease lines kept (at least 2 d long)
+  size_t featureCorners = 0;     // keepFeatures: corners (where lines meet or end)
+  size_t featureVertices = 0;    // keepFeatures: vertices placed on corners and lines before the growth
+  size_t featurePatches = 0;     // keepFeatures: sides of the crease lines (connected sets of points)
   size_t componentsStarted = 0;  // starting pairs placed (sec. 3.3): the first, and one for each
                                  // part of the cloud the growth had not reached when it stopped
   size_t startsRefusedNearMesh = 0; // unreached points where no start was placed because a vertex

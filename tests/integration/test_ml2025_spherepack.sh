@@ -21,7 +21,7 @@ grep -q "^log: Sphere Packing: time [0-9.]* s" "$work/auto.log" || { cat "$work/
 # Help texts short enough for MeshLab 2020.09's dialog to show them whole (the same glue source).
 awk '/^help / { t = $0; sub(/^help [^:]*: [^:]*: /, "", t); if (length(t) > 100) { print; bad = 1 } }
      END { exit bad }' "$work/auto.log" || fail "help texts longer than 100 characters"
-[ "$(grep -c '^help ' "$work/auto.log")" -eq 9 ] || fail "not 9 parameters with help texts"
+[ "$(grep -c '^help ' "$work/auto.log")" -eq 11 ] || fail "not 11 parameters with help texts"
 # The keywords of PyMeshLab's apply_filter, as MeshLab derives them (RichParameter::pythonName,
 # pythonType), listed in the README.
 python_names="sphereDiameter: spherediameter: PercentageValue
@@ -32,7 +32,9 @@ maxBorderLength: maxborderlength: int
 minComponentFaces: mincomponentfaces: int
 useStartPoints: usestartpoints: bool
 startPoint1: startpoint1: numpy.ndarray[numpy.float64[3]]
-startPoint2: startpoint2: numpy.ndarray[numpy.float64[3]]"
+startPoint2: startpoint2: numpy.ndarray[numpy.float64[3]]
+keepFeatures: keepfeatures: bool
+creaseAngle: creaseangle: float"
 [ "$(sed -n 's/^python //p' "$work/auto.log")" = "$python_names" ] \
   || { grep '^python ' "$work/auto.log"; fail "the Python parameter names differ from the README's"; }
 d=$(sed -n 's/^log: Sphere Packing: sphere diameter d = \([0-9.eE+-]*\),.*/\1/p' "$work/auto.log")
