@@ -7,7 +7,9 @@
 // "to_reference_*" from this mesh to the input, "from_reference_*" from the input to this mesh
 // ("from_reference_vertex_max": the input's vertices alone), and "hausdorff" the larger maximum.
 // --target D adds "shortest_edge_over_d" (E_min / D) and "edges_below_d", the edges shorter than
-// D·(1 − 1e-5) (the margin is float storage of the coordinates).
+// D by more than float storage of their ends can explain: each coordinate rounded by up to half a
+// float step, at most |x|·2^-24, so an edge by up to 2·√3·m·2^-24 (m the largest coordinate of its
+// ends), plus 1e-9·D.
 // --cloud adds the distance of the cloud's points to the mesh and μd %; --histograms writes
 // PREFIX_angles.csv (degrees), PREFIX_edges.csv and PREFIX_quality.csv (Q_t) as "lo,hi,count";
 // --edge-max fixes the edge histogram's range to [0, L] (default 3·E_avg) so that several meshes
@@ -137,7 +139,12 @@ int main(int argc, char** argv) {
     for (const auto& f : arrays.faces)
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t a = f[k], b = f[(k + 1) % 3];
-        if (a != b && (arrays.vertices[a] - arrays.vertices[b]).Norm() < target * (1 - 1e-5))
+        if (a == b) continue;
+        double m = 0;
+        for (int i = 0; i < 3; ++i)
+          m = std::max({m, std::abs(arrays.vertices[a][i]), std::abs(arrays.vertices[b][i])});
+        const double margin = 2 * std::sqrt(3.0) * std::ldexp(m, -24) + 1e-9 * target;
+        if ((arrays.vertices[a] - arrays.vertices[b]).Norm() < target - margin)
           shortEdges.push_back({std::min(a, b), std::max(a, b)});
       }
     std::sort(shortEdges.begin(), shortEdges.end());

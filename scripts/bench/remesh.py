@@ -289,7 +289,7 @@ def write_report(a, rows, commands):
              "lengths in % of their mean; Q_t = 4√3 A / (l1² + l2² + l3²) (sphere-packing paper, sec. 5). "
              "Distances in units of d: out→in from the output's vertices and as many area-weighted random points "
              "(seed 1) as it has faces to the input's nearest triangle, in→out the other way; 'input vertices max' "
-             "the largest distance of an input vertex to the output. Edges < d: shorter than d (1 − 1e-5). Genus "
+             "the largest distance of an input vertex to the output. Edges < d: shorter than d by more than float storage of their ends explains (2·√3·m·2^-24, m their largest coordinate). Genus "
              "from the Euler characteristic of each component (sum; the largest components' in brackets).", ""]
     summary, sections = [], []
     columns = HEADER.count("|") - 1
