@@ -33,6 +33,10 @@ double sheetBoxesWithin(double rho) {
 }
 } // namespace
 
+// Bytes as a size_t, saturating at 1e18 (also for NaN): the estimate of an absurd area or d is then
+// more than any machine has, and the run is refused, instead of a conversion out of range.
+static size_t toBytes(double x) { return x < 1e18 ? size_t(std::max(0.0, x)) : size_t(1e18); }
+
 MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* radius, const Sizes& z) {
   MemoryEstimate e;
   const double pi = 3.14159265358979323846;
@@ -49,14 +53,15 @@ MemoryEstimate estimateMemory(const InputCloud& in, const std::vector<float>* ra
   }
   // The boxes built are those the surface (its splats) crosses; the point lists, the index of the
   // points by their own boxes (4 bytes a point).
-  const double boxes = kSheetBoxesPerArea * z.scale.area / (d * d);
-  e.input = size_t(n * (2 * sizeof(Vec3d) + sizeof(float) + 2 * sizeof(std::uint32_t)));
-  e.boxGrid = size_t(4 * refs + boxes * kBoxBytes + 4 * n);
+  // (Each box built is referred to at least once: at most the references.)
+  const double boxes = std::min(refs, kSheetBoxesPerArea * z.scale.area / (d * d));
+  e.input = toBytes(n * (2 * sizeof(Vec3d) + sizeof(float) + 2 * sizeof(std::uint32_t)));
+  e.boxGrid = toBytes(4 * refs + boxes * kBoxBytes + 4 * n);
   // The growth: the graph per vertex, and per splat the vertices within d of its disk (an area of
   // π(r + d)², at (√3/2)·d² per vertex), in the lists' chunks. Without the radii, r = 0.
   const double meanRadius = n > 0 ? radiusSum / n : 0.0;
   const double listed = pi * (1 + meanRadius / d) * (1 + meanRadius / d) / kTriangleAreaFactor;
-  e.growth = size_t(z.expected * kGrowthBytesPerVertex + n * (4 + kListBytesPerEntry * listed));
+  e.growth = toBytes(z.expected * kGrowthBytesPerVertex + n * (4 + kListBytesPerEntry * listed));
   // Fixed sizes (tables at their smallest, the queue's levels): 2 MB more.
   e.peak = e.input + e.boxGrid + e.growth + (size_t(2) << 20);
   return e;
