@@ -300,8 +300,9 @@ bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterLi
       st.componentsStarted == 1 ? "" : "s", st.unreachedFaces);
   Log("Sphere Packing remesh: %zu vertices, %zu faces, smallest edge %g (as stored), Q_avg %.4f; %zu boundary "
       "loops (%zu regions left open, %zu of them beyond the input's boundary; %zu faces removed for a manifold "
-      "mesh without intersections)", st.vertices, st.faces, st.smallestEdge, st.qualityAvg, st.boundaryLoops,
-      st.holes, st.regionsOutside, st.facesRemoved);
+      "mesh without intersections; %zu holes closed by the hole pass with %zu faces)", st.vertices, st.faces,
+      st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.regionsOutside, st.facesRemoved,
+      st.holesClosed, st.holeFacesAdded);
   Log("Sphere Packing remesh: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing remesh: time %.3f s (input %.3f, growth %.3f, regions %.3f, clean-up %.3f, output %.3f)",

@@ -1,7 +1,7 @@
 // spherepack_remesh: runs the sphere-packing remesher (remesher.h) outside MeshLab and prints its
 // statistics and the measures of the result.
 //   spherepack_remesh mesh.ply [--d D | --d-edges K (d = K · mean edge length)] [--w W] [--border B]
-//                     [--crease DEG] [--threads T] [--measure] [-o out.ply]
+//                     [--crease DEG] [--no-hole-pass] [--threads T] [--measure] [-o out.ply]
 // --measure adds the topology and quality of the input and the output, and the distances between
 // them both ways (largest and mean, over the vertices of one to the faces of the other).
 // Prints one "key: value" per line. Time is the engine's own (RemeshStat::seconds).
@@ -30,7 +30,7 @@ long peakRssKiB() {
 }
 
 void usage() {
-  std::fprintf(stderr, "usage: spherepack_remesh mesh.ply [--d D | --d-edges K] [--w W] [--border B] [--crease DEG]\n"
+  std::fprintf(stderr, "usage: spherepack_remesh mesh.ply [--d D | --d-edges K] [--w W] [--border B] [--crease DEG] [--no-hole-pass]\n"
                        "                         [--threads T] [--measure] [-o out.ply]\n");
 }
 
@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--crease") params.creaseAngleDeg = std::atof(value());
       else if (a == "--threads") params.threads = std::atoi(value());
+      else if (a == "--no-hole-pass") params.closeHoles = false;
       else if (a == "--measure") measure = true;
       else if (a == "-o") out = value();
       else if (a == "-h" || a == "--help") { usage(); return 0; }
@@ -105,13 +106,15 @@ int main(int argc, char** argv) {
                 st.inputVertices, st.inputFaces, st.inputComponents, st.inputBoundaryEdges, st.inputMeanEdge,
                 st.sphereDiameter, st.diameterReason.c_str());
     std::printf("vertices: %zu\nfaces: %zu\nsmallest_edge: %.8g\nsmallest_edge_per_d: %.6f\nq_avg: %.5f\n"
-                "boundary_loops: %zu\nholes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\n"
+                "boundary_loops: %zu\nholes_closed: %zu\nhole_faces_added: %zu\n"
+                "holes_open_long_tri_cover_fold_cross_other: %zu %zu %zu %zu %zu %zu\n"
+                "holes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\n"
                 "short_edge_faces_removed: %zu\nfaces_removed: %zu\n"
                 "crease_edges: %zu\nfeature_corners: %zu\nfeature_vertices: %zu\nfeature_vertices_skipped: %zu\n"
                 "components_started: %zu\nunreached_faces: %zu\ncandidates: %zu\nrequeued: %zu\n"
                 "rejected_too_close: %zu\nrejected_crossing: %zu\nrejected_inconsistent: %zu\n",
                 st.vertices, st.faces, st.smallestEdge, st.smallestEdge / st.sphereDiameter, st.qualityAvg,
-                st.boundaryLoops, st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved,
+                st.boundaryLoops, st.holesClosed, st.holeFacesAdded, st.holesOpen[0], st.holesOpen[1], st.holesOpen[2], st.holesOpen[3], st.holesOpen[4], st.holesOpen[5], st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved,
                 st.creaseEdges, st.featureCorners, st.featureVertices, st.featureVerticesSkipped,
                 st.componentsStarted, st.unreachedFaces, st.candidates, st.requeued, st.rejectedTooClose,
                 st.rejectedCrossing, st.rejectedInconsistent);

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 // The graph G of the sphere packer and the borders of its regions (Lipschütz et al., sec. 3.1,
 // 3.4, 3.5, 4.2, figures 3 and 6).
 //
@@ -120,12 +121,16 @@ private:
 //   0: a parent without edges; 1: a parent with one edge; 2: a join (or a split farther than the
 //   window sees); 3 .. 2+w: a split, the larger the distance of the parents along the border the
 //   more urgent (distance w at level 3, distance 1 at level 2+w).
+// `alike` (the remesher's rule, docs/design/spherepack-remesher.md): splits of distance 1 to
+// `alike` share the level of distance `alike`, so they are taken in the order they were found
+// (0: sec. 3.5 as written).
 struct CandidatePriority {
   static int levels(int w) { return 3 + w; }
-  static int level(int degreeA, int degreeB, int borderDistance, int w) {
+  static int level(int degreeA, int degreeB, int borderDistance, int w, int alike = 0) {
     if (degreeA == 0 || degreeB == 0) return 0;
     if (degreeA == 1 || degreeB == 1) return 1;
     if (borderDistance <= 0 || borderDistance > w) return 2;
+    if (borderDistance < alike) borderDistance = std::min(alike, w);
     return 3 + (w - borderDistance);
   }
 };

@@ -152,14 +152,15 @@ double pointTriangleDistance(const Vec3d& p, const Vec3d& a, const Vec3d& b, con
 // The checks a closure must pass on its own (the crossing test comes after, against the mesh):
 // no (nearly) collinear face, the cloud across every face, and no fold back onto the mesh along
 // the loop. `localOf`: the loop index of each vertex of the loop.
+template <class Covered>
 Refusal checkClosure(const std::vector<Triangle>& made, const std::vector<Vec3d>& pos,
                      const std::vector<Vec3d>& stored, const std::vector<std::uint32_t>& localOf,
-                     const std::vector<Vec3d>& across, const NearSplats& cover, double reach) {
+                     const std::vector<Vec3d>& across, Covered&& covered, double reach) {
   const size_t n = across.size();
   bool flat = false, uncovered = false, folded = false;
   for (const Triangle& f : made) {
     if (nearlyCollinear(stored[f[0]], stored[f[1]], stored[f[2]])) flat = true;
-    if (!coveredAcross(cover, pos[f[0]], pos[f[1]], pos[f[2]], reach)) uncovered = true;
+    if (!covered(pos[f[0]], pos[f[1]], pos[f[2]], reach)) uncovered = true;
     const Vec3d nf = faceNormal(pos[f[0]], pos[f[1]], pos[f[2]]);
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t i = localOf[f[k]], j = localOf[f[(k + 1) % 3]];
@@ -254,9 +255,11 @@ bool crosses(const std::vector<Triangle>& t, const std::vector<Triangle>& faces,
 
 } // namespace
 
-void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudCover& cover, const Params& params,
-                bool floatStorage, Stat& st) {
-  if (!params.closeHoles || faces.empty()) return;
+// The pass on the boundary loops of `faces`; `makeCover(loops, pos)` gives the test of a closure's
+// face, `covered(a, b, c, reach)`.
+template <class MakeCover>
+void closeLoops(std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, Stat& st, MakeCover&& makeCover) {
+  if (faces.empty()) return;
   const size_t nv = g.vertexCount();
   const double d = st.sphereDiameter;
   const std::vector<Vec3d>& pos = g.positions();
@@ -301,33 +304,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
 
   // The checks are made on the positions as the layer stores them (float in MeshLab 2020.09).
   const std::vector<Vec3d> stored = asStored(pos, floatStorage);
-  // The splats that can reach a loop's box.
-  NearSplats splats;
-  splats.widen = kCoverWidenPerD * d;
-  splats.wide = double(cover.largest) + splats.widen;
-  {
-    const double g = 4 * d;
-    const double rings = kMaxHoleRings * kMaxEdgePerD * d; // how far rings can grow a hole
-    std::unordered_map<std::uint64_t, char> marked;
-    for (const auto& loop : loops) {
-      if (loop.size() > size_t(kMaxHoleLoop)) continue;
-      Box3d b;
-      for (std::uint32_t v : loop) b.Add(pos[v]);
-      const double reach = coverReach(loop, pos, d) + kCoverReachPerLoopRadius * rings;
-      b.Offset(std::sqrt(reach * reach + splats.wide * splats.wide) + rings);
-      forEachCell(cellsOf(b, g), [&](std::uint64_t k) { marked[k] = 1; });
-    }
-    const size_t points = cover.radius.size();
-    for (size_t i = 0; i < points; ++i) {
-      const Vec3d p(cover.xyz[3 * i], cover.xyz[3 * i + 1], cover.xyz[3 * i + 2]);
-      const std::uint64_t key = cellKey(std::int64_t(std::floor(p[0] / g)), std::int64_t(std::floor(p[1] / g)),
-                                        std::int64_t(std::floor(p[2] / g)));
-      if (marked.count(key) == 0) continue;
-      splats.points.push_back(p);
-      splats.radius.push_back(cover.radius[i]);
-    }
-    splats.grid.build(splats.points, d);
-  }
+  const auto covered = makeCover(loops, pos);
   // Faces taken out (rings, below) are dead. Each open hole claims the vertices of its loop, and a
   // hole being closed those of its ring too: a ring that reaches another hole's vertex takes that
   // hole in.
@@ -430,7 +407,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
         }
         for (Triangle& f : made)
           for (std::uint32_t& v : f) v = loop[v];
-        why = checkClosure(made, pos, stored, localOf, across, splats, coverReach(loop, pos, d));
+        why = checkClosure(made, pos, stored, localOf, across, covered, coverReach(loop, pos, d));
         if (why == Refusal::None && crosses(made, faces, stored, cells, h, near, counts)) why = Refusal::Crossing;
         if (why == Refusal::None) {
           tries.push_back(std::move(made));
@@ -668,6 +645,51 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
   for (size_t f = 0; f < faces.size(); ++f)
     if (!dead[f]) faces[w++] = faces[f];
   faces.resize(w);
+}
+
+void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudCover& cover, const Params& params,
+                bool floatStorage, Stat& st) {
+  if (!params.closeHoles) return;
+  const double d = st.sphereDiameter;
+  NearSplats splats;
+  closeLoops(faces, g, floatStorage, st, [&](const std::vector<std::vector<std::uint32_t>>& loops,
+                                             const std::vector<Vec3d>& pos) {
+    // The splats that can reach a loop's box.
+    splats.widen = kCoverWidenPerD * d;
+    splats.wide = double(cover.largest) + splats.widen;
+    {
+      const double g = 4 * d;
+      const double rings = kMaxHoleRings * kMaxEdgePerD * d; // how far rings can grow a hole
+      std::unordered_map<std::uint64_t, char> marked;
+      for (const auto& loop : loops) {
+        if (loop.size() > size_t(kMaxHoleLoop)) continue;
+        Box3d b;
+        for (std::uint32_t v : loop) b.Add(pos[v]);
+        const double reach = coverReach(loop, pos, d) + kCoverReachPerLoopRadius * rings;
+        b.Offset(std::sqrt(reach * reach + splats.wide * splats.wide) + rings);
+        forEachCell(cellsOf(b, g), [&](std::uint64_t k) { marked[k] = 1; });
+      }
+      const size_t points = cover.radius.size();
+      for (size_t i = 0; i < points; ++i) {
+        const Vec3d p(cover.xyz[3 * i], cover.xyz[3 * i + 1], cover.xyz[3 * i + 2]);
+        const std::uint64_t key = cellKey(std::int64_t(std::floor(p[0] / g)), std::int64_t(std::floor(p[1] / g)),
+                                          std::int64_t(std::floor(p[2] / g)));
+        if (marked.count(key) == 0) continue;
+        splats.points.push_back(p);
+        splats.radius.push_back(cover.radius[i]);
+      }
+      splats.grid.build(splats.points, d);
+    }
+    return [&splats](const Vec3d& a, const Vec3d& b, const Vec3d& c, double reach) {
+      return coveredAcross(splats, a, b, c, reach);
+    };
+  });
+}
+
+void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CoverTest& covered, bool floatStorage,
+                Stat& st) {
+  closeLoops(faces, g, floatStorage, st,
+             [&](const std::vector<std::vector<std::uint32_t>>&, const std::vector<Vec3d>&) { return covered; });
 }
 
 } // namespace detail

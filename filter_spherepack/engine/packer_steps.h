@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -222,6 +223,12 @@ constexpr double kCosMaxClosureBend = -0.95; // about 162°
 // oriented: a disk is glued along each loop closed.
 void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudCover& cover, const Params& params,
                 bool floatStorage, Stat& st);
+// The same pass where the surface is given by a test of a closure's face (a, b, c) instead of the
+// cloud (the remesher: on the input mesh); `reach` as for the cloud. Always on; st.sphereDiameter
+// is d.
+using CoverTest = std::function<bool(const Vec3d& a, const Vec3d& b, const Vec3d& c, double reach)>;
+void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CoverTest& covered, bool floatStorage,
+                Stat& st);
 
 // packer_output.cpp: the mesh with the triangle quality Q_t of sec. 5, its topology checked (on
 // the output alone, once the graph and the faces are freed: the check's arrays, about 100 bytes a

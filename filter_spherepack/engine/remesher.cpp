@@ -645,7 +645,7 @@ private:
     const int da = graph_.degree(a), db = graph_.degree(b);
     if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
     const int dist = w_ > 0 ? graph_.borderDistance(a, gapA, b, gapB, w_) : 0;
-    return CandidatePriority::level(da, db, dist, w_);
+    return CandidatePriority::level(da, db, dist, w_, kAlikeSplitDistance);
   }
 
   // Sec. 3.4/4.4 on triangles: for every triangle within d of v (facing v's side), the candidates
@@ -1097,6 +1097,24 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.nonManifoldVerticesRemoved = ps.nonManifoldVerticesRemoved;
   st.selfIntersectionFacesRemoved = ps.selfIntersectionFacesRemoved;
   st.facesRemoved = ps.facesRemoved;
+  // The hole pass (packer_holes.cpp) on the input surface: a closure's face has every edge at least d
+  // (vertices of two patches may be closer) and its centroid on the input, not beyond its boundary
+  // (Surface::beyondBoundary), so the input's own borders stay open.
+  if (params.closeHoles)
+    closeHoles(faces, g,
+             [&](const Vec3d& a, const Vec3d& b, const Vec3d& c, double) {
+               const double shortest = d * d * (1 - 1e-9);
+               if ((b - a).SquaredNorm() < shortest || (c - b).SquaredNorm() < shortest ||
+                   (a - c).SquaredNorm() < shortest)
+                 return false;
+               return !surface.beyondBoundary((a + b + c) / 3.0);
+             },
+             floatStorage, ps);
+  st.holesClosed = ps.holesClosed;
+  st.holeFacesAdded = ps.holeFacesAdded;
+  st.holeFacesRemoved = ps.holeFacesRemoved;
+  st.holesOpen = {ps.holesTooLong, ps.holesNotTriangulable, ps.holesNotCovered, ps.holesFolded, ps.holesCrossing,
+                  ps.holesOther};
   st.secondsCleanup = watch.lap();
 
   progress.phase("Sphere packing remesh: writing the mesh", 97, 100);
@@ -1104,6 +1122,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
     throw Error("No triangle could be built: the growth stopped after " + std::to_string(g.vertexCount()) +
                 " vertices. d = " + fmt(d) + " is too large for this mesh's parts; try a smaller d.");
   writeMesh(faces, g, floatStorage, out, ps);
+  checkTopology(out, ps);
   if (ps.nonManifoldVertices > 0 || ps.nonManifoldEdges > 0)
     throw std::logic_error("sphere packing remesher: the output is not manifold after the clean-up");
   st.vertices = ps.vertices;

@@ -29,6 +29,7 @@
 #include <growth/progress.h>
 #include <growth/vec3.h>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,7 @@ struct RemeshParams {
   int windowSize = 8;            // w, sec. 4.2
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   double creaseAngleDeg = 30;    // dihedral angle above which an input edge is a crease
+  bool closeHoles = true;        // the hole pass on the output's loops (packer_steps.h, closeHoles)
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
   int threads = 0;               // threads of the intersection clean-up (0 = automatic)
   bool rejectTwisted = true;     // as Params::rejectTwisted
@@ -54,6 +56,13 @@ struct RemeshParams {
 constexpr double kDefaultRemeshDiameterPerEdge = 1.0;
 constexpr double kMinDefaultVertices = 1000;
 double defaultDiameterOf(double meanEdge, double area);
+// Splits of border distance 1 to this (sec. 3.5's least urgent ones) share one level and are taken
+// in the order they were found. Sec. 3.5 takes the split of distance 2 before that of distance 1;
+// from a straight feature line, or a front that turns by 90°, that order places the vertex that
+// completes a square before the apex of a triangle, row after row, and a flat face ends as a
+// square lattice (two right triangles of Q_t 0.87 per square) instead of a hexagonal one.
+// Splits of larger distance, which close regions off (the seams of sec. 3.5), stay more urgent.
+constexpr int kAlikeSplitDistance = 3;
 // Barycentric tolerance of the inside test of a candidate on a triangle.
 constexpr double kInsideTolerance = 1e-9;
 // A region's triangle lies beyond the input's boundary when its centroid's closest input point is
@@ -85,6 +94,11 @@ struct RemeshStat {
   size_t flatFacesRemoved = 0;
   size_t shortEdgeFacesRemoved = 0; // region faces across two patches with an edge below d (left out)
   size_t nonManifoldVerticesRemoved = 0, selfIntersectionFacesRemoved = 0, facesRemoved = 0;
+  size_t holesClosed = 0;         // boundary loops closed by the hole pass (packer_steps.h, closeHoles)
+  size_t holeFacesAdded = 0, holeFacesRemoved = 0; // faces the pass added, and took out around the holes
+  // Loops the pass left open, by why (as Stat's holesTooLong ... holesOther): too long, not
+  // triangulable, not on the input (or an edge below d), folded, crossing, not a simple loop.
+  std::array<size_t, 6> holesOpen{};
   size_t boundaryLoops = 0;       // of the output
   double smallestEdge = 0;        // as stored
   double qualityAvg = 0;
