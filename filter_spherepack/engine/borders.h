@@ -117,6 +117,14 @@ private:
   size_t edges_ = 0;
 };
 
+// Growth from feature lines (the remesher; the reconstruction with keepFeatures): splits of border
+// distance 1 to this (sec. 3.5's least urgent ones) share one level and are taken in the order they
+// were found. Sec. 3.5 takes the split of distance 2 before that of distance 1;
+// from a straight feature line, or a front that turns by 90°, that order places the vertex that
+// completes a square before the apex of a triangle, row after row, and a flat face ends as a
+// square lattice (two right triangles of Q_t 0.87 per square) instead of a hexagonal one.
+// Splits of larger distance, which close regions off (the seams of sec. 3.5), stay more urgent.
+constexpr int kAlikeSplitDistance = 3;
 // Sec. 3.5 priorities as levels of a bucket queue (sec. 4.4; level 0 most urgent):
 //   0: a parent without edges; 1: a parent with one edge; 2: a join (or a split farther than the
 //   window sees); 3 .. 2+w: a split, the larger the distance of the parents along the border the
@@ -132,6 +140,19 @@ struct CandidatePriority {
     if (borderDistance <= 0 || borderDistance > w) return 2;
     if (borderDistance < alike) borderDistance = std::min(alike, w);
     return 3 + (w - borderDistance);
+  }
+  // The level of a candidate with parents a and b in g, given the corners of a and b it falls into.
+  static int of(const BorderGraph& g, std::uint32_t a, std::uint32_t b, int gapA, int gapB, int w, int alike = 0) {
+    const int da = g.degree(a), db = g.degree(b);
+    if (da <= 1 || db <= 1) return level(da, db, 0, w);
+    const int dist = w > 0 ? g.borderDistance(a, gapA, b, gapB, w) : 0;
+    return level(da, db, dist, w, alike);
+  }
+  // The same for a candidate at x.
+  static int of(const BorderGraph& g, std::uint32_t a, std::uint32_t b, const Vec3d& x, int w, int alike = 0) {
+    const int da = g.degree(a), db = g.degree(b);
+    if (da <= 1 || db <= 1) return level(da, db, 0, w);
+    return of(g, a, b, g.gapOf(a, x), g.gapOf(b, x), w, alike);
   }
 };
 

@@ -204,18 +204,16 @@ private:
   }
 
   // Sec. 3.5 priority of a candidate at x with parents a and b, from the current graph.
+  // With feature lines (keepFeatures found some) the splits of distance 1 to kAlikeSplitDistance are
+  // alike.
   int levelOf(std::uint32_t a, std::uint32_t b, const Vec3d& x) const {
-    const int da = graph_.degree(a), db = graph_.degree(b);
-    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
-    return levelOf(a, b, graph_.gapOf(a, x), graph_.gapOf(b, x));
+    return CandidatePriority::of(graph_, a, b, x, w_, alike());
   }
   // The same, given the corners of a and b that x falls into.
   int levelOf(std::uint32_t a, std::uint32_t b, int gapA, int gapB) const {
-    const int da = graph_.degree(a), db = graph_.degree(b);
-    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
-    const int dist = w_ > 0 ? graph_.borderDistance(a, gapA, b, gapB, w_) : 0;
-    return CandidatePriority::level(da, db, dist, w_);
+    return CandidatePriority::of(graph_, a, b, gapA, gapB, w_, alike());
   }
+  int alike() const { return patch_ != nullptr ? kAlikeSplitDistance : 0; }
 
   // Sec. 3.4/4.4: new candidates with v as a parent, from the splats near v and their vertex lists.
   // near_: the vertices within 2d of v when nearKnown (a superset does as well), else looked up.

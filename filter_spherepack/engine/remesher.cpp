@@ -636,16 +636,12 @@ private:
     return hit;
   }
 
+  // Sec. 3.5 priority, with the splits of distance 1 to kAlikeSplitDistance alike.
   int levelOf(std::uint32_t a, std::uint32_t b, const Vec3d& x) const {
-    const int da = graph_.degree(a), db = graph_.degree(b);
-    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
-    return levelOf(a, b, graph_.gapOf(a, x), graph_.gapOf(b, x));
+    return CandidatePriority::of(graph_, a, b, x, w_, kAlikeSplitDistance);
   }
   int levelOf(std::uint32_t a, std::uint32_t b, int gapA, int gapB) const {
-    const int da = graph_.degree(a), db = graph_.degree(b);
-    if (da <= 1 || db <= 1) return CandidatePriority::level(da, db, 0, w_);
-    const int dist = w_ > 0 ? graph_.borderDistance(a, gapA, b, gapB, w_) : 0;
-    return CandidatePriority::level(da, db, dist, w_, kAlikeSplitDistance);
+    return CandidatePriority::of(graph_, a, b, gapA, gapB, w_, kAlikeSplitDistance);
   }
 
   // Sec. 3.4/4.4 on triangles: for every triangle within d of v (facing v's side), the candidates

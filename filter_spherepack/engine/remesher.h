@@ -56,13 +56,6 @@ struct RemeshParams {
 constexpr double kDefaultRemeshDiameterPerEdge = 1.0;
 constexpr double kMinDefaultVertices = 1000;
 double defaultDiameterOf(double meanEdge, double area);
-// Splits of border distance 1 to this (sec. 3.5's least urgent ones) share one level and are taken
-// in the order they were found. Sec. 3.5 takes the split of distance 2 before that of distance 1;
-// from a straight feature line, or a front that turns by 90°, that order places the vertex that
-// completes a square before the apex of a triangle, row after row, and a flat face ends as a
-// square lattice (two right triangles of Q_t 0.87 per square) instead of a hexagonal one.
-// Splits of larger distance, which close regions off (the seams of sec. 3.5), stay more urgent.
-constexpr int kAlikeSplitDistance = 3;
 // Barycentric tolerance of the inside test of a candidate on a triangle.
 constexpr double kInsideTolerance = 1e-9;
 // A region's triangle lies beyond the input's boundary when its centroid's closest input point is
