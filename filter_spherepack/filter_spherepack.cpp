@@ -11,6 +11,40 @@
 
 #include <new>
 
+namespace {
+
+// Runs an engine call, turning what it throws into the filter's error text (also logged as a
+// warning); `what` names the filter in the messages. False when it threw.
+template <class Run, class Warn>
+bool runEngine(const QString& what, QString& errorMessage, Warn&& warn, Run&& run) {
+  try {
+    run();
+    return true;
+  } catch (const growth::Cancelled&) {
+    errorMessage = what + " was cancelled; no layer was added.";
+    return false;
+  } catch (const growth::Error& e) {
+    errorMessage = what + ": " + e.what();
+  } catch (const std::bad_alloc&) {
+    errorMessage = what + " ran out of memory: use a larger sphere diameter d.";
+  } catch (const std::exception& e) {
+    errorMessage = what + " failed: " + e.what();
+  }
+  warn(errorMessage);
+  return false;
+}
+
+// The result as a new layer named after the input, with its face quality (Q_t).
+MeshModel* addResultLayer(MeshDocument& md, const MeshModel& in, const QString& suffix, CMeshO& result) {
+  MeshModel* out = md.addNewMesh("", in.label() + suffix, true);
+  out->updateDataMask(MeshModel::MM_FACEQUALITY);
+  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
+  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  return out;
+}
+
+} // namespace
+
 FilterSpherePackPlugin::FilterSpherePackPlugin() {
   addFilter(FP_SPHERE_PACKING, this);
   addFilter(FP_SPHERE_PACKING_REMESH, this);
@@ -162,29 +196,11 @@ bool FilterSpherePackPlugin::applySpherePacking(MeshDocument& md, const RichPara
   CMeshO result;
   // Ctrl-C cancels (the hosts' own callbacks never do).
   growth::meshlab::InterruptToCancel interrupt(cb);
-  try {
-    growth::spherepack::build(in->cm, result, p, st, interrupt.callback());
-  } catch (const growth::Cancelled&) {
-    errorMessage = "Sphere Packing was cancelled; no layer was added.";
+  const auto warn = [this](const QString& m) { Log(GLLogStream::WARNING, "%s", qUtf8Printable(m)); };
+  if (!runEngine("Sphere Packing", errorMessage, warn,
+                 [&] { growth::spherepack::build(in->cm, result, p, st, interrupt.callback()); }))
     return false;
-  } catch (const growth::Error& e) {
-    errorMessage = QString("Sphere Packing: ") + e.what();
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  } catch (const std::bad_alloc&) {
-    errorMessage = "Sphere Packing ran out of memory: use a larger sphere diameter d.";
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  } catch (const std::exception& e) {
-    errorMessage = QString("Sphere Packing failed: ") + e.what();
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  }
-
-  MeshModel* out = md.addNewMesh("", in->label() + " (sphere packing)", true);
-  out->updateDataMask(MeshModel::MM_FACEQUALITY);
-  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
-  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  addResultLayer(md, *in, " (sphere packing)", result);
   // PyMeshLab's output dictionary of apply_filter.
   outputs["vertices"] = int(st.vertices);
   outputs["faces"] = int(st.faces);
@@ -261,29 +277,11 @@ bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterLi
   growth::spherepack::RemeshStat st;
   CMeshO result;
   growth::meshlab::InterruptToCancel interrupt(cb);
-  try {
-    growth::spherepack::remesh(in->cm, result, p, st, interrupt.callback());
-  } catch (const growth::Cancelled&) {
-    errorMessage = "Sphere Packing remeshing was cancelled; no layer was added.";
+  const auto warn = [this](const QString& m) { Log(GLLogStream::WARNING, "%s", qUtf8Printable(m)); };
+  if (!runEngine("Sphere Packing remeshing", errorMessage, warn,
+                 [&] { growth::spherepack::remesh(in->cm, result, p, st, interrupt.callback()); }))
     return false;
-  } catch (const growth::Error& e) {
-    errorMessage = QString("Sphere Packing remeshing: ") + e.what();
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  } catch (const std::bad_alloc&) {
-    errorMessage = "Sphere Packing remeshing ran out of memory: use a larger sphere diameter d.";
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  } catch (const std::exception& e) {
-    errorMessage = QString("Sphere Packing remeshing failed: ") + e.what();
-    Log(GLLogStream::WARNING, "%s", qUtf8Printable(errorMessage));
-    return false;
-  }
-
-  MeshModel* out = md.addNewMesh("", in->label() + " (sphere packing remesh)", true);
-  out->updateDataMask(MeshModel::MM_FACEQUALITY);
-  vcg::tri::Append<CMeshO, CMeshO>::MeshCopy(out->cm, result);
-  vcg::tri::UpdateBounding<CMeshO>::Box(out->cm);
+  addResultLayer(md, *in, " (sphere packing remesh)", result);
   outputs["vertices"] = int(st.vertices);
   outputs["faces"] = int(st.faces);
   outputs["holes"] = int(st.boundaryLoops);
