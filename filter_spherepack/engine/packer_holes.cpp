@@ -388,8 +388,8 @@ void closeLoops(std::vector<Triangle>& faces, const BorderGraph& g, bool floatSt
       agree += across[i] * normal;
     }
     Refusal why = Refusal::NotTriangulable;
-    // The loop faces the way the mesh along it does.
-    if (!(agree > 0)) {
+    // The loop does not face away from the mesh along it (kFacesAwayShare).
+    if (!(agree > -kFacesAwayShare * double(n))) {
       why = Refusal::FacesAway;
     } else {
       for (int k = 0; k < 2; ++k) {

@@ -212,6 +212,12 @@ constexpr int kMaxLeastBendLoop = 150;
 // A closure's face and the mesh's face across a loop edge bend by less than this (a face folded
 // flat back onto the mesh is refused; the mesh's own creases near a hole can reach 150°).
 constexpr double kCosMaxClosureBend = -0.95; // about 162°
+// A loop faces away from the mesh when the mean of (the normal of the mesh's face across each loop
+// edge) · (the loop's unit area normal) is below −kFacesAwayShare. The outline of a piece that is a
+// disk of its own, seen from outside, is near −1 (its closure would double the piece); a loop that runs
+// along a crease of about 90° (the rim of a flat end) is near 0, with a sign that noise decides, and
+// is tried (the fold check, kCosMaxClosureBend, still refuses a closure lying back on the mesh).
+constexpr double kFacesAwayShare = 0.5;
 // Every boundary loop of `faces` (manifold, oriented) is closed by sec. 3.7's ear cut of the loop
 // projected on the plane of its area normal, using the packing's vertices only (so every new edge
 // is >= d), when every new face is where the cloud is (`cover`, kCoverReachPerD) and the new faces
@@ -219,7 +225,7 @@ constexpr double kCosMaxClosureBend = -0.95; // about 162°
 // along the loop (kCosMaxClosureBend) and intersect neither the mesh nor the closures accepted
 // before them; and the loop faces the way the mesh around it does (its area normal and the
 // normals of the mesh's faces along it agree on the whole: the loop of a piece that is a disk of
-// its own, whose closure would double it, faces the other way). The mesh stays manifold and
+// its own, whose closure would double it, faces the other way: kFacesAwayShare). The mesh stays manifold and
 // oriented: a disk is glued along each loop closed.
 void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudCover& cover, const Params& params,
                 bool floatStorage, Stat& st);
