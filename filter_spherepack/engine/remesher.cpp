@@ -818,22 +818,62 @@ FeatureLines traceFeatureLines(const InputMesh& in) {
 // details smaller than d, not an edge of the shape (a cube's sides are lines from corner to corner).
 // They are dropped, the corners recomputed, and again until every line is long enough; the faces
 // along a dropped crease join one patch.
+// A line must also be a crease at the scale of d: the surface's normals kSideOffsetPerD·d to
+// either side of it (Surface::normalAt, the mean over d/2) must differ by more than the crease
+// angle, on the mean over the line's length (border lines are always kept). Two faces of a scan's
+// triangulation meet at any angle, but the surface d away from them does not turn with them;
+// such lines split the surface into patches that the growth does not join.
 constexpr double kMinCreasePerD = 2.0;
-void keepLongCreases(InputMesh& in, double d) {
+constexpr double kSideOffsetPerD = 0.75;
+// Per crease edge: the cosine of the angle between the surface's normals kSideOffsetPerD·d to
+// either side of its midpoint (a border edge: −1, always a feature).
+std::vector<double> creaseCosAtD(const InputMesh& in, const Surface& surface, double d) {
+  std::vector<double> out(in.creases.size(), -1);
+  for (size_t k = 0; k < in.creases.size(); ++k) {
+    const InputMesh::CreaseEdge& e = in.creases[k];
+    if (e.f0 == e.f1) continue;
+    const Vec3d p = (in.vertices[e.u] + in.vertices[e.v]) * 0.5;
+    Vec3d t = in.vertices[e.v] - in.vertices[e.u];
+    t /= t.Norm();
+    Vec3d n[2];
+    const std::uint32_t f[2] = {e.f0, e.f1};
+    for (int s = 0; s < 2; ++s) {
+      const Triangle& tri = in.faces[f[s]];
+      Vec3d side = (in.vertices[tri[0]] + in.vertices[tri[1]] + in.vertices[tri[2]]) / 3.0 - p;
+      side -= t * (side * t);
+      const double len = side.Norm();
+      n[s] = len > 0 ? surface.normalAt(p + side * (kSideOffsetPerD * d / len), in.tri[f[s]].n) : in.tri[f[s]].n;
+    }
+    out[k] = n[0] * n[1];
+  }
+  return out;
+}
+
+void keepLongCreases(InputMesh& in, double d, const Surface& surface, double creaseAngleDeg) {
+  const double creaseCos = std::cos(creaseAngleDeg * 3.14159265358979323846 / 180);
+  std::vector<double> cosAtD = creaseCosAtD(in, surface, d);
   for (;;) {
     const FeatureLines fl = traceFeatureLines(in);
     std::vector<char> drop(in.creases.size(), 0);
     bool any = false;
-    for (const FeatureLine& line : fl.lines)
-      if (line.length < kMinCreasePerD * d) {
+    for (const FeatureLine& line : fl.lines) {
+      double sum = 0, length = 0;
+      for (const std::uint32_t k : line.edges) {
+        const double len = (in.vertices[in.creases[k].u] - in.vertices[in.creases[k].v]).Norm();
+        sum += cosAtD[k] * len;
+        length += len;
+      }
+      if (line.length < kMinCreasePerD * d || (length > 0 && sum / length >= creaseCos)) {
         for (const std::uint32_t k : line.edges) drop[k] = 1;
         any = true;
       }
+    }
     if (!any) break;
     size_t w = 0;
     for (size_t k = 0; k < in.creases.size(); ++k) {
       const auto& e = in.creases[k];
       if (!drop[k]) {
+        cosAtD[w] = cosAtD[k];
         in.creases[w++] = e;
         continue;
       }
@@ -841,6 +881,7 @@ void keepLongCreases(InputMesh& in, double d) {
       if (x != y) in.patch[std::max(x, y)] = std::min(x, y);
     }
     in.creases.resize(w);
+    cosAtD.resize(w);
   }
   for (std::uint32_t f = 0; f < in.patch.size(); ++f) in.patch[f] = findRoot(in.patch, f);
 }
@@ -1054,11 +1095,10 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
                 " vertices, beyond the limit of " + std::to_string(params.maxOutputVertices) + ". Use a larger d "
                 "(the input's mean edge length is " + fmt(in.meanEdge) + ").");
   st.sphereDiameter = d;
-  keepLongCreases(in, d);
-
   TriangleGrid grid;
   grid.build(in, d);
   const Surface surface(in, grid, d);
+  keepLongCreases(in, d, surface, params.creaseAngleDeg);
   st.secondsInput = watch.lap();
 
   progress.phase("Sphere packing remesh: growing", 5, 90);
