@@ -48,6 +48,8 @@ struct InputTriangle {
   Vec3d a, e0, e1, n;     // corner a, edges e0 = b − a and e1 = c − a, unit normal
   double d00, d01, d11, inv; // Gram matrix of e0, e1 and the inverse of its determinant
   double area;
+  Vec3d centre;  // the centroid and the largest distance of a corner from it: a bounding ball
+  double radius;
   bool sliver;
   // Barycentric coordinates (u, v, w) of x (projected onto the plane): x ≈ a + v·e0 + w·e1.
   void barycentric(const Vec3d& x, double& u, double& v, double& w) const {
@@ -175,6 +177,8 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
     in.slivers += T.sliver ? 1 : 0;
     T.n = T.sliver ? Vec3d(0, 0, 0) : cr / twiceArea;
     T.area = 0.5 * twiceArea;
+    T.centre = (a + b + c) / 3.0;
+    T.radius = std::sqrt(std::max((a - T.centre).SquaredNorm(), std::max((b - T.centre).SquaredNorm(), (c - T.centre).SquaredNorm())));
     T.d00 = T.e0 * T.e0;
     T.d01 = T.e0 * T.e1;
     T.d11 = T.e1 * T.e1;
@@ -371,14 +375,31 @@ public:
   // the triangles within d of x), in a fixed order.
   template <class F>
   void forEachNear(const Vec3d& x, F&& f) const {
+    const std::int64_t cx = index_.coord(x[0], 0), cy = index_.coord(x[1], 1), cz = index_.coord(x[2], 2);
+    visit(cx - 1, cx + 1, cy - 1, cy + 1, cz - 1, cz + 1, f);
+  }
+  // Calls f(t) once for every triangle listed by the cells that meet the box of half side r
+  // around x (a superset of the triangles within r of x: a point of such a triangle lies in one of
+  // these cells, which lists it), in a fixed order. For r = d/2 at most 2 × 2 × 2 cells.
+  template <class F>
+  void forEachWithin(const Vec3d& x, double r, F&& f) const {
+    visit(index_.coord(x[0] - r, 0), index_.coord(x[0] + r, 0), index_.coord(x[1] - r, 1), index_.coord(x[1] + r, 1),
+          index_.coord(x[2] - r, 2), index_.coord(x[2] + r, 2), f);
+  }
+  const BoxIndexer& indexer() const { return index_; }
+  size_t references() const { return list_.size(); }
+
+private:
+  template <class F>
+  void visit(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, std::int64_t z0, std::int64_t z1,
+             F& f) const {
     if (++round_ == 0) {
       std::fill(stamp_.begin(), stamp_.end(), 0u);
       round_ = 1;
     }
-    const std::int64_t cx = index_.coord(x[0], 0), cy = index_.coord(x[1], 1), cz = index_.coord(x[2], 2);
-    for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
-      for (std::int64_t j = cy - 1; j <= cy + 1; ++j)
-        for (std::int64_t k = cz - 1; k <= cz + 1; ++k) {
+    for (std::int64_t i = x0; i <= x1; ++i)
+      for (std::int64_t j = y0; j <= y1; ++j)
+        for (std::int64_t k = z0; k <= z1; ++k) {
           if (!BoxIndexer::valid(i, j, k)) continue;
           const int cell = hash_.find(BoxIndexer::pack(i, j, k));
           if (cell < 0) continue;
@@ -390,10 +411,7 @@ public:
           }
         }
   }
-  const BoxIndexer& indexer() const { return index_; }
-  size_t references() const { return list_.size(); }
 
-private:
   BoxIndexer index_;
   KeyHash hash_;
   std::vector<std::uint32_t> offsets_, list_;
@@ -413,6 +431,15 @@ public:
     if (feature != nullptr) *feature = ft;
     return (q - x).SquaredNorm();
   }
+  // Whether triangle t is farther than r from x (squaredDistance(x, t) > r²), decided by its
+  // bounding ball where it can be: most triangles a grid query lists are far.
+  bool fartherThan(const Vec3d& x, std::uint32_t t, double r) const {
+    const InputTriangle& T = in_.tri[t];
+    const double reach = T.radius + r;
+    const double c2 = (x - T.centre).SquaredNorm();
+    if (c2 > reach * reach) return true;
+    return squaredDistance(x, t) > r * r;
+  }
   Vec3d closest(const Vec3d& x, std::uint32_t t, int& feature) const {
     const Triangle& f = in_.faces[t];
     return closestOnTriangle(x, in_.vertices[f[0]], in_.vertices[f[1]], in_.vertices[f[2]], feature);
@@ -423,12 +450,12 @@ public:
   // `patch`: only the triangles of that patch (kNone: any).
   Vec3d normalAt(const Vec3d& x, const Vec3d& side, std::uint32_t patch = kNone) const {
     Vec3d sum(0, 0, 0);
-    const double r2 = 0.25 * d_ * d_, cap = 0.25 * d_ * d_;
-    grid_.forEachNear(x, [&](std::uint32_t t) {
+    const double cap = 0.25 * d_ * d_;
+    grid_.forEachWithin(x, 0.5 * d_, [&](std::uint32_t t) {
       const InputTriangle& T = in_.tri[t];
       if (T.n * side <= 0) return;
       if (patch != kNone && in_.patch[t] != patch) return;
-      if (squaredDistance(x, t) > r2) return;
+      if (fartherThan(x, t, 0.5 * d_)) return;
       sum += T.n * std::min(T.area, cap);
     });
     const double len = sum.Norm();
@@ -669,7 +696,7 @@ private:
       if (T.n * nv < kMinFacingDot) continue;
       const std::uint32_t tp = in_.patch[t];
       if (vp != kNone && vp != tp) continue;
-      if (surface_.squaredDistance(x, t) > d2_) continue;
+      if (surface_.fartherThan(x, t, d_)) continue;
       lists_.forEach(t, [&](std::uint32_t u) {
         if (vpatch_[u] != kNone && vpatch_[u] != tp) return;
         const ParentCircle c = parentCircle(x, pos[u], d_);
