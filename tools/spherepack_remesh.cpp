@@ -1,7 +1,7 @@
 // spherepack_remesh: runs the sphere-packing remesher (remesher.h) outside MeshLab and prints its
 // statistics and the measures of the result.
 //   spherepack_remesh mesh.ply [--d D | --d-edges K (d = K · mean edge length)] [--w W] [--border B]
-//                     [--crease DEG] [--threads T] [--measure] [-o out.ply]
+//                     [--crease DEG] [--min-piece-faces N] [--threads T] [--measure] [-o out.ply]
 // --measure adds the topology and quality of the input and the output, and the distances between
 // them both ways (largest and mean, over the vertices of one to the faces of the other).
 // Prints one "key: value" per line. Time is the engine's own (RemeshStat::seconds).
@@ -31,7 +31,7 @@ long peakRssKiB() {
 
 void usage() {
   std::fprintf(stderr, "usage: spherepack_remesh mesh.ply [--d D | --d-edges K] [--w W] [--border B] [--crease DEG]\n"
-                       "                         [--threads T] [--measure] [-o out.ply]\n");
+                       "                         [--min-piece-faces N] [--threads T] [--measure] [-o out.ply]\n");
 }
 
 void distances(const growth::MeshArrays& from, const growth::MeshArrays& to, double& maxD, double& meanD) {
@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--crease") params.creaseAngleDeg = std::atof(value());
+      else if (a == "--min-piece-faces") params.minPieceFaces = std::atoi(value());
       else if (a == "--threads") params.threads = std::atoi(value());
       else if (a == "--measure") measure = true;
       else if (a == "-o") out = value();
@@ -106,12 +107,12 @@ int main(int argc, char** argv) {
                 st.sphereDiameter, st.diameterReason.c_str());
     std::printf("vertices: %zu\nfaces: %zu\nsmallest_edge: %.8g\nsmallest_edge_per_d: %.6f\nq_avg: %.5f\n"
                 "boundary_loops: %zu\nholes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\n"
-                "short_edge_faces_removed: %zu\nfaces_removed: %zu\n"
+                "short_edge_faces_removed: %zu\nfaces_removed: %zu\npieces_dropped: %zu\npiece_faces_dropped: %zu\n"
                 "crease_edges: %zu\nfeature_corners: %zu\nfeature_vertices: %zu\nfeature_vertices_skipped: %zu\n"
                 "components_started: %zu\nunreached_faces: %zu\ncandidates: %zu\nrequeued: %zu\n"
                 "rejected_too_close: %zu\nrejected_crossing: %zu\nrejected_inconsistent: %zu\n",
                 st.vertices, st.faces, st.smallestEdge, st.smallestEdge / st.sphereDiameter, st.qualityAvg,
-                st.boundaryLoops, st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved,
+                st.boundaryLoops, st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved, st.piecesDropped, st.pieceFacesDropped,
                 st.creaseEdges, st.featureCorners, st.featureVertices, st.featureVerticesSkipped,
                 st.componentsStarted, st.unreachedFaces, st.candidates, st.requeued, st.rejectedTooClose,
                 st.rejectedCrossing, st.rejectedInconsistent);

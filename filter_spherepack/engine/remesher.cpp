@@ -112,6 +112,7 @@ struct InputMesh {
   };
   std::vector<CreaseEdge> creases;
   std::vector<std::uint32_t> patch; // (until keepLongCreases: the union-find parents)
+  std::vector<std::uint32_t> component; // per face: its edge-connected component (smallest face index)
   std::vector<Vec3d> vertexNormal;
 };
 
@@ -266,7 +267,11 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
       else joinPatches(x, y);
     }
   }
-  for (std::uint32_t f = 0; f < in.faces.size(); ++f) in.components += findRoot(parent, f) == f ? 1 : 0;
+  in.component.resize(in.faces.size());
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f) {
+    in.component[f] = findRoot(parent, f);
+    in.components += in.component[f] == f ? 1 : 0;
+  }
   in.patch = std::move(patch);
   in.vertexNormal.assign(nv, Vec3d(0, 0, 0));
   for (std::uint32_t f = 0; f < in.faces.size(); ++f)
@@ -480,6 +485,20 @@ public:
       }
     });
     return found;
+  }
+
+  // The input triangle closest to x among those listed around it (kNone when none is).
+  std::uint32_t closestTriangle(const Vec3d& x) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::uint32_t bestT = kNone;
+    grid_.forEachNear(x, [&](std::uint32_t t) {
+      const double d2 = squaredDistance(x, t);
+      if (d2 < best || (d2 == best && t < bestT)) {
+        best = d2;
+        bestT = t;
+      }
+    });
+    return bestT;
   }
 
   // Whether x lies beyond the input's boundary: its closest input point (any side) is on a boundary
@@ -1046,6 +1065,50 @@ std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Sur
   return faces;
 }
 
+// Pieces of the output (faces joined through shared vertices: after the clean-up, through edges)
+// that are not the largest piece on their input component and have fewer than minFaces faces are
+// dropped: fragments cut off by regions left open, where the input is narrower than d or its
+// border ragged at the scale of d. Every input component keeps its largest piece. A piece's input
+// component is that of the input triangle closest to its first vertex. Returns the pieces dropped.
+size_t dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const InputMesh& in,
+                       const Surface& surface, size_t minFaces, size_t& facesDropped) {
+  facesDropped = 0;
+  if (minFaces <= 1 || faces.empty()) return 0;
+  std::vector<std::uint32_t> parent(g.vertexCount());
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const Triangle& f : faces)
+    for (int k = 1; k < 3; ++k) {
+      const std::uint32_t x = findRoot(parent, f[0]), y = findRoot(parent, f[k]);
+      if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+  std::vector<std::uint32_t> size(g.vertexCount(), 0);
+  for (const Triangle& f : faces) ++size[findRoot(parent, f[0])];
+  // Per input component, the largest piece (the smallest root among equals).
+  std::vector<std::uint32_t> owner(g.vertexCount(), kNone), largest(in.faces.size(), kNone);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v) {
+    if (size[v] == 0 || findRoot(parent, v) != v) continue;
+    const std::uint32_t t = surface.closestTriangle(g.positions()[v]);
+    if (t == kNone) continue;
+    owner[v] = in.component[t];
+    std::uint32_t& l = largest[owner[v]];
+    if (l == kNone || size[v] > size[l]) l = v;
+  }
+  size_t dropped = 0;
+  std::vector<char> drop(g.vertexCount(), 0);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
+    if (size[v] > 0 && size[v] < minFaces && owner[v] != kNone && largest[owner[v]] != v) {
+      drop[v] = 1;
+      ++dropped;
+    }
+  size_t w = 0;
+  for (const Triangle& f : faces) {
+    if (drop[findRoot(parent, f[0])]) ++facesDropped;
+    else faces[w++] = f;
+  }
+  faces.resize(w);
+  return dropped;
+}
+
 } // namespace
 
 double defaultDiameterOf(double meanEdge, double area) {
@@ -1164,6 +1227,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.nonManifoldVerticesRemoved = ps.nonManifoldVerticesRemoved;
   st.selfIntersectionFacesRemoved = ps.selfIntersectionFacesRemoved;
   st.facesRemoved = ps.facesRemoved;
+  st.piecesDropped = dropSmallPieces(faces, g, in, surface, size_t(std::max(params.minPieceFaces, 0)), st.pieceFacesDropped);
   st.secondsCleanup = watch.lap();
 
   progress.phase("Sphere packing remesh: writing the mesh", 97, 100);

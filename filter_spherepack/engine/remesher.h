@@ -41,6 +41,8 @@ struct RemeshParams {
   int maxBorderLength = 40;      // regions bounded by more border edges stay holes, sec. 3.7
   double creaseAngleDeg = 30;    // dihedral angle above which an input edge is a crease
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  int minPieceFaces = 10;        // pieces of the output with fewer faces are dropped, but each input
+                                 // component keeps its largest piece (0: none dropped)
   int threads = 0;               // threads of the intersection clean-up (0 = automatic)
   bool rejectTwisted = true;     // as Params::rejectTwisted
   bool checkInvariants = false;  // tests: brute-force check of every insertion (O(V²))
@@ -85,6 +87,7 @@ struct RemeshStat {
   size_t flatFacesRemoved = 0;
   size_t shortEdgeFacesRemoved = 0; // region faces across two patches with an edge below d (left out)
   size_t nonManifoldVerticesRemoved = 0, selfIntersectionFacesRemoved = 0, facesRemoved = 0;
+  size_t piecesDropped = 0, pieceFacesDropped = 0; // pieces below RemeshParams::minPieceFaces, not the largest on their input component
   size_t boundaryLoops = 0;       // of the output
   double smallestEdge = 0;        // as stored
   double qualityAvg = 0;
