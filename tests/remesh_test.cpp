@@ -9,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <random>
 #include <tuple>
 
@@ -264,6 +266,79 @@ TEST(Remesh, EveryComponentIsMeshed) {
   EXPECT_EQ(c.res.genus, 1);
   EXPECT_EQ(c.res.boundaryLoops, 0u);
   EXPECT_GE(c.st.componentsStarted, 2u);
+}
+
+// A scanned surface's triangulation: neighbouring faces meet at any angle, but at the scale of d
+// the surface is smooth. An icosphere (20,480 faces, mean edge 0.031) with every vertex moved
+// radially by a seeded uniform amount of up to `noise` mean edges. Lines of edges whose faces are
+// more than 30° apart, longer than 2 d, are no creases unless the surface d to either side turns
+// too: at d = 0.1 none is left, and at d = 0.04 (noise 0.5) the few left do not cut the sphere.
+// With every such line a crease, the growth left strips along them open (d = 0.04: 2,468 crease
+// edges, 4 components, 6 boundary loops, faces removed by the clean-up).
+TEST(Remesh, NoisySurfaceHasNoCreases) {
+  for (const std::pair<double, double>& noiseAndD : {std::make_pair(0.3, 0.1), std::make_pair(0.5, 0.04)}) {
+    const double noise = noiseAndD.first, d = noiseAndD.second;
+    MeshArrays s = icosphere(5, 1.0);
+    const double meanEdge = growth::measure(s).edgeMean;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-noise, noise);
+    for (Vec3d& v : s.vertices) v = v * (1 + u(rng) * meanEdge);
+    RemeshParams p;
+    p.sphereDiameter = d;
+    const Checked c = remeshChecked(s, p);
+    if (d == 0.1) { EXPECT_EQ(c.st.creaseEdges, 0u); }
+    EXPECT_EQ(c.res.components, 1u) << "d = " << d;
+    EXPECT_EQ(c.res.boundaryLoops, 0u) << "d = " << d;
+    EXPECT_EQ(c.res.genus, 0) << "d = " << d;
+    EXPECT_EQ(c.st.facesRemoved, 0u) << "d = " << d;
+    EXPECT_LE(c.maxInToOut, d) << "d = " << d; // the noise is up to 0.39 d at d = 0.04
+  }
+}
+
+// A sphere with a lace of holes (the fans of vertices at least 2.5 mean edges apart removed: 876
+// holes, bridges between them of about a quarter of d = 0.06): the regions over the holes stay
+// open and cut off pieces of a few faces. They are dropped (RemeshParams::minPieceFaces), but an
+// input component keeps its largest piece however small: a small sphere beside the lace.
+TEST(Remesh, SmallPiecesAreDroppedButNotComponents) {
+  MeshArrays s = icosphere(5, 1.0);
+  const double e = growth::measure(s).edgeMean;
+  std::mt19937_64 rng(3);
+  std::vector<std::uint32_t> order(s.vertices.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<Vec3d> centres;
+  std::vector<char> hole(s.vertices.size(), 0);
+  for (const std::uint32_t v : order) {
+    bool apart = true;
+    for (const Vec3d& q : centres) apart = apart && (q - s.vertices[v]).Norm() >= 2.5 * e;
+    if (apart) {
+      centres.push_back(s.vertices[v]);
+      hole[v] = 1;
+    }
+  }
+  MeshArrays holed = s;
+  holed.faces.clear();
+  for (const auto& f : s.faces)
+    if (!hole[f[0]] && !hole[f[1]] && !hole[f[2]]) holed.faces.push_back(f);
+  const MeshArrays lace = keepFaces(holed, [](const Vec3d&) { return true; }); // without the holes' centres
+  RemeshParams p;
+  p.sphereDiameter = 0.06;
+  p.minPieceFaces = 0;
+  p.closeHoles = false; // the rule alone (the hole pass may take pieces into the rings of its closures)
+  const Checked all = remeshChecked(lace, p);
+  EXPECT_EQ(all.in.components, 1u);
+  EXPECT_GT(all.in.boundaryLoops, 800u);
+  EXPECT_GT(all.res.components, 3u); // the fragments the rule is for
+  p.minPieceFaces = RemeshParams().minPieceFaces;
+  const Checked kept = remeshChecked(lace, p);
+  EXPECT_EQ(kept.res.components, 1u);
+  EXPECT_EQ(kept.st.piecesDropped + 1, all.res.components);
+  // A sphere of radius 0.1 beside it: one piece of fewer faces than the limit, kept.
+  MeshArrays both = concat(lace, icosphere(3, 0.1, Vec3d(3, 0, 0)));
+  p.minPieceFaces = 1000;
+  const Checked two = remeshChecked(both, p);
+  EXPECT_EQ(two.res.components, 2u);
+  EXPECT_LT(two.res.perComponent.back().faces, 1000u);
 }
 
 TEST(Remesh, CubeWithCreasesIsClosedAndManifold) {

@@ -10,17 +10,20 @@
 // D by more than float storage of their ends can explain: each coordinate rounded by up to half a
 // float step, at most |x|·2^-24, so an edge by up to 2·√3·m·2^-24 (m the largest coordinate of its
 // ends), plus 1e-9·D.
+// Files are read in double precision (a double PLY, as PyMeshLab and the double MeshLab builds
+// save, is measured as stored: rounded to float, a double mesh can gain intersections and edges
+// shorter than d that the file does not have).
 // --cloud adds the distance of the cloud's points to the mesh and μd %; --histograms writes
 // PREFIX_angles.csv (degrees), PREFIX_edges.csv and PREFIX_quality.csv (Q_t) as "lo,hi,count";
 // --edge-max fixes the edge histogram's range to [0, L] (default 3·E_avg) so that several meshes
 // can be compared bin by bin.
-#include <growth/meshlab/layer.h>
 #include <growth/mesh_measures.h>
 
-#include <common/ml_mesh_type.h>
+#include <vcg/complex/complex.h>
 #include <wrap/io_trimesh/import_ply.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cmath>
@@ -39,13 +42,36 @@ void usage() {
                "                     [--no-min-vertex-distance]\n");
 }
 
-bool load(const std::string& path, CMeshO& m) {
+// A vcglib mesh with double coordinates, only to read the PLY files.
+class DVertex;
+class DFace;
+struct DTypes : public vcg::UsedTypes<vcg::Use<DVertex>::AsVertexType, vcg::Use<DFace>::AsFaceType> {};
+class DVertex : public vcg::Vertex<DTypes, vcg::vertex::Coord3d, vcg::vertex::BitFlags> {};
+class DFace : public vcg::Face<DTypes, vcg::face::VertexRef, vcg::face::BitFlags> {};
+class DMesh : public vcg::tri::TriMesh<std::vector<DVertex>, std::vector<DFace>> {};
+
+// The live vertices and faces of a PLY file, in double.
+bool load(const std::string& path, growth::MeshArrays& out) {
+  DMesh m;
   int mask = 0;
-  const int err = vcg::tri::io::ImporterPLY<CMeshO>::Open(m, path.c_str(), mask);
-  if (err != 0 && vcg::tri::io::ImporterPLY<CMeshO>::ErrorCritical(err)) {
-    std::fprintf(stderr, "mesh_measures: cannot read %s: %s\n", path.c_str(),
-                 vcg::tri::io::ImporterPLY<CMeshO>::ErrorMsg(err));
+  const int err = vcg::tri::io::ImporterPLY<DMesh>::Open(m, path.c_str(), mask);
+  if (err != 0 && vcg::tri::io::ImporterPLY<DMesh>::ErrorCritical(err)) {
+    std::fprintf(stderr, "mesh_measures: cannot read %s: %s\n", path.c_str(), vcg::tri::io::ImporterPLY<DMesh>::ErrorMsg(err));
     return false;
+  }
+  out = growth::MeshArrays();
+  std::vector<std::uint32_t> index(m.vert.size(), ~0u);
+  for (size_t i = 0; i < m.vert.size(); ++i) {
+    if (m.vert[i].IsD()) continue;
+    index[i] = std::uint32_t(out.vertices.size());
+    const auto& p = m.vert[i].cP();
+    out.vertices.push_back(growth::Vec3d(p[0], p[1], p[2]));
+  }
+  for (const auto& f : m.face) {
+    if (f.IsD()) continue;
+    std::array<std::uint32_t, 3> t;
+    for (int k = 0; k < 3; ++k) t[k] = index[vcg::tri::Index(m, f.cV(k))];
+    out.faces.push_back(t);
   }
   return true;
 }
@@ -115,25 +141,22 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  CMeshO mesh;
+  growth::MeshArrays mesh;
   if (!load(meshPath, mesh)) return 1;
   std::vector<growth::Vec3d> cloud;
   if (!cloudPath.empty()) {
-    CMeshO c;
+    growth::MeshArrays c;
     if (!load(cloudPath, c)) return 1;
-    cloud.reserve(c.vert.size());
-    for (const auto& v : c.vert) {
-      if (v.IsD()) continue;
-      const growth::Vec3d p = growth::Vec3d::Construct(v.cP());
+    cloud.reserve(c.vertices.size());
+    for (const growth::Vec3d& p : c.vertices)
       if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])) cloud.push_back(p);
-    }
   }
 
   const auto t0 = std::chrono::steady_clock::now();
   const growth::MeshMeasures m = growth::measure(mesh, cloudPath.empty() ? nullptr : &cloud, options);
   std::ostringstream remesh;
   if (target > 0) {
-    const growth::MeshArrays arrays = growth::meshlab::meshArrays(mesh);
+    const growth::MeshArrays& arrays = mesh;
     // The unique edges shorter than D, each counted once whatever the faces' orientation.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> shortEdges;
     for (const auto& f : arrays.faces)
@@ -153,10 +176,9 @@ int main(int argc, char** argv) {
     remesh << "  \"edges_below_d\": " << below << ",\n";
   }
   if (!referencePath.empty()) {
-    CMeshO reference;
-    if (!load(referencePath, reference)) return 1;
-    const growth::MeshArrays in = growth::meshlab::meshArrays(reference), out = growth::meshlab::meshArrays(mesh);
-    const growth::SurfaceDistance to = growth::surfaceDistance(out, in), from = growth::surfaceDistance(in, out);
+    growth::MeshArrays in;
+    if (!load(referencePath, in)) return 1;
+    const growth::SurfaceDistance to = growth::surfaceDistance(mesh, in), from = growth::surfaceDistance(in, mesh);
     remesh << "  \"to_reference_mean\": " << number(to.mean) << ",\n  \"to_reference_max\": " << number(to.max)
            << ",\n  \"to_reference_samples\": " << to.samples << ",\n  \"from_reference_mean\": " << number(from.mean)
            << ",\n  \"from_reference_max\": " << number(from.max) << ",\n  \"from_reference_vertex_max\": "

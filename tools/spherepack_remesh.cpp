@@ -1,7 +1,7 @@
 // spherepack_remesh: runs the sphere-packing remesher (remesher.h) outside MeshLab and prints its
 // statistics and the measures of the result.
 //   spherepack_remesh mesh.ply [--d D | --d-edges K (d = K · mean edge length)] [--w W] [--border B]
-//                     [--crease DEG] [--no-hole-pass] [--threads T] [--measure] [-o out.ply]
+//                     [--crease DEG] [--min-piece-faces N] [--no-hole-pass] [--threads T] [--measure] [-o out.ply]
 // --measure adds the topology and quality of the input and the output, and the distances between
 // them both ways (largest and mean, over the vertices of one to the faces of the other).
 // Prints one "key: value" per line. Time is the engine's own (RemeshStat::seconds).
@@ -30,8 +30,8 @@ long peakRssKiB() {
 }
 
 void usage() {
-  std::fprintf(stderr, "usage: spherepack_remesh mesh.ply [--d D | --d-edges K] [--w W] [--border B] [--crease DEG] [--no-hole-pass]\n"
-                       "                         [--threads T] [--measure] [-o out.ply]\n");
+  std::fprintf(stderr, "usage: spherepack_remesh mesh.ply [--d D | --d-edges K] [--w W] [--border B] [--crease DEG]\n"
+                       "                         [--min-piece-faces N] [--no-hole-pass] [--threads T] [--measure] [-o out.ply]\n");
 }
 
 void distances(const growth::MeshArrays& from, const growth::MeshArrays& to, double& maxD, double& meanD) {
@@ -75,6 +75,7 @@ int main(int argc, char** argv) {
       else if (a == "--w") params.windowSize = std::atoi(value());
       else if (a == "--border") params.maxBorderLength = std::atoi(value());
       else if (a == "--crease") params.creaseAngleDeg = std::atof(value());
+      else if (a == "--min-piece-faces") params.minPieceFaces = std::atoi(value());
       else if (a == "--threads") params.threads = std::atoi(value());
       else if (a == "--no-hole-pass") params.closeHoles = false;
       else if (a == "--measure") measure = true;
@@ -109,12 +110,12 @@ int main(int argc, char** argv) {
                 "boundary_loops: %zu\nholes_closed: %zu\nhole_faces_added: %zu\n"
                 "holes_open_long_tri_cover_fold_cross_other: %zu %zu %zu %zu %zu %zu\n"
                 "holes: %zu\nregions_outside: %zu\nflat_faces_removed: %zu\n"
-                "short_edge_faces_removed: %zu\nfaces_removed: %zu\n"
+                "short_edge_faces_removed: %zu\nfaces_removed: %zu\npieces_dropped: %zu\npiece_faces_dropped: %zu\n"
                 "crease_edges: %zu\nfeature_corners: %zu\nfeature_vertices: %zu\nfeature_vertices_skipped: %zu\n"
                 "components_started: %zu\nunreached_faces: %zu\ncandidates: %zu\nrequeued: %zu\n"
                 "rejected_too_close: %zu\nrejected_crossing: %zu\nrejected_inconsistent: %zu\n",
                 st.vertices, st.faces, st.smallestEdge, st.smallestEdge / st.sphereDiameter, st.qualityAvg,
-                st.boundaryLoops, st.holesClosed, st.holeFacesAdded, st.holesOpen[0], st.holesOpen[1], st.holesOpen[2], st.holesOpen[3], st.holesOpen[4], st.holesOpen[5], st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved,
+                st.boundaryLoops, st.holesClosed, st.holeFacesAdded, st.holesOpen[0], st.holesOpen[1], st.holesOpen[2], st.holesOpen[3], st.holesOpen[4], st.holesOpen[5], st.holes, st.regionsOutside, st.flatFacesRemoved, st.shortEdgeFacesRemoved, st.facesRemoved, st.piecesDropped, st.pieceFacesDropped,
                 st.creaseEdges, st.featureCorners, st.featureVertices, st.featureVerticesSkipped,
                 st.componentsStarted, st.unreachedFaces, st.candidates, st.requeued, st.rejectedTooClose,
                 st.rejectedCrossing, st.rejectedInconsistent);

@@ -256,9 +256,10 @@ bool crosses(const std::vector<Triangle>& t, const std::vector<Triangle>& faces,
 } // namespace
 
 // The pass on the boundary loops of `faces`; `makeCover(loops, pos)` gives the test of a closure's
-// face, `covered(a, b, c, reach)`.
+// face, `covered(a, b, c, reach)`. `dropIslands`: islands (below) go.
 template <class MakeCover>
-void closeLoops(std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, Stat& st, MakeCover&& makeCover) {
+void closeLoops(std::vector<Triangle>& faces, const BorderGraph& g, bool floatStorage, bool dropIslands, Stat& st,
+                MakeCover&& makeCover) {
   if (faces.empty()) return;
   const size_t nv = g.vertexCount();
   const double d = st.sphereDiameter;
@@ -580,7 +581,7 @@ void closeLoops(std::vector<Triangle>& faces, const BorderGraph& g, bool floatSt
   // vertex within the loop's cover reach of its faces, as a closure's faces must lie within it of
   // the cloud): a second layer left inside a hole that has been closed under it (the clean-up cut
   // it off, or the growth started it apart). It goes.
-  {
+  if (dropIslands) {
     std::vector<std::uint32_t> root(nv);
     for (std::uint32_t v = 0; v < nv; ++v) root[v] = v;
     auto find = [&](std::uint32_t v) {
@@ -652,7 +653,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
   if (!params.closeHoles) return;
   const double d = st.sphereDiameter;
   NearSplats splats;
-  closeLoops(faces, g, floatStorage, st, [&](const std::vector<std::vector<std::uint32_t>>& loops,
+  closeLoops(faces, g, floatStorage, true, st, [&](const std::vector<std::vector<std::uint32_t>>& loops,
                                              const std::vector<Vec3d>& pos) {
     // The splats that can reach a loop's box.
     splats.widen = kCoverWidenPerD * d;
@@ -688,7 +689,7 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
 
 void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CoverTest& covered, bool floatStorage,
                 Stat& st) {
-  closeLoops(faces, g, floatStorage, st,
+  closeLoops(faces, g, floatStorage, false, st,
              [&](const std::vector<std::vector<std::uint32_t>>&, const std::vector<Vec3d>&) { return covered; });
 }
 

@@ -231,7 +231,8 @@ void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CloudC
                 bool floatStorage, Stat& st);
 // The same pass where the surface is given by a test of a closure's face (a, b, c) instead of the
 // cloud (the remesher: on the input mesh); `reach` as for the cloud. Always on; st.sphereDiameter
-// is d.
+// is d. Islands are kept: every piece lies on the surface (a second sheet of the input within the
+// cover reach, as a misregistered scan has, is part of the surface).
 using CoverTest = std::function<bool(const Vec3d& a, const Vec3d& b, const Vec3d& c, double reach)>;
 void closeHoles(std::vector<Triangle>& faces, const BorderGraph& g, const CoverTest& covered, bool floatStorage,
                 Stat& st);

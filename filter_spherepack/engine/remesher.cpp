@@ -39,6 +39,8 @@ constexpr double kSliverHeight = 1e-8;
 // crease of up to 120° still joins its two sides).
 constexpr double kMinFacingDot = -0.5;
 // Vertices of two patches whose normals make more than 60° may be closer than d (MeshGrowth::keepsOff).
+// The hole pass's closure faces lie within this many d of the input (remesh()).
+constexpr double kClosureOnInputPerD = 1.0;
 constexpr double kApartDot = 0.5;
 
 std::string vecText(const Vec3d& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
@@ -48,6 +50,8 @@ struct InputTriangle {
   Vec3d a, e0, e1, n;     // corner a, edges e0 = b − a and e1 = c − a, unit normal
   double d00, d01, d11, inv; // Gram matrix of e0, e1 and the inverse of its determinant
   double area;
+  Vec3d centre;  // the centroid and the largest distance of a corner from it: a bounding ball
+  double radius;
   bool sliver;
   // Barycentric coordinates (u, v, w) of x (projected onto the plane): x ≈ a + v·e0 + w·e1.
   void barycentric(const Vec3d& x, double& u, double& v, double& w) const {
@@ -110,6 +114,7 @@ struct InputMesh {
   };
   std::vector<CreaseEdge> creases;
   std::vector<std::uint32_t> patch; // (until keepLongCreases: the union-find parents)
+  std::vector<std::uint32_t> component; // per face: its edge-connected component (smallest face index)
   std::vector<Vec3d> vertexNormal;
 };
 
@@ -175,6 +180,8 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
     in.slivers += T.sliver ? 1 : 0;
     T.n = T.sliver ? Vec3d(0, 0, 0) : cr / twiceArea;
     T.area = 0.5 * twiceArea;
+    T.centre = (a + b + c) / 3.0;
+    T.radius = std::sqrt(std::max((a - T.centre).SquaredNorm(), std::max((b - T.centre).SquaredNorm(), (c - T.centre).SquaredNorm())));
     T.d00 = T.e0 * T.e0;
     T.d01 = T.e0 * T.e1;
     T.d11 = T.e1 * T.e1;
@@ -262,7 +269,11 @@ InputMesh readMesh(const MeshArrays& mesh, double creaseAngleDeg) {
       else joinPatches(x, y);
     }
   }
-  for (std::uint32_t f = 0; f < in.faces.size(); ++f) in.components += findRoot(parent, f) == f ? 1 : 0;
+  in.component.resize(in.faces.size());
+  for (std::uint32_t f = 0; f < in.faces.size(); ++f) {
+    in.component[f] = findRoot(parent, f);
+    in.components += in.component[f] == f ? 1 : 0;
+  }
   in.patch = std::move(patch);
   in.vertexNormal.assign(nv, Vec3d(0, 0, 0));
   for (std::uint32_t f = 0; f < in.faces.size(); ++f)
@@ -371,14 +382,31 @@ public:
   // the triangles within d of x), in a fixed order.
   template <class F>
   void forEachNear(const Vec3d& x, F&& f) const {
+    const std::int64_t cx = index_.coord(x[0], 0), cy = index_.coord(x[1], 1), cz = index_.coord(x[2], 2);
+    visit(cx - 1, cx + 1, cy - 1, cy + 1, cz - 1, cz + 1, f);
+  }
+  // Calls f(t) once for every triangle listed by the cells that meet the box of half side r
+  // around x (a superset of the triangles within r of x: a point of such a triangle lies in one of
+  // these cells, which lists it), in a fixed order. For r = d/2 at most 2 × 2 × 2 cells.
+  template <class F>
+  void forEachWithin(const Vec3d& x, double r, F&& f) const {
+    visit(index_.coord(x[0] - r, 0), index_.coord(x[0] + r, 0), index_.coord(x[1] - r, 1), index_.coord(x[1] + r, 1),
+          index_.coord(x[2] - r, 2), index_.coord(x[2] + r, 2), f);
+  }
+  const BoxIndexer& indexer() const { return index_; }
+  size_t references() const { return list_.size(); }
+
+private:
+  template <class F>
+  void visit(std::int64_t x0, std::int64_t x1, std::int64_t y0, std::int64_t y1, std::int64_t z0, std::int64_t z1,
+             F& f) const {
     if (++round_ == 0) {
       std::fill(stamp_.begin(), stamp_.end(), 0u);
       round_ = 1;
     }
-    const std::int64_t cx = index_.coord(x[0], 0), cy = index_.coord(x[1], 1), cz = index_.coord(x[2], 2);
-    for (std::int64_t i = cx - 1; i <= cx + 1; ++i)
-      for (std::int64_t j = cy - 1; j <= cy + 1; ++j)
-        for (std::int64_t k = cz - 1; k <= cz + 1; ++k) {
+    for (std::int64_t i = x0; i <= x1; ++i)
+      for (std::int64_t j = y0; j <= y1; ++j)
+        for (std::int64_t k = z0; k <= z1; ++k) {
           if (!BoxIndexer::valid(i, j, k)) continue;
           const int cell = hash_.find(BoxIndexer::pack(i, j, k));
           if (cell < 0) continue;
@@ -390,10 +418,7 @@ public:
           }
         }
   }
-  const BoxIndexer& indexer() const { return index_; }
-  size_t references() const { return list_.size(); }
 
-private:
   BoxIndexer index_;
   KeyHash hash_;
   std::vector<std::uint32_t> offsets_, list_;
@@ -413,6 +438,15 @@ public:
     if (feature != nullptr) *feature = ft;
     return (q - x).SquaredNorm();
   }
+  // Whether triangle t is farther than r from x (squaredDistance(x, t) > r²), decided by its
+  // bounding ball where it can be: most triangles a grid query lists are far.
+  bool fartherThan(const Vec3d& x, std::uint32_t t, double r) const {
+    const InputTriangle& T = in_.tri[t];
+    const double reach = T.radius + r;
+    const double c2 = (x - T.centre).SquaredNorm();
+    if (c2 > reach * reach) return true;
+    return squaredDistance(x, t) > r * r;
+  }
   Vec3d closest(const Vec3d& x, std::uint32_t t, int& feature) const {
     const Triangle& f = in_.faces[t];
     return closestOnTriangle(x, in_.vertices[f[0]], in_.vertices[f[1]], in_.vertices[f[2]], feature);
@@ -423,12 +457,12 @@ public:
   // `patch`: only the triangles of that patch (kNone: any).
   Vec3d normalAt(const Vec3d& x, const Vec3d& side, std::uint32_t patch = kNone) const {
     Vec3d sum(0, 0, 0);
-    const double r2 = 0.25 * d_ * d_, cap = 0.25 * d_ * d_;
-    grid_.forEachNear(x, [&](std::uint32_t t) {
+    const double cap = 0.25 * d_ * d_;
+    grid_.forEachWithin(x, 0.5 * d_, [&](std::uint32_t t) {
       const InputTriangle& T = in_.tri[t];
       if (T.n * side <= 0) return;
       if (patch != kNone && in_.patch[t] != patch) return;
-      if (squaredDistance(x, t) > r2) return;
+      if (fartherThan(x, t, 0.5 * d_)) return;
       sum += T.n * std::min(T.area, cap);
     });
     const double len = sum.Norm();
@@ -455,9 +489,24 @@ public:
     return found;
   }
 
+  // The input triangle closest to x among those listed around it (kNone when none is).
+  std::uint32_t closestTriangle(const Vec3d& x) const {
+    double best = std::numeric_limits<double>::infinity();
+    std::uint32_t bestT = kNone;
+    grid_.forEachNear(x, [&](std::uint32_t t) {
+      const double d2 = squaredDistance(x, t);
+      if (d2 < best || (d2 == best && t < bestT)) {
+        best = d2;
+        bestT = t;
+      }
+    });
+    return bestT;
+  }
+
   // Whether x lies beyond the input's boundary: its closest input point (any side) is on a boundary
   // edge or corner and farther than kOutsideTolerancePerD·d, or no triangle is within d.
-  bool beyondBoundary(const Vec3d& x) const {
+  // `within` (a share of d, at most 1): also when no input point is within within·d.
+  bool beyondBoundary(const Vec3d& x, double within = 1.0) const {
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t bestT = kNone;
     int bestFeature = 0;
@@ -470,7 +519,7 @@ public:
         bestFeature = feature;
       }
     });
-    if (bestT == kNone || best > d_ * d_) return true;
+    if (bestT == kNone || best > within * within * d_ * d_) return true;
     const double tol = kOutsideTolerancePerD * d_;
     if (best <= tol * tol) return false;
     if (bestFeature == 0) return false;
@@ -665,7 +714,7 @@ private:
       if (T.n * nv < kMinFacingDot) continue;
       const std::uint32_t tp = in_.patch[t];
       if (vp != kNone && vp != tp) continue;
-      if (surface_.squaredDistance(x, t) > d2_) continue;
+      if (surface_.fartherThan(x, t, d_)) continue;
       lists_.forEach(t, [&](std::uint32_t u) {
         if (vpatch_[u] != kNone && vpatch_[u] != tp) return;
         const ParentCircle c = parentCircle(x, pos[u], d_);
@@ -814,22 +863,62 @@ FeatureLines traceFeatureLines(const InputMesh& in) {
 // details smaller than d, not an edge of the shape (a cube's sides are lines from corner to corner).
 // They are dropped, the corners recomputed, and again until every line is long enough; the faces
 // along a dropped crease join one patch.
+// A line must also be a crease at the scale of d: the surface's normals kSideOffsetPerD·d to
+// either side of it (Surface::normalAt, the mean over d/2) must differ by more than the crease
+// angle, on the mean over the line's length (border lines are always kept). Two faces of a scan's
+// triangulation meet at any angle, but the surface d away from them does not turn with them;
+// such lines split the surface into patches that the growth does not join.
 constexpr double kMinCreasePerD = 2.0;
-void keepLongCreases(InputMesh& in, double d) {
+constexpr double kSideOffsetPerD = 0.75;
+// Per crease edge: the cosine of the angle between the surface's normals kSideOffsetPerD·d to
+// either side of its midpoint (a border edge: −1, always a feature).
+std::vector<double> creaseCosAtD(const InputMesh& in, const Surface& surface, double d) {
+  std::vector<double> out(in.creases.size(), -1);
+  for (size_t k = 0; k < in.creases.size(); ++k) {
+    const InputMesh::CreaseEdge& e = in.creases[k];
+    if (e.f0 == e.f1) continue;
+    const Vec3d p = (in.vertices[e.u] + in.vertices[e.v]) * 0.5;
+    Vec3d t = in.vertices[e.v] - in.vertices[e.u];
+    t /= t.Norm();
+    Vec3d n[2];
+    const std::uint32_t f[2] = {e.f0, e.f1};
+    for (int s = 0; s < 2; ++s) {
+      const Triangle& tri = in.faces[f[s]];
+      Vec3d side = (in.vertices[tri[0]] + in.vertices[tri[1]] + in.vertices[tri[2]]) / 3.0 - p;
+      side -= t * (side * t);
+      const double len = side.Norm();
+      n[s] = len > 0 ? surface.normalAt(p + side * (kSideOffsetPerD * d / len), in.tri[f[s]].n) : in.tri[f[s]].n;
+    }
+    out[k] = n[0] * n[1];
+  }
+  return out;
+}
+
+void keepLongCreases(InputMesh& in, double d, const Surface& surface, double creaseAngleDeg) {
+  const double creaseCos = std::cos(creaseAngleDeg * 3.14159265358979323846 / 180);
+  std::vector<double> cosAtD = creaseCosAtD(in, surface, d);
   for (;;) {
     const FeatureLines fl = traceFeatureLines(in);
     std::vector<char> drop(in.creases.size(), 0);
     bool any = false;
-    for (const FeatureLine& line : fl.lines)
-      if (line.length < kMinCreasePerD * d) {
+    for (const FeatureLine& line : fl.lines) {
+      double sum = 0, length = 0;
+      for (const std::uint32_t k : line.edges) {
+        const double len = (in.vertices[in.creases[k].u] - in.vertices[in.creases[k].v]).Norm();
+        sum += cosAtD[k] * len;
+        length += len;
+      }
+      if (line.length < kMinCreasePerD * d || (length > 0 && sum / length >= creaseCos)) {
         for (const std::uint32_t k : line.edges) drop[k] = 1;
         any = true;
       }
+    }
     if (!any) break;
     size_t w = 0;
     for (size_t k = 0; k < in.creases.size(); ++k) {
       const auto& e = in.creases[k];
       if (!drop[k]) {
+        cosAtD[w] = cosAtD[k];
         in.creases[w++] = e;
         continue;
       }
@@ -837,6 +926,7 @@ void keepLongCreases(InputMesh& in, double d) {
       if (x != y) in.patch[std::max(x, y)] = std::min(x, y);
     }
     in.creases.resize(w);
+    cosAtD.resize(w);
   }
   for (std::uint32_t f = 0; f < in.patch.size(); ++f) in.patch[f] = findRoot(in.patch, f);
 }
@@ -974,6 +1064,50 @@ std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Sur
   return faces;
 }
 
+// Pieces of the output (faces joined through shared vertices: after the clean-up, through edges)
+// that are not the largest piece on their input component and have fewer than minFaces faces are
+// dropped: fragments cut off by regions left open, where the input is narrower than d or its
+// border ragged at the scale of d. Every input component keeps its largest piece. A piece's input
+// component is that of the input triangle closest to its first vertex. Returns the pieces dropped.
+size_t dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const InputMesh& in,
+                       const Surface& surface, size_t minFaces, size_t& facesDropped) {
+  facesDropped = 0;
+  if (minFaces <= 1 || faces.empty()) return 0;
+  std::vector<std::uint32_t> parent(g.vertexCount());
+  std::iota(parent.begin(), parent.end(), 0u);
+  for (const Triangle& f : faces)
+    for (int k = 1; k < 3; ++k) {
+      const std::uint32_t x = findRoot(parent, f[0]), y = findRoot(parent, f[k]);
+      if (x != y) parent[std::max(x, y)] = std::min(x, y);
+    }
+  std::vector<std::uint32_t> size(g.vertexCount(), 0);
+  for (const Triangle& f : faces) ++size[findRoot(parent, f[0])];
+  // Per input component, the largest piece (the smallest root among equals).
+  std::vector<std::uint32_t> owner(g.vertexCount(), kNone), largest(in.faces.size(), kNone);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v) {
+    if (size[v] == 0 || findRoot(parent, v) != v) continue;
+    const std::uint32_t t = surface.closestTriangle(g.positions()[v]);
+    if (t == kNone) continue;
+    owner[v] = in.component[t];
+    std::uint32_t& l = largest[owner[v]];
+    if (l == kNone || size[v] > size[l]) l = v;
+  }
+  size_t dropped = 0;
+  std::vector<char> drop(g.vertexCount(), 0);
+  for (std::uint32_t v = 0; v < g.vertexCount(); ++v)
+    if (size[v] > 0 && size[v] < minFaces && owner[v] != kNone && largest[owner[v]] != v) {
+      drop[v] = 1;
+      ++dropped;
+    }
+  size_t w = 0;
+  for (const Triangle& f : faces) {
+    if (drop[findRoot(parent, f[0])]) ++facesDropped;
+    else faces[w++] = f;
+  }
+  faces.resize(w);
+  return dropped;
+}
+
 } // namespace
 
 double defaultDiameterOf(double meanEdge, double area) {
@@ -1050,11 +1184,10 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
                 " vertices, beyond the limit of " + std::to_string(params.maxOutputVertices) + ". Use a larger d "
                 "(the input's mean edge length is " + fmt(in.meanEdge) + ").");
   st.sphereDiameter = d;
-  keepLongCreases(in, d);
-
   TriangleGrid grid;
   grid.build(in, d);
   const Surface surface(in, grid, d);
+  keepLongCreases(in, d, surface, params.creaseAngleDeg);
   st.secondsInput = watch.lap();
 
   progress.phase("Sphere packing remesh: growing", 5, 90);
@@ -1093,19 +1226,26 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.nonManifoldVerticesRemoved = ps.nonManifoldVerticesRemoved;
   st.selfIntersectionFacesRemoved = ps.selfIntersectionFacesRemoved;
   st.facesRemoved = ps.facesRemoved;
+  st.piecesDropped = dropSmallPieces(faces, g, in, surface, size_t(std::max(params.minPieceFaces, 0)), st.pieceFacesDropped);
   // The hole pass (packer_holes.cpp) on the input surface: a closure's face has every edge at least d
-  // (vertices of two patches may be closer) and its centroid on the input, not beyond its boundary
-  // (Surface::beyondBoundary), so the input's own borders stay open.
+  // (vertices of two patches may be closer) and lies on the input: its centroid, the midpoints of its
+  // edges and the points halfway from the centroid to its corners are within kClosureOnInputPerD·d of
+  // the input and not beyond its boundary (Surface::beyondBoundary), so a hole of the input stays open,
+  // also where another sheet of the input (a misregistered scan's second layer) passes within d of it.
   if (params.closeHoles)
     closeHoles(faces, g,
-             [&](const Vec3d& a, const Vec3d& b, const Vec3d& c, double) {
-               const double shortest = d * d * (1 - 1e-9);
-               if ((b - a).SquaredNorm() < shortest || (c - b).SquaredNorm() < shortest ||
-                   (a - c).SquaredNorm() < shortest)
-                 return false;
-               return !surface.beyondBoundary((a + b + c) / 3.0);
-             },
-             floatStorage, ps);
+               [&](const Vec3d& a, const Vec3d& b, const Vec3d& c, double) {
+                 const double shortest = d * d * (1 - 1e-9);
+                 if ((b - a).SquaredNorm() < shortest || (c - b).SquaredNorm() < shortest ||
+                     (a - c).SquaredNorm() < shortest)
+                   return false;
+                 const Vec3d m = (a + b + c) / 3.0;
+                 for (const Vec3d& x : {m, (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5, (m + a) * 0.5, (m + b) * 0.5,
+                                        (m + c) * 0.5})
+                   if (surface.beyondBoundary(x, kClosureOnInputPerD)) return false;
+                 return true;
+               },
+               floatStorage, ps);
   st.holesClosed = ps.holesClosed;
   st.holeFacesAdded = ps.holeFacesAdded;
   st.holeFacesRemoved = ps.holeFacesRemoved;

@@ -43,6 +43,8 @@ struct RemeshParams {
   double creaseAngleDeg = 30;    // dihedral angle above which an input edge is a crease
   bool closeHoles = true;        // the hole pass on the output's loops (packer_steps.h, closeHoles)
   size_t maxOutputVertices = 20000000; // refuse a d so small that the output would exceed this
+  int minPieceFaces = 10;        // pieces of the output with fewer faces are dropped, but each input
+                                 // component keeps its largest piece (0: none dropped)
   int threads = 0;               // threads of the intersection clean-up (0 = automatic)
   bool rejectTwisted = true;     // as Params::rejectTwisted
   bool checkInvariants = false;  // tests: brute-force check of every insertion (O(V²))
@@ -92,6 +94,7 @@ struct RemeshStat {
   // Loops the pass left open, by why (as Stat's holesTooLong ... holesOther): too long, not
   // triangulable, not on the input (or an edge below d), folded, crossing, not a simple loop.
   std::array<size_t, 6> holesOpen{};
+  size_t piecesDropped = 0, pieceFacesDropped = 0; // pieces below RemeshParams::minPieceFaces, not the largest on their input component
   size_t boundaryLoops = 0;       // of the output
   double smallestEdge = 0;        // as stored
   double qualityAvg = 0;
