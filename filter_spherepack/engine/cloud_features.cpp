@@ -286,16 +286,23 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   for (size_t k = 0; k < cp.size(); ++k) cpx[k] = cp[k].x;
   PointGrid cgrid;
   cgrid.build(cpx, reach);
-  std::vector<char> used(cp.size(), 0);
+  // The line that took each crease point (kNoLine: none yet).
+  constexpr std::uint32_t kNoLine = 0xffffffffu;
+  std::vector<std::uint32_t> owner(cp.size(), kNoLine);
+  std::uint32_t current = 0;
   // A step of the tracing from x along t: to the step's end y = x + t·h, moved across the line to
   // the mean of the crease points within `reach` of y whose directions agree with t (the new
   // direction: their mean); none when no such point lies beyond y − t·h/4 (the line ends there).
+  // The points another line took are not followed: a line whose tracing stopped at a gap in the
+  // crease points is met there by the line traced from beyond the gap, end to end, and the two are
+  // joined (joinFacingEnds) instead of the second running back along the first.
   auto stepFrom = [&](const Vec3d& x, const Vec3d& t, double len, Vec3d& mx, Vec3d& mt, Vec3d& mn) {
     const Vec3d y = x + t * len;
     Vec3d sx(0, 0, 0), st(0, 0, 0), sn(0, 0, 0);
     size_t cnt = 0;
     bool ahead = false;
     cgrid.forEachInBall(y, reach, [&](int j, double) {
+      if (owner[size_t(j)] != kNoLine && owner[size_t(j)] != current) return;
       const double c = cp[size_t(j)].t * t;
       if (std::abs(c) < cosTrace) return;
       sx += cp[size_t(j)].x;
@@ -318,6 +325,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     Vec3d sx(0, 0, 0), st(0, 0, 0), sn(0, 0, 0);
     size_t cnt = 0;
     cgrid.forEachInBall(cp[s].x, h, [&](int j, double) {
+      if (owner[size_t(j)] != kNoLine) return;
       const double c = cp[size_t(j)].t * cp[s].t;
       if (std::abs(c) < cosTrace) return;
       sx += cp[size_t(j)].x;
@@ -336,13 +344,15 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   size_t support = 0;
   auto markUsed = [&](const Vec3d& x, const Vec3d& t) {
     cgrid.forEachInBall(x, reach, [&](int j, double d2) {
-      if (!used[size_t(j)] && (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace)) used[size_t(j)] = 1, ++support;
+      if (owner[size_t(j)] == kNoLine && (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace))
+        owner[size_t(j)] = current, ++support;
     });
   };
   const size_t maxSteps = 4 * np + 16;
   for (size_t s = 0; s < cp.size(); ++s) {
-    if (used[s]) continue;
+    if (owner[s] != kNoLine) continue;
     Vec3d x0, t0, n0;
+    current = std::uint32_t(f.lines.size());
     if (!seedAt(s, x0, t0, n0)) continue;
     support = 0;
     markUsed(x0, t0);

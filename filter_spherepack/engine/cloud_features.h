@@ -16,8 +16,10 @@
 //    direction and the mean of the two planes' normals.
 // 2. Crease lines. From the crease points in input order, a line is traced both ways in steps of
 //    d/2, each step to the mean of the crease points within d of the step's end whose directions
-//    agree (a gap of up to about 2 d between crease points is bridged); lines with fewer than
-//    kMinSupportPerD crease points per d are scattered noise and dropped;
+//    agree (a gap of up to about 2 d between crease points is bridged). A tracing does not follow
+//    the crease points an earlier line took: where a line stopped at a wider gap, the line traced
+//    from beyond it stops at its end, and ends facing each other are joined (up to 6 d apart).
+//    Lines with fewer than kMinSupportPerD crease points per d are scattered noise and dropped;
 //    lines shorter than kMinLinePerD·d are noise and dropped.
 // 3. Corners. Near a corner three planes meet and the two-plane test fails, so the traced lines
 //    stop short of it: ends whose forward rays meet are extended to the point nearest to all
