@@ -257,11 +257,17 @@ void joinFacingEnds(std::vector<CloudFeatures::Line>& lines, double d) {
 
 } // namespace
 
-CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector<Vec3d>& N, double d,
-                                  double areaSpacing, double creaseAngleDeg, const Renumbering& order) {
+double featureScale(double sphereDiameter, double areaSpacing) {
+  const double floor = kDefaultDiameterPerAreaSpacing * areaSpacing;
+  return floor > sphereDiameter && std::isfinite(floor) ? floor : sphereDiameter;
+}
+
+CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector<Vec3d>& N,
+                                  double sphereDiameter, double areaSpacing, double creaseAngleDeg, const Renumbering& order) {
   CloudFeatures f;
   const size_t np = P.size();
-  if (np == 0 || N.size() != np || !(d > 0)) return f;
+  if (np == 0 || N.size() != np || !(sphereDiameter > 0)) return f;
+  const double d = featureScale(sphereDiameter, areaSpacing);
   const double crease = std::min(std::max(creaseAngleDeg, 1.0), 179.0) * kPi / 180;
   const double R = kFitRadiusPerD * d;
   f.radius = R;

@@ -5,6 +5,15 @@
 // paper's sec. 6: "placing starting vertices in high-curvature regions ensures that sampled
 // features persist").
 //
+// The lengths below (d in steps 1-4) are in units of the feature scale
+// d_f = max(d, kDefaultDiameterPerAreaSpacing · areaSpacing), the larger of d and the default d's
+// sampling part (featureScale). With a = the area per point, the fit's ball of radius
+// kFitRadiusPerD · d_f holds π·(1.5·1.8)² ≈ 23 points at least, and the band of crease points
+// (within kMaxLineDistPerRadius of the fit radius from the line) about 3.4 per d_f of line; at
+// d = 1.44·√a the ball holds 15 points (kMinNeighbours is 10) and the band 2.2 per d
+// (kMinSupportPerD is 2): the fits fail often, the crease points thin out into gaps and lines are
+// dropped. So the lines are found at the sampling's scale and only sampled at d (feature_lines.h).
+//
 // 1. Crease points. A point whose neighbours within kFitRadiusPerD·d have normals (compared as
 //    lines, |n·m|: estimated normals need not be consistently oriented) more than half the crease
 //    angle apart is tested: its neighbours are split into two sets by their normals, then by
@@ -69,7 +78,7 @@ struct CloudFeatures {
   size_t linesDropped = 0;          // traced lines shorter than kMinLinePerD·d
   size_t patches = 0;
   PointGrid grid;                   // the points, cells of kFitRadiusPerD·d
-  double radius = 0;                // kFitRadiusPerD·d
+  double radius = 0;                // kFitRadiusPerD·d_f
   // The sides of a crease at a feature vertex f on a line of direction t: for each patch with
   // points within `radius` of f, the direction across the line into them (their mean offset from
   // f, without its part along t). A candidate of that patch with f as a parent must lie on that
@@ -79,10 +88,14 @@ struct CloudFeatures {
                                                        const std::vector<Vec3d>& points) const;
 };
 
+// The length unit of the detection: the larger of the sphere diameter and
+// kDefaultDiameterPerAreaSpacing · areaSpacing (the sphere diameter when areaSpacing is not finite).
+double featureScale(double sphereDiameter, double areaSpacing);
+
 // `points`, `normals`: the cloud in the packer's working order; `order` gives the input order, in
 // which the lines are seeded (so the result does not depend on the spatial renumbering's order).
-CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals, double d,
-                                  double areaSpacing, double creaseAngleDeg, const Renumbering& order);
+CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& points, const std::vector<Vec3d>& normals,
+                                  double sphereDiameter, double areaSpacing, double creaseAngleDeg, const Renumbering& order);
 
 } // namespace detail
 } // namespace spherepack
