@@ -40,9 +40,11 @@ constexpr int kTraceBridgeSteps = 4;
 // Two ends of lines facing each other along one line are joined up to this many d apart.
 constexpr double kMaxJoinGapPerD = 6.0;
 // Corners: two ends join when their forward rays pass within kRayGapPerD·d of each other, at most
-// kCornerReachPerD·d ahead of each end.
+// kCornerReachPerD·d ahead of each end, as far as facing ends are joined: the crease points stop
+// about kFitRadiusPerD·d before a corner (where the fit's ball meets the third plane), and a gap in
+// them there leaves the line's end farther back (3.0 to 3.3 d on boxes of other seeds).
 constexpr double kRayGapPerD = 0.5;
-constexpr double kCornerReachPerD = 3.0;
+constexpr double kCornerReachPerD = kMaxJoinGapPerD;
 // Patches: the zone around the lines and the linking radius are both this many area spacings (and
 // at least half of d); a set of fewer than kMinPatchPoints points is taken as part of the zone.
 constexpr double kZonePerAreaSpacing = 2.0;
