@@ -30,8 +30,10 @@ constexpr double kTraceAngleDeg = 30;
 // Rounds of smoothing of the traced lines.
 constexpr int kSmoothingRounds = 4;
 // The corner from the lines fitted to the stretch from kEndSkipPerD·d to (kEndSkipPerD +
-// kEndFitPerD)·d back from the ends.
-constexpr double kEndSkipPerD = 1.5;
+// kEndFitPerD)·d back from the ends; the line's points nearer the corner give way to a straight
+// segment. The crease points within the fit radius of a corner see its third plane, and a step of
+// the tracing averages those within kTraceRadiusPerD·d: the line bends up to the sum from a corner.
+constexpr double kEndSkipPerD = kFitRadiusPerD + kTraceRadiusPerD;
 constexpr double kEndFitPerD = 4.0;
 // The direction at an end of a line: over this many d of it.
 constexpr double kEndStretchPerD = 3.0;
