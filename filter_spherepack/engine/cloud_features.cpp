@@ -25,6 +25,8 @@ constexpr double kMinSideShare = 0.15;
 constexpr double kSideAgreement = 0.85;
 constexpr double kMaxFitRmsPerRadius = 0.08;
 constexpr double kMaxLineDistPerRadius = 0.35;
+constexpr double kMaxFitRmsPerMedian = 2.5;
+constexpr double kMinFitRmsLimitPerRadius = 0.01;
 // Tracing: crease points whose directions are within kTraceAngleDeg of the line's are followed.
 constexpr double kTraceAngleDeg = 30;
 // Rounds of smoothing of the traced lines.
@@ -128,6 +130,7 @@ bool solve3(const Vec3d rows[3], const Vec3d& r, Vec3d& x) {
 
 struct CreasePoint {
   Vec3d x, t, n;
+  double rms = 0; // the larger of the two planes' RMS distances
 };
 
 // The two-plane test at point i (cloud_features.h, step 1).
@@ -190,7 +193,7 @@ bool creaseAt(std::uint32_t i, const std::vector<Vec3d>& P, const std::vector<Ve
   }
   if (!(n.Norm() > 1e-12)) return false;
   n.Normalize();
-  out = CreasePoint{x, t, n};
+  out = CreasePoint{x, t, n, std::max(pl[0].rms, pl[1].rms)};
   return true;
 }
 
@@ -285,6 +288,19 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     const std::uint32_t i = order.rankOf(k);
     CreasePoint c;
     if (creaseAt(i, P, N, grid, R, std::cos(crease / 2), std::cos(crease), nb, c)) cp.push_back(c);
+  }
+  // A fit much looser than the cloud's usual one (kMaxFitRmsPerMedian times the median of the
+  // crease points', at least kMinFitRmsLimitPerRadius of the radius) is not two planes: a third
+  // plane near a corner, or a side of a few points that took some of the other side's.
+  if (!cp.empty()) {
+    std::vector<double> rms(cp.size());
+    for (size_t k = 0; k < cp.size(); ++k) rms[k] = cp[k].rms;
+    std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
+    const double limit = std::max(kMaxFitRmsPerMedian * rms[rms.size() / 2], kMinFitRmsLimitPerRadius * R);
+    size_t w = 0;
+    for (size_t k = 0; k < cp.size(); ++k)
+      if (cp[k].rms <= limit) cp[w++] = cp[k];
+    cp.resize(w);
   }
   f.creasePoints = cp.size();
   if (cp.empty()) return f;

@@ -22,7 +22,9 @@
 //    is a crease point when the planes differ by more than the crease angle, both sets are large
 //    enough and lie on their own sides of the planes' intersection line, the fit is tight, and the
 //    point is near that line; the crease point is the point moved onto the line, with the line's
-//    direction and the mean of the two planes' normals.
+//    direction and the mean of the two planes' normals. Crease points whose fit is much looser
+//    than the median one (2.5 times its RMS distance) are dropped: a third plane near a corner,
+//    or a side of a few points that took some of the other side's, moves them off the crease.
 // 2. Crease lines. From the crease points in input order, a line is traced both ways in steps of
 //    d/2, each step to the mean of the crease points within d of the step's end whose directions
 //    agree (a gap of up to about 2 d between crease points is bridged). A tracing does not follow
