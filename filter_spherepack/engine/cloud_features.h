@@ -36,13 +36,13 @@
 //    stop short of it: ends whose forward rays meet are extended to the point nearest to all
 //    their lines (least squares), which is the corner; an end that meets no other is a corner of
 //    its own (a crease ending, at the cloud's border or where it fades out).
-// 4. Patches. Near the lines (within kPatchReachPerZone zone widths), the points farther than the
-//    zone width from every line are joined to their neighbours; the connected sets are the
-//    patches (the sides of the crease lines). The points within the zone take the patch whose
-//    points' tangent planes pass nearest to them. The points farther from every line belong to
-//    every patch (kNoPatch), so that gaps in the sampling away from the creases do not split the
-//    growth. The points within the zone take the patch whose points' tangent planes pass
-//    nearest to them.
+// 4. Patches. The points farther than the zone width from every line are joined to their
+//    neighbours; the connected sets are the patches (the sides of the crease lines), and a set
+//    needs kMinPatchPoints points within kPatchReachPerZone zone widths of a line. Only those
+//    points keep their patch: the points farther from every line belong to every patch
+//    (kNoPatch), so that gaps in the sampling away from the creases do not split the growth, but
+//    the sets are joined through them, since a band along the lines has holes that cut it. The
+//    points within the zone take the patch whose points' tangent planes pass nearest to them.
 #include "packer_steps.h"
 
 #include <growth/point_grid.h>
