@@ -124,15 +124,29 @@ double segmentDistance(const Vec3d& x, const Vec3d& a, const Vec3d& b) {
 }
 
 // The largest distance from the points of the segment a–b (every d/8) to the output's edges.
-double creaseDistance(const growth::MeshArrays& m, const Vec3d& a, const Vec3d& b, double d) {
+// Edges with an end within 3 d of the segment are searched first; a point farther than d from
+// all of them searches every edge.
+double creaseDistance(const growth::MeshArrays& m, const Vec3d& a, const Vec3d& b, double d, Vec3d* worstAt = nullptr) {
+  std::vector<size_t> near;
+  for (size_t f = 0; f < m.faces.size(); ++f)
+    for (int j = 0; j < 3; ++j)
+      if (segmentDistance(m.vertices[m.faces[f][j]], a, b) < 3 * d) {
+        near.push_back(f);
+        break;
+      }
   const int steps = std::max(1, int(std::ceil((b - a).Norm() / (d / 8))));
   double worst = 0;
   for (int k = 0; k <= steps; ++k) {
     const Vec3d x = a + (b - a) * (double(k) / steps);
     double best = std::numeric_limits<double>::infinity();
-    for (const auto& f : m.faces)
+    for (size_t f : near)
       for (int j = 0; j < 3; ++j)
-        best = std::min(best, segmentDistance(x, m.vertices[f[j]], m.vertices[f[(j + 1) % 3]]));
+        best = std::min(best, segmentDistance(x, m.vertices[m.faces[f][j]], m.vertices[m.faces[f][(j + 1) % 3]]));
+    if (!(best <= d))
+      for (const auto& f : m.faces)
+        for (int j = 0; j < 3; ++j)
+          best = std::min(best, segmentDistance(x, m.vertices[f[j]], m.vertices[f[(j + 1) % 3]]));
+    if (best > worst && worstAt) *worstAt = x;
     worst = std::max(worst, best);
   }
   return worst;
@@ -186,6 +200,35 @@ std::vector<int> boxSides(const Vec3d& x, double tol) {
   return s;
 }
 
+// What the box's reconstruction kept of its corners and creases.
+struct BoxMeasures {
+  double worstCorner = 0, worstCrease = 0; // per d: the farthest corner from a vertex, crease point from an edge
+  Vec3d worstCreaseAt{0, 0, 0};
+  size_t across = 0;                       // faces across a crease
+  size_t boundaryLoops = 0;
+};
+
+BoxMeasures measureBox(const Result& r) {
+  const double d = r.st.sphereDiameter;
+  BoxMeasures m;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3d x(c & 1 ? kHalf[0] : -kHalf[0], c & 2 ? kHalf[1] : -kHalf[1], c & 4 ? kHalf[2] : -kHalf[2]);
+    m.worstCorner = std::max(m.worstCorner, nearestVertex(r.out, x) / d);
+    for (int ax = 0; ax < 3; ++ax)
+      if (!(c & (1 << ax))) { // the box edge from this corner along +ax
+        Vec3d y = x;
+        y[ax] = kHalf[ax];
+        Vec3d at;
+        const double dist = creaseDistance(r.out, x, y, d, &at) / d;
+        if (dist > m.worstCrease) m.worstCrease = dist, m.worstCreaseAt = at;
+      }
+  }
+  // A vertex counts as on a face within d/4 of it; vertices nearer two faces are on the crease.
+  m.across = facesAcross(r.out, [&](const Vec3d& x) { return boxSides(x, 0.25 * d); });
+  m.boundaryLoops = growth::countBoundaryLoops(r.out);
+  return m;
+}
+
 // extraPatches: patches allowed beyond the box's 6 (with PCA normals a stray crease point can
 // split off a small patch: 7 with clang's build at d = 0.038; the geometry is checked below).
 void checkBox(const Result& r, double cornerTol, double creaseTol, size_t extraPatches = 0) {
@@ -195,23 +238,27 @@ void checkBox(const Result& r, double cornerTol, double creaseTol, size_t extraP
   EXPECT_GE(r.st.featurePatches, 6u);
   EXPECT_LE(r.st.featurePatches, 6u + extraPatches);
   expectSoundMesh(r);
-  double worstCorner = 0, worstCrease = 0;
-  for (int c = 0; c < 8; ++c) {
-    const Vec3d x(c & 1 ? kHalf[0] : -kHalf[0], c & 2 ? kHalf[1] : -kHalf[1], c & 4 ? kHalf[2] : -kHalf[2]);
-    worstCorner = std::max(worstCorner, nearestVertex(r.out, x));
-    for (int ax = 0; ax < 3; ++ax)
-      if (!(c & (1 << ax))) { // the box edge from this corner along +ax
-        Vec3d y = x;
-        y[ax] = kHalf[ax];
-        worstCrease = std::max(worstCrease, creaseDistance(r.out, x, y, d));
-      }
+  const BoxMeasures m = measureBox(r);
+  EXPECT_LT(m.worstCorner, cornerTol);
+  EXPECT_LT(m.worstCrease, creaseTol);
+  EXPECT_EQ(m.across, 0u);
+  std::printf("box: d %.6g, worst corner %.4f d, worst crease %.4f d at (%.3f %.3f %.3f), %zu vertices, %zu boundary loops\n",
+              d, m.worstCorner, m.worstCrease, m.worstCreaseAt[0], m.worstCreaseAt[1], m.worstCreaseAt[2],
+              r.out.vertices.size(), m.boundaryLoops);
+}
+
+// The box with PCA normals (K = 10), turned outwards only where the propagation flipped a whole
+// face, as a user would fix them before the filter.
+Solid boxCloudPcaNormals(size_t n, std::uint64_t seed, double noise) {
+  Solid s = boxCloud(n, seed, noise);
+  s.normals = growth::estimateNormals(s.points, 10);
+  for (size_t i = 0; i < s.points.size(); ++i) {
+    int ax = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::abs(s.points[i][k]) / kHalf[k] > std::abs(s.points[i][ax]) / kHalf[ax]) ax = k;
+    if (s.normals[i][ax] * s.points[i][ax] < 0) s.normals[i] = -s.normals[i];
   }
-  EXPECT_LT(worstCorner, cornerTol * d);
-  EXPECT_LT(worstCrease, creaseTol * d);
-  // A vertex counts as on a face within d/4 of it; vertices nearer two faces are on the crease.
-  EXPECT_EQ(facesAcross(r.out, [&](const Vec3d& x) { return boxSides(x, 0.25 * d); }), 0u);
-  std::printf("box: d %.6g, worst corner %.4f d, worst crease %.4f d, %zu vertices, %zu boundary loops\n", d,
-              worstCorner / d, worstCrease / d, r.out.vertices.size(), growth::countBoundaryLoops(r.out));
+  return s;
 }
 
 TEST(SpherePackFeatures, OffByDefault) {
@@ -221,8 +268,8 @@ TEST(SpherePackFeatures, OffByDefault) {
 
 TEST(SpherePackFeatures, BoxExactNormalsKeepsCornersAndCreases) {
   const Solid s = boxCloud(30000, 1, 0.0005);
-  // d given (the default d is about 0.037 here and varies in its last digits with the compiler,
-  // and the detection is not stable across d yet: DISABLED_BoxAtAnUnluckyD).
+  // d given (the default d is about 0.037 here and varies in its last digits with the compiler;
+  // other d: BoxExactNormalsAcrossD).
   const Result r = reconstruct(s, true, 0.038);
   checkBox(r, 0.05, 0.05);
   // Without the option the corners are not kept (what the test above measures is the option's).
@@ -235,29 +282,72 @@ TEST(SpherePackFeatures, BoxExactNormalsKeepsCornersAndCreases) {
 }
 
 TEST(SpherePackFeatures, BoxEstimatedNormals) {
-  Solid s = boxCloud(30000, 2, 0.0005);
-  s.normals = growth::estimateNormals(s.points, 10);
-  // Estimated normals need not point outwards consistently; the box's are turned outwards here
-  // only where the propagation flipped a whole face, as a user would fix them before the filter.
-  for (size_t i = 0; i < s.points.size(); ++i) {
-    int ax = 0;
-    for (int k = 1; k < 3; ++k)
-      if (std::abs(s.points[i][k]) / kHalf[k] > std::abs(s.points[i][ax]) / kHalf[ax]) ax = k;
-    if (s.normals[i][ax] * s.points[i][ax] < 0) s.normals[i] = -s.normals[i];
-  }
+  const Solid s = boxCloudPcaNormals(30000, 2, 0.0005);
   const Result r = reconstruct(s, true, 0.038);
   // The crease points of PCA normals' neighbourhoods scatter more than with exact normals.
   checkBox(r, 0.05, 0.1, 1);
 }
 
-// Known failure (issue 31): the detection is not stable across d. On the box of the test above at
-// d = 0.0365 (a few percent below its default) one crease line ends early, a ninth corner and a
-// fifth patch appear, the crease is missed by up to 0.48 d and faces cross it. Enabled once the
-// line tracing is robust to it.
-TEST(SpherePackFeatures, DISABLED_BoxAtAnUnluckyD) {
+// The detection is stable across d: the box at d from 0.0305 to 0.0425 (the default is about
+// 0.037), with 0.0365, where a crease line once ended at a gap in the crease points and the line
+// traced from beyond the gap was dropped, and 0.0370774, clang's default d (gcc's is 0.0370878).
+const double kBoxDiameters[] = {0.0305, 0.0335, 0.0365, 0.0370774, 0.0425};
+
+TEST(SpherePackFeatures, BoxExactNormalsAcrossD) {
   const Solid s = boxCloud(30000, 1, 0.0005);
-  const Result r = reconstruct(s, true, 0.0365);
-  checkBox(r, 0.05, 0.05);
+  for (const double d : kBoxDiameters) {
+    SCOPED_TRACE(d);
+    checkBox(reconstruct(s, true, d), 0.05, 0.1);
+  }
+}
+
+TEST(SpherePackFeatures, BoxEstimatedNormalsAcrossD) {
+  const Solid s = boxCloudPcaNormals(30000, 2, 0.0005);
+  for (const double d : kBoxDiameters) {
+    SCOPED_TRACE(d);
+    checkBox(reconstruct(s, true, d), 0.05, 0.1);
+  }
+}
+
+// One line per run of the box of `seed` (exact normals; PCA normals on the box of seed + 1) at
+// each d, with the stability goal checked: 8 corners, 12 lines, 6 patches, creases within 0.1 d,
+// no face across.
+void sweepBox(std::uint64_t seed, const std::vector<double>& diameters) {
+  const Solid exact = boxCloud(30000, seed, 0.0005), pca = boxCloudPcaNormals(30000, seed + 1, 0.0005);
+  for (int pass = 0; pass < 2; ++pass)
+    for (const double d : diameters) {
+      const Result r = reconstruct(pass ? pca : exact, true, d);
+      const BoxMeasures m = measureBox(r);
+      std::printf("%-8s %4llu %.4f   %2zu      %2zu    %2zu      %.4f   %.4f   %3zu    %zu      (%.3f %.3f %.3f)\n",
+                  pass ? "pca" : "exact", static_cast<unsigned long long>(pass ? seed + 1 : seed), d,
+                  r.st.featureCorners, r.st.featureLines, r.st.featurePatches, m.worstCorner, m.worstCrease, m.across,
+                  m.boundaryLoops, m.worstCreaseAt[0], m.worstCreaseAt[1], m.worstCreaseAt[2]);
+      std::fflush(stdout);
+      EXPECT_EQ(r.st.featureCorners, 8u) << d;
+      EXPECT_EQ(r.st.featureLines, 12u) << d;
+      EXPECT_EQ(r.st.featurePatches, 6u) << d;
+      EXPECT_LT(m.worstCrease, 0.1) << d;
+      EXPECT_EQ(m.across, 0u) << d;
+    }
+}
+
+const char* const kSweepHeader =
+    "normals  seed d        corners lines patches corner/d crease/d across loops  worst crease at\n";
+
+// The sweeps behind issue 31's stability goal (a minute or two each, not part of the unit tests):
+//   build/tests/spherepack_features_test --gtest_also_run_disabled_tests --gtest_filter='*BoxSweep*'
+// The box of the tests at d from 0.030 to 0.046 in steps of 0.0005, and boxes of other seeds at
+// five d of that range.
+TEST(SpherePackFeatures, DISABLED_BoxSweep) {
+  std::vector<double> diameters;
+  for (int k = 0; k <= 32; ++k) diameters.push_back(0.030 + 0.0005 * k);
+  std::printf("%s", kSweepHeader);
+  sweepBox(1, diameters);
+}
+
+TEST(SpherePackFeatures, DISABLED_BoxSweepOtherSeeds) {
+  std::printf("%s", kSweepHeader);
+  for (std::uint64_t seed = 11; seed <= 25; seed += 2) sweepBox(seed, {0.030, 0.034, 0.038, 0.042, 0.046});
 }
 
 TEST(SpherePackFeatures, CylinderRimsAreClosedLines) {
@@ -266,7 +356,7 @@ TEST(SpherePackFeatures, CylinderRimsAreClosedLines) {
   const double d = r.st.sphereDiameter;
   EXPECT_EQ(r.st.featureLines, 2u);
   EXPECT_EQ(r.st.featureCorners, 0u);
-  EXPECT_GE(r.st.featurePatches, 3u); // the caps and the mantle (a band may split where a line's end is)
+  EXPECT_EQ(r.st.featurePatches, 3u); // the caps and the mantle
   expectSoundMesh(r);
   double worst = 0;
   for (int c = 0; c < 2; ++c)

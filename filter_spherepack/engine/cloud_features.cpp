@@ -25,13 +25,17 @@ constexpr double kMinSideShare = 0.15;
 constexpr double kSideAgreement = 0.85;
 constexpr double kMaxFitRmsPerRadius = 0.08;
 constexpr double kMaxLineDistPerRadius = 0.35;
+constexpr double kMaxFitRmsPerMedian = 2.5;
+constexpr double kMinFitRmsLimitPerRadius = 0.01;
 // Tracing: crease points whose directions are within kTraceAngleDeg of the line's are followed.
 constexpr double kTraceAngleDeg = 30;
 // Rounds of smoothing of the traced lines.
 constexpr int kSmoothingRounds = 4;
 // The corner from the lines fitted to the stretch from kEndSkipPerD·d to (kEndSkipPerD +
-// kEndFitPerD)·d back from the ends.
-constexpr double kEndSkipPerD = 1.5;
+// kEndFitPerD)·d back from the ends; the line's points nearer the corner give way to a straight
+// segment. The crease points within the fit radius of a corner see its third plane, and a step of
+// the tracing averages those within kTraceRadiusPerD·d: the line bends up to the sum from a corner.
+constexpr double kEndSkipPerD = kFitRadiusPerD + kTraceRadiusPerD;
 constexpr double kEndFitPerD = 4.0;
 // The direction at an end of a line: over this many d of it.
 constexpr double kEndStretchPerD = 3.0;
@@ -40,9 +44,11 @@ constexpr int kTraceBridgeSteps = 4;
 // Two ends of lines facing each other along one line are joined up to this many d apart.
 constexpr double kMaxJoinGapPerD = 6.0;
 // Corners: two ends join when their forward rays pass within kRayGapPerD·d of each other, at most
-// kCornerReachPerD·d ahead of each end.
+// kCornerReachPerD·d ahead of each end, as far as facing ends are joined: the crease points stop
+// about kFitRadiusPerD·d before a corner (where the fit's ball meets the third plane), and a gap in
+// them there leaves the line's end farther back (3.0 to 3.3 d on boxes of other seeds).
 constexpr double kRayGapPerD = 0.5;
-constexpr double kCornerReachPerD = 3.0;
+constexpr double kCornerReachPerD = kMaxJoinGapPerD;
 // Patches: the zone around the lines and the linking radius are both this many area spacings (and
 // at least half of d); a set of fewer than kMinPatchPoints points is taken as part of the zone.
 constexpr double kZonePerAreaSpacing = 2.0;
@@ -124,6 +130,7 @@ bool solve3(const Vec3d rows[3], const Vec3d& r, Vec3d& x) {
 
 struct CreasePoint {
   Vec3d x, t, n;
+  double rms = 0; // the larger of the two planes' RMS distances
 };
 
 // The two-plane test at point i (cloud_features.h, step 1).
@@ -186,7 +193,7 @@ bool creaseAt(std::uint32_t i, const std::vector<Vec3d>& P, const std::vector<Ve
   }
   if (!(n.Norm() > 1e-12)) return false;
   n.Normalize();
-  out = CreasePoint{x, t, n};
+  out = CreasePoint{x, t, n, std::max(pl[0].rms, pl[1].rms)};
   return true;
 }
 
@@ -257,11 +264,17 @@ void joinFacingEnds(std::vector<CloudFeatures::Line>& lines, double d) {
 
 } // namespace
 
-CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector<Vec3d>& N, double d,
-                                  double areaSpacing, double creaseAngleDeg, const Renumbering& order) {
+double featureScale(double sphereDiameter, double areaSpacing) {
+  const double floor = kDefaultDiameterPerAreaSpacing * areaSpacing;
+  return floor > sphereDiameter && std::isfinite(floor) ? floor : sphereDiameter;
+}
+
+CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector<Vec3d>& N,
+                                  double sphereDiameter, double areaSpacing, double creaseAngleDeg, const Renumbering& order) {
   CloudFeatures f;
   const size_t np = P.size();
-  if (np == 0 || N.size() != np || !(d > 0)) return f;
+  if (np == 0 || N.size() != np || !(sphereDiameter > 0)) return f;
+  const double d = featureScale(sphereDiameter, areaSpacing);
   const double crease = std::min(std::max(creaseAngleDeg, 1.0), 179.0) * kPi / 180;
   const double R = kFitRadiusPerD * d;
   f.radius = R;
@@ -276,6 +289,19 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     CreasePoint c;
     if (creaseAt(i, P, N, grid, R, std::cos(crease / 2), std::cos(crease), nb, c)) cp.push_back(c);
   }
+  // A fit much looser than the cloud's usual one (kMaxFitRmsPerMedian times the median of the
+  // crease points', at least kMinFitRmsLimitPerRadius of the radius) is not two planes: a third
+  // plane near a corner, or a side of a few points that took some of the other side's.
+  if (!cp.empty()) {
+    std::vector<double> rms(cp.size());
+    for (size_t k = 0; k < cp.size(); ++k) rms[k] = cp[k].rms;
+    std::nth_element(rms.begin(), rms.begin() + std::ptrdiff_t(rms.size() / 2), rms.end());
+    const double limit = std::max(kMaxFitRmsPerMedian * rms[rms.size() / 2], kMinFitRmsLimitPerRadius * R);
+    size_t w = 0;
+    for (size_t k = 0; k < cp.size(); ++k)
+      if (cp[k].rms <= limit) cp[w++] = cp[k];
+    cp.resize(w);
+  }
   f.creasePoints = cp.size();
   if (cp.empty()) return f;
 
@@ -286,16 +312,23 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   for (size_t k = 0; k < cp.size(); ++k) cpx[k] = cp[k].x;
   PointGrid cgrid;
   cgrid.build(cpx, reach);
-  std::vector<char> used(cp.size(), 0);
+  // The line that took each crease point (kNoLine: none yet).
+  constexpr std::uint32_t kNoLine = 0xffffffffu;
+  std::vector<std::uint32_t> owner(cp.size(), kNoLine);
+  std::uint32_t current = 0;
   // A step of the tracing from x along t: to the step's end y = x + t·h, moved across the line to
   // the mean of the crease points within `reach` of y whose directions agree with t (the new
   // direction: their mean); none when no such point lies beyond y − t·h/4 (the line ends there).
+  // The points another line took are not followed: a line whose tracing stopped at a gap in the
+  // crease points is met there by the line traced from beyond the gap, end to end, and the two are
+  // joined (joinFacingEnds) instead of the second running back along the first.
   auto stepFrom = [&](const Vec3d& x, const Vec3d& t, double len, Vec3d& mx, Vec3d& mt, Vec3d& mn) {
     const Vec3d y = x + t * len;
     Vec3d sx(0, 0, 0), st(0, 0, 0), sn(0, 0, 0);
     size_t cnt = 0;
     bool ahead = false;
     cgrid.forEachInBall(y, reach, [&](int j, double) {
+      if (owner[size_t(j)] != kNoLine && owner[size_t(j)] != current) return;
       const double c = cp[size_t(j)].t * t;
       if (std::abs(c) < cosTrace) return;
       sx += cp[size_t(j)].x;
@@ -318,6 +351,7 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
     Vec3d sx(0, 0, 0), st(0, 0, 0), sn(0, 0, 0);
     size_t cnt = 0;
     cgrid.forEachInBall(cp[s].x, h, [&](int j, double) {
+      if (owner[size_t(j)] != kNoLine) return;
       const double c = cp[size_t(j)].t * cp[s].t;
       if (std::abs(c) < cosTrace) return;
       sx += cp[size_t(j)].x;
@@ -336,13 +370,15 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   size_t support = 0;
   auto markUsed = [&](const Vec3d& x, const Vec3d& t) {
     cgrid.forEachInBall(x, reach, [&](int j, double d2) {
-      if (!used[size_t(j)] && (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace)) used[size_t(j)] = 1, ++support;
+      if (owner[size_t(j)] == kNoLine && (d2 <= h * h || std::abs(cp[size_t(j)].t * t) >= cosTrace))
+        owner[size_t(j)] = current, ++support;
     });
   };
   const size_t maxSteps = 4 * np + 16;
   for (size_t s = 0; s < cp.size(); ++s) {
-    if (used[s]) continue;
+    if (owner[s] != kNoLine) continue;
     Vec3d x0, t0, n0;
+    current = std::uint32_t(f.lines.size());
     if (!seedAt(s, x0, t0, n0)) continue;
     support = 0;
     markUsed(x0, t0);
@@ -558,24 +594,33 @@ CloudFeatures detectCloudFeatures(const std::vector<Vec3d>& P, const std::vector
   f.patch.assign(np, kNoPatch);
   std::vector<std::uint32_t> stack, members;
   std::uint32_t next = 0;
+  // The sets are joined through the far points too (which take no patch in the end): a band of
+  // 3 w around a face has holes in a random sampling wide enough to cut it (a strip of 0.024 to
+  // 0.045 without points across the band on a box of 30000 points, where w = 0.042), the face's
+  // interior has none.
   for (std::uint32_t k = 0; k < np; ++k) {
     const std::uint32_t s = order.rankOf(k);
-    if (zone[s] || f.patch[s] != kNoPatch) continue;
+    if (zone[s] != 0 || f.patch[s] != kNoPatch) continue;
     members.clear();
     stack.assign(1, s);
     f.patch[s] = next;
+    size_t near = 0;
     while (!stack.empty()) {
       const std::uint32_t i = stack.back();
       stack.pop_back();
       members.push_back(i);
+      near += zone[i] == 0 ? 1 : 0;
       wgrid.forEachInBall(P[i], w, [&](int j, double) {
-        if (zone[size_t(j)] || f.patch[size_t(j)] != kNoPatch) return;
+        if ((zone[size_t(j)] != 0 && zone[size_t(j)] != 3) || f.patch[size_t(j)] != kNoPatch) return;
         f.patch[size_t(j)] = next;
         stack.push_back(std::uint32_t(j));
       });
     }
-    if (members.size() < kMinPatchPoints) {
-      for (std::uint32_t i : members) f.patch[i] = kNoPatch, zone[i] = 2; // small: into the zone
+    for (std::uint32_t i : members)
+      if (zone[i] == 3) f.patch[i] = kNoPatch;
+    if (near < kMinPatchPoints) {
+      for (std::uint32_t i : members)
+        if (zone[i] == 0) f.patch[i] = kNoPatch, zone[i] = 2; // small: into the zone
       continue;
     }
     ++next;

@@ -55,7 +55,7 @@ void placeCloudFeatures(Growth& growth, const CloudFeatures& f, const std::vecto
   std::vector<std::uint32_t> cornerVertex(f.corners.size(), std::uint32_t(Growth::kNoVertex)), placed;
   auto place = [&](const Vec3d& x, const Vec3d& n, const Vec3d* t = nullptr) {
     const std::uint32_t id =
-        growth.addFeatureVertex(x, n, t != nullptr ? f.sidesAt(x, *t, points) : std::vector<std::pair<std::uint32_t, Vec3d>>());
+        t != nullptr ? growth.addFeatureVertex(x, n, f.sidesAt(x, *t, points), *t) : growth.addFeatureVertex(x, n);
     if (id != Growth::kNoVertex) placed.push_back(id);
     return id;
   };

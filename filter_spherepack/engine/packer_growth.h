@@ -79,15 +79,20 @@ public:
   // Sec. 3.3 with more than two starting vertices: a feature vertex at x with normal n, unless a
   // vertex is closer than d (then kNoVertex). Its candidates are enumerated by enumerateFeature()
   // once all feature vertices and edges are in.
-  // `sides`: per patch, the direction across the crease into it (CloudFeatures::sidesAt); a
-  // candidate of a listed patch with this vertex as a parent must lie on that side of it.
+  // `sides`: per patch, the direction across the crease into it (CloudFeatures::sidesAt), the
+  // crease running along the unit vector t there; a candidate of a listed patch with this vertex as
+  // a parent must lie on that side of it: its offset from the vertex, without its part along t,
+  // within 60 degrees of the side's direction (a splat tilted across the crease, as estimated
+  // normals are there, runs past it out of the side's plane).
   std::uint32_t addFeatureVertex(const Vec3d& x, const Vec3d& n,
-                                 std::vector<std::pair<std::uint32_t, Vec3d>> sides = {}) {
+                                 std::vector<std::pair<std::uint32_t, Vec3d>> sides = {},
+                                 const Vec3d& t = Vec3d(0, 0, 0)) {
     if (anyVertexCloserThan(x, d_)) return kNoVertex;
     const std::uint32_t v = insertVertex(x, 0, &n, /*enumerateLater=*/true, /*feature=*/true);
     if (!sides.empty()) {
-      if (featureSides_.size() <= v) featureSides_.resize(v + 1);
+      if (featureSides_.size() <= v) featureSides_.resize(v + 1), featureDirs_.resize(v + 1, Vec3d(0, 0, 0));
       featureSides_[v] = std::move(sides);
+      featureDirs_[v] = t;
     }
     return v;
   }
@@ -302,10 +307,13 @@ private:
     return patch == kNoVertex || vpatch_[v] == kNoVertex || vpatch_[v] == patch;
   }
   std::vector<std::vector<std::pair<std::uint32_t, Vec3d>>> featureSides_; // per feature vertex (addFeatureVertex)
+  std::vector<Vec3d> featureDirs_;                                          // and the crease's direction there
   bool onSide(std::uint32_t v, std::uint32_t patch, const Vec3d& y) const {
     if (v >= featureSides_.size()) return true;
+    Vec3d o = y - graph_.position(v);
+    o -= featureDirs_[v] * (o * featureDirs_[v]);
     for (const auto& e : featureSides_[v])
-      if (e.first == patch) return (y - graph_.position(v)) * e.second > 0;
+      if (e.first == patch) return o * e.second > 0.5 * o.Norm();
     return true;
   }
   Progress& progress_;
