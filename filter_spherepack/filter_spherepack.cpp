@@ -126,6 +126,9 @@ void FilterSpherePackPlugin::addParameters(FilterID filter, const MeshModel& m, 
         "Regions with a longer border (in edges) stay open as holes (sec. 3.7)."));
     parlst.addParam(RichFloat("creaseAngle", float(def.creaseAngleDeg), "Crease angle (degrees)",
         "Edges whose faces' normals differ by more than this are creases."));
+    parlst.addParam(RichInt("minComponentFaces", def.minPieceFaces, "Smallest piece kept (faces)",
+        "Pieces of the output with fewer faces are dropped, but every connected part of the input keeps its "
+        "largest piece. 0 keeps all."));
     return;
   }
   if (filter != FP_SPHERE_PACKING) return;
@@ -273,6 +276,7 @@ bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterLi
   p.windowSize = par.getInt("windowSize");
   p.maxBorderLength = par.getInt("maxBorderLength");
   p.creaseAngleDeg = par.getFloat("creaseAngle");
+  p.minPieceFaces = par.getInt("minComponentFaces");
 
   growth::spherepack::RemeshStat st;
   CMeshO result;
@@ -286,6 +290,7 @@ bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterLi
   outputs["faces"] = int(st.faces);
   outputs["holes"] = int(st.boundaryLoops);
   outputs["faces_removed"] = int(st.facesRemoved);
+  outputs["pieces_dropped"] = int(st.piecesDropped); // smaller than minComponentFaces
   outputs["sphere_diameter"] = double(st.sphereDiameter);
   outputs["seconds"] = double(st.seconds);
 
@@ -301,6 +306,9 @@ bool FilterSpherePackPlugin::applyRemesh(MeshDocument& md, const RichParameterLi
       "mesh without intersections; %zu holes closed by the hole pass with %zu faces)", st.vertices, st.faces,
       st.smallestEdge, st.qualityAvg, st.boundaryLoops, st.holes, st.regionsOutside, st.facesRemoved,
       st.holesClosed, st.holeFacesAdded);
+  Log("Sphere Packing remesh: %zu piece%s with fewer than %d faces dropped (%zu faces), the largest piece of "
+      "every part of the input kept", st.piecesDropped, st.piecesDropped == 1 ? "" : "s", p.minPieceFaces,
+      st.pieceFacesDropped);
   Log("Sphere Packing remesh: %zu candidates, %zu re-queued, rejected: %zu too close, %zu crossing, %zu twisted",
       st.candidates, st.requeued, st.rejectedTooClose, st.rejectedCrossing, st.rejectedInconsistent);
   Log("Sphere Packing remesh: time %.3f s (input %.3f, growth %.3f, regions %.3f, clean-up %.3f, output %.3f)",

@@ -192,9 +192,10 @@ def test_remeshing_adds_a_layer_with_edges_at_least_d_and_leaves_the_input_untou
     before_v, before_f = ms.current_mesh().vertex_matrix().copy(), ms.current_mesh().face_matrix().copy()
     out = ms.apply_filter(REMESH)
     assert ms.mesh_number() == 2 and ms.current_mesh_id() == 1
-    assert {"vertices", "faces", "holes", "faces_removed", "sphere_diameter", "seconds"} <= set(out), out
+    assert {"vertices", "faces", "holes", "faces_removed", "pieces_dropped", "sphere_diameter", "seconds"} <= set(out), out
     mesh = ms.current_mesh()
     assert out["faces"] == mesh.face_number() > 0 and out["holes"] == 0 and out["faces_removed"] == 0
+    assert out["pieces_dropped"] == 0
     d = out["sphere_diameter"]
     v, f = mesh.vertex_matrix(), mesh.face_matrix()
     e, _ = edges_of(f)
@@ -205,8 +206,8 @@ def test_remeshing_adds_a_layer_with_edges_at_least_d_and_leaves_the_input_untou
     assert np.array_equal(ms.mesh(0).vertex_matrix(), before_v) and np.array_equal(ms.mesh(0).face_matrix(), before_f)
     # An absolute d: about a quarter of the vertices at twice the default.
     ms.set_current_mesh(0)
-    out2 = ms.apply_filter(REMESH, spherediameter=pymeshlab.PureValue(2 * d))
-    assert out2["sphere_diameter"] == pytest.approx(2 * d, rel=1e-6)
+    out2 = ms.apply_filter(REMESH, spherediameter=pymeshlab.PureValue(2 * d), mincomponentfaces=0)
+    assert out2["sphere_diameter"] == pytest.approx(2 * d, rel=1e-6) and out2["pieces_dropped"] == 0
     assert 0.15 * out["vertices"] < out2["vertices"] < 0.35 * out["vertices"]
 
 
