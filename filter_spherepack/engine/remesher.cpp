@@ -39,9 +39,14 @@ constexpr double kSliverHeight = 1e-8;
 // crease of up to 120° still joins its two sides).
 constexpr double kMinFacingDot = -0.5;
 // Vertices of two patches whose normals make more than 60° may be closer than d (MeshGrowth::keepsOff).
-// The hole pass's closure faces lie within this many d of the input (remesh()).
-constexpr double kClosureOnInputPerD = 1.0;
 constexpr double kApartDot = 0.5;
+
+// Whether the triangle (a, b, c) has an edge shorter than d (the growth's edges are d up to
+// rounding: the test leaves a relative 1e-9 of d²).
+bool hasEdgeBelow(const Vec3d& a, const Vec3d& b, const Vec3d& c, double d) {
+  const double shortest = d * d * (1 - 1e-9);
+  return (b - a).SquaredNorm() < shortest || (c - b).SquaredNorm() < shortest || (a - c).SquaredNorm() < shortest;
+}
 
 std::string vecText(const Vec3d& p) { return "(" + fmt(p[0]) + ", " + fmt(p[1]) + ", " + fmt(p[2]) + ")"; }
 
@@ -489,37 +494,33 @@ public:
     return found;
   }
 
-  // The input triangle closest to x among those listed around it (kNone when none is).
-  std::uint32_t closestTriangle(const Vec3d& x) const {
+  // The input triangle closest to x among those listed around it (kNone when none is), its squared
+  // distance and the feature of its closest point (closestOnTriangle); ties go to the lower index.
+  std::uint32_t closestTriangle(const Vec3d& x, double* squared = nullptr, int* feature = nullptr) const {
     double best = std::numeric_limits<double>::infinity();
     std::uint32_t bestT = kNone;
+    int bestFeature = 0;
     grid_.forEachNear(x, [&](std::uint32_t t) {
-      const double d2 = squaredDistance(x, t);
+      int ft = 0;
+      const double d2 = squaredDistance(x, t, &ft);
       if (d2 < best || (d2 == best && t < bestT)) {
         best = d2;
         bestT = t;
+        bestFeature = ft;
       }
     });
+    if (squared != nullptr) *squared = best;
+    if (feature != nullptr) *feature = bestFeature;
     return bestT;
   }
 
   // Whether x lies beyond the input's boundary: its closest input point (any side) is on a boundary
   // edge or corner and farther than kOutsideTolerancePerD·d, or no triangle is within d.
-  // `within` (a share of d, at most 1): also when no input point is within within·d.
-  bool beyondBoundary(const Vec3d& x, double within = 1.0) const {
-    double best = std::numeric_limits<double>::infinity();
-    std::uint32_t bestT = kNone;
+  bool beyondBoundary(const Vec3d& x) const {
+    double best = 0;
     int bestFeature = 0;
-    grid_.forEachNear(x, [&](std::uint32_t t) {
-      int feature = 0;
-      const double d2 = squaredDistance(x, t, &feature);
-      if (d2 < best || (d2 == best && t < bestT)) {
-        best = d2;
-        bestT = t;
-        bestFeature = feature;
-      }
-    });
-    if (bestT == kNone || best > within * within * d_ * d_) return true;
+    const std::uint32_t bestT = closestTriangle(x, &best, &bestFeature);
+    if (bestT == kNone || best > d_ * d_) return true;
     const double tol = kOutsideTolerancePerD * d_;
     if (best <= tol * tol) return false;
     if (bestFeature == 0) return false;
@@ -1069,8 +1070,8 @@ std::vector<Triangle> triangulateKeepingBoundary(const BorderGraph& g, const Sur
 // dropped: fragments cut off by regions left open, where the input is narrower than d or its
 // border ragged at the scale of d. Every input component keeps its largest piece. A piece's input
 // component is that of the input triangle closest to its first vertex. Returns the pieces dropped.
-size_t dropSmallPieces(std::vector<Triangle>& faces, const BorderGraph& g, const InputMesh& in,
-                       const Surface& surface, size_t minFaces, size_t& facesDropped) {
+size_t dropSmallPiecesKeepingParts(std::vector<Triangle>& faces, const BorderGraph& g, const InputMesh& in,
+                                   const Surface& surface, size_t minFaces, size_t& facesDropped) {
   facesDropped = 0;
   if (minFaces <= 1 || faces.empty()) return 0;
   std::vector<std::uint32_t> parent(g.vertexCount());
@@ -1206,11 +1207,7 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
     const auto& pos = g.positions();
     size_t w = 0;
     for (const Triangle& f : faces) {
-      bool shortEdge = false;
-      // (The growth's edges are d up to rounding: the test leaves a relative 1e-9.)
-      for (int k = 0; k < 3; ++k)
-        shortEdge = shortEdge || (pos[f[k]] - pos[f[(k + 1) % 3]]).SquaredNorm() < d * d * (1 - 1e-9);
-      if (shortEdge) ++st.shortEdgeFacesRemoved;
+      if (hasEdgeBelow(pos[f[0]], pos[f[1]], pos[f[2]], d)) ++st.shortEdgeFacesRemoved;
       else faces[w++] = f;
     }
     faces.resize(w);
@@ -1226,23 +1223,20 @@ void remesh(const MeshArrays& mesh, bool floatStorage, MeshArrays& out, const Re
   st.nonManifoldVerticesRemoved = ps.nonManifoldVerticesRemoved;
   st.selfIntersectionFacesRemoved = ps.selfIntersectionFacesRemoved;
   st.facesRemoved = ps.facesRemoved;
-  st.piecesDropped = dropSmallPieces(faces, g, in, surface, size_t(std::max(params.minPieceFaces, 0)), st.pieceFacesDropped);
+  st.piecesDropped =
+      dropSmallPiecesKeepingParts(faces, g, in, surface, size_t(std::max(params.minPieceFaces, 0)), st.pieceFacesDropped);
   // The hole pass (packer_holes.cpp) on the input surface: a closure's face has every edge at least d
   // (vertices of two patches may be closer) and lies on the input: its centroid, the midpoints of its
-  // edges and the points halfway from the centroid to its corners are within kClosureOnInputPerD·d of
-  // the input and not beyond its boundary (Surface::beyondBoundary), so a hole of the input stays open,
-  // also where another sheet of the input (a misregistered scan's second layer) passes within d of it.
+  // edges and the points halfway from the centroid to its corners are not beyond the input's boundary
+  // (Surface::beyondBoundary), so a hole of the input stays open.
   if (params.closeHoles)
     closeHoles(faces, g,
                [&](const Vec3d& a, const Vec3d& b, const Vec3d& c, double) {
-                 const double shortest = d * d * (1 - 1e-9);
-                 if ((b - a).SquaredNorm() < shortest || (c - b).SquaredNorm() < shortest ||
-                     (a - c).SquaredNorm() < shortest)
-                   return false;
+                 if (hasEdgeBelow(a, b, c, d)) return false;
                  const Vec3d m = (a + b + c) / 3.0;
                  for (const Vec3d& x : {m, (a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5, (m + a) * 0.5, (m + b) * 0.5,
                                         (m + c) * 0.5})
-                   if (surface.beyondBoundary(x, kClosureOnInputPerD)) return false;
+                   if (surface.beyondBoundary(x)) return false;
                  return true;
                },
                floatStorage, ps);
